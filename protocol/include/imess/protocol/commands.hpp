@@ -1,0 +1,35 @@
+// Typed client -> daemon commands. The parser (verbs.hpp) produces them; the daemon acts on them.
+#pragma once
+#include <optional>
+#include <string>
+#include <variant>
+
+namespace imess::protocol {
+
+struct Xyz {
+  double x = 0, y = 0, z = 0;
+  friend bool operator==(const Xyz&, const Xyz&) = default;
+};
+
+// 1996 verbs
+struct StartMv { Xyz percent; };  // per-axis speed, % of MaxSpeed (x SpeedLevel); sign = direction
+struct StopMv {};
+struct ForcePt {};
+// extensions
+struct Hello { std::string client; };
+struct Help {};
+struct Status {};
+struct GoTo { Xyz target; std::optional<double> speed; };  // mm, mm/s
+struct Home {};
+struct Free {};                                             // open the position loops now
+struct Reset {};                                            // clear a fault
+struct Set { std::string name; std::string value; };
+struct Get { std::string name; };                           // empty name: list all
+struct Stats {};
+struct HandMv { Xyz delta; std::optional<double> speed; };  // simulator: push the carriage by hand
+struct Quit {};
+
+using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo, Home, Free,
+                             Reset, Set, Get, Stats, HandMv, Quit>;
+
+}  // namespace imess::protocol

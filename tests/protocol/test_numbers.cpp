@@ -1,0 +1,33 @@
+// Wire numbers: strict parse, %.3f output with no negative zero.
+#include <catch2/catch.hpp>
+
+#include "imess/protocol/numbers.hpp"
+
+using namespace imess::protocol;
+
+TEST_CASE("parse_number accepts decimal forms and rejects the rest") {
+  CHECK(parse_number("12") == 12.0);
+  CHECK(parse_number("-0.5") == -0.5);
+  CHECK(parse_number(".25") == 0.25);
+  CHECK(parse_number("+3") == 3.0);
+  CHECK(parse_number("1e3") == 1000.0);
+  CHECK_FALSE(parse_number(""));
+  CHECK_FALSE(parse_number("abc"));
+  CHECK_FALSE(parse_number("1.5x"));
+  CHECK_FALSE(parse_number("nan"));
+  CHECK_FALSE(parse_number("inf"));
+  CHECK_FALSE(parse_number("1e999"));
+  CHECK_FALSE(parse_number("--1"));
+}
+
+TEST_CASE("append_mm prints three decimals like the 1996 daemon") {
+  std::string s;
+  append_mm(s, 12.3456);
+  CHECK(s == "12.346");
+  s.clear();
+  append_mm(s, -0.0001);
+  CHECK(s == "0.000");
+  s.clear();
+  append_mm(s, -1.5);
+  CHECK(s == "-1.500");
+}

@@ -1,0 +1,89 @@
+// Command parsing: every verb, case-insensitivity, and a clear Err for every bad input.
+#include <catch2/catch.hpp>
+
+#include "imess/protocol/verbs.hpp"
+
+using namespace imess::protocol;
+
+namespace {
+template <class T>
+T parsed(std::string_view line) {
+  auto r = parse_command(line);
+  REQUIRE(std::holds_alternative<Command>(r));
+  auto& c = std::get<Command>(r);
+  REQUIRE(std::holds_alternative<T>(c));
+  return std::get<T>(c);
+}
+ParseError failed(std::string_view line) {
+  auto r = parse_command(line);
+  REQUIRE(std::holds_alternative<ParseError>(r));
+  return std::get<ParseError>(r);
+}
+}  // namespace
+
+TEST_CASE("the 1996 verbs parse as the 1996 panel sends them") {
+  auto s = parsed<StartMv>("StartMv 0 0 -20");
+  CHECK(s.percent == Xyz{0, 0, -20});
+  CHECK(parsed<StartMv>("StartMv 100 -2 0.5").percent == Xyz{100, -2, 0.5});
+  parsed<StopMv>("StopMv");
+  parsed<ForcePt>("ForcePt");
+}
+
+TEST_CASE("verbs are case-insensitive and blanks are flexible") {
+  CHECK(parsed<StartMv>("  startmv\t1  2 3 ").percent == Xyz{1, 2, 3});
+  parsed<StopMv>("STOPMV");
+  CHECK(parsed<GoTo>("goto 1 2 3 40").speed == 40.0);
+  CHECK_FALSE(parsed<GoTo>("GoTo 1 2 3").speed.has_value());
+}
+
+TEST_CASE("every verb in the table parses from its own name and reports that name") {
+  for (const auto& v : verb_table()) {
+    CHECK(v.name.size() <= 8);
+    std::string line(v.name);
+    if (v.args.rfind("vx", 0) == 0 || v.args.rfind("x ", 0) == 0 || v.args.rfind("dx", 0) == 0) line += " 1 2 3";
+    else if (v.args == "name value") line += " TipRadius 2";
+    auto r = parse_command(line);
+    INFO(line);
+    REQUIRE(std::holds_alternative<Command>(r));
+    CHECK(verb_name(std::get<Command>(r)) == v.name);
+  }
+}
+
+TEST_CASE("parameters and names are kept as typed") {
+  auto s = parsed<Set>("Set TipRadius 2.5");
+  CHECK(s.name == "TipRadius");
+  CHECK(s.value == "2.5");
+  CHECK(parsed<Get>("Get").name.empty());
+  CHECK(parsed<Hello>("Hello messjog").client == "messjog");
+}
+
+TEST_CASE("bad input gets the right error code and a text that helps") {
+  auto e = failed("Jump 1 2 3");
+  CHECK(e.code == ErrorCode::UnknownCommand);
+  CHECK(e.text.find("Help") != std::string::npos);
+
+  e = failed("StartMv 1 2");
+  CHECK(e.code == ErrorCode::BadArguments);
+  CHECK(e.text.find("StartMv vx vy vz") != std::string::npos);
+
+  e = failed("StartMv 1 two 3");
+  CHECK(e.code == ErrorCode::BadNumber);
+  CHECK(e.text.find("'two'") != std::string::npos);
+
+  CHECK(failed("StartMv 0 0 150").code == ErrorCode::BadValue);
+  CHECK(failed("GoTo 1 2 3 -5").code == ErrorCode::BadValue);
+  CHECK(failed("StopMv now").code == ErrorCode::BadArguments);
+  CHECK(failed("Status\x01").code == ErrorCode::BadCharacter);
+  CHECK(failed("St\xc3\xa4tus").code == ErrorCode::BadCharacter);
+}
+
+TEST_CASE("blank lines are recognised so callers can skip them") {
+  CHECK(is_blank(""));
+  CHECK(is_blank(" \t "));
+  CHECK_FALSE(is_blank(" x"));
+}
+
+TEST_CASE("help lines name usage and meaning") {
+  auto line = help_line(verb_table()[0]);
+  CHECK(line.rfind("Help StartMv vx vy vz - ", 0) == 0);
+}
