@@ -1,0 +1,121 @@
+// Plain data crossing into and out of the motion loop: commands, events, parameters, the
+// state snapshot. Trivially copyable, fixed size — they travel through lock-free rings.
+#pragma once
+#include <cstdint>
+
+#include "imess/hal/types.hpp"
+
+namespace imess::core {
+
+using hal::AxisArray;
+using hal::kAxes;
+using hal::Nanos;
+using hal::Vec3;
+
+enum class Mode : std::uint8_t { Free, Idle, Jog, Move, Retract, Home, Fault };
+
+// Why the loop refused a command; net maps each to a protocol error code.
+enum class Refusal : std::uint8_t { None, TipTouched, IntoLimit, Busy, NotSimulated, LoopsClosed, OutOfTravel, Faulted, Hardware };
+
+enum class Warning : std::uint8_t {
+  TipNotFree,       // retract did not re-seat the probe in time; loops opened
+  UnexpectedHit,    // probe triggered during a positioning move or homing
+  HandHitNoTravel,  // hand hit without 1 mm of travel before it: no direction to compensate
+  HandHitTooSoon,   // second hand hit within the minimum interval
+  HitIgnored,       // probe edge while the loops hold the machine still
+  HomingFailed,
+  MoveRefused,      // a jog or GoTo queued behind a stop could not start (limit, tip)
+};
+
+enum class FaultKind : std::uint8_t { CommLost, FollowingError, Emergency, DriveNotReady, ConfigError };
+
+// Runtime parameters (Set/Get). Ranges are checked by the daemon's parameter table.
+struct CoreParams {
+  double tip_radius = 2.0;         // mm; 0 = no radius correction (optical probe)
+  double speed_level = 1.0;        // multiplier for every speed
+  double max_speed = 100;          // mm/s at StartMv 100 %
+  double max_accel = 1000;         // mm/s²
+  double retract_distance = 0.5;   // mm behind the latched point
+  double retract_speed = 10;       // mm/s
+  double retract_timeout = 5;      // s to re-seat the tip
+  double idle_open_time = 7;       // s after the last stop until the loops open
+  double goto_speed = 50;          // mm/s when GoTo names none
+  double hand_min_travel = 1.0;    // mm of travel that gives a hand hit its direction
+  double hand_min_interval = 1.0;  // s between accepted hand hits
+};
+
+enum class ParamId : std::uint8_t {
+  TipRadius, SpeedLevel, MaxSpeed, MaxAccel, RetractDistance, RetractSpeed, RetractTimeout,
+  IdleOpenTime, GoToSpeed, HandMinTravel, HandMinInterval,
+};
+double& param_ref(CoreParams& p, ParamId id) noexcept;
+double param_value(const CoreParams& p, ParamId id) noexcept;
+
+struct AxisSettings {
+  double travel_min = 0, travel_max = 1000;  // soft limits once referenced
+  int home_direction = -1;                   // side of the home switch
+  double home_position = 0;                  // machine coordinate of the index found by Home
+};
+
+struct HomingSettings {
+  AxisArray<int> order{2, 0, 1};  // Z first: lift the probe clear before X and Y move
+  double search_speed = 30, index_speed = 5, creep_speed = 0.1;  // mm/s
+  double limit_escape = 180;      // mm moved out of a limit before the search
+  double backoff = 100;           // mm backed off when the switch was found too soon
+  double min_search_time = 2;     // s
+  double phase_timeout = 120;     // s per phase before homing fails
+};
+
+struct CoreConfig {
+  CoreParams params;
+  AxisArray<AxisSettings> axes{AxisSettings{0, 1000, -1, 0}, AxisSettings{0, 1000, -1, 0}, AxisSettings{0, 600, 1, 600}};
+  HomingSettings homing;
+  double max_velocity = 150;  // mm/s: no speed level lifts a move above this
+  bool referenced_at_start = false;  // absolute scales: soft limits valid without Home
+};
+
+enum class CommandKind : std::uint8_t { StartMv, StopMv, ForcePt, GoTo, Home, Free, Reset, HandMv, SetParam };
+
+struct Command {
+  CommandKind kind = CommandKind::StopMv;
+  std::uint32_t client = 0;  // who asked (for the reply)
+  std::uint32_t seq = 0;
+  Vec3 v = Vec3::Zero();     // StartMv: percent; GoTo: target; HandMv: delta
+  double speed = 0;          // GoTo, HandMv: mm/s; 0 = default
+  ParamId param = ParamId::TipRadius;
+  double value = 0;
+};
+
+enum class EventKind : std::uint8_t { Reply, MeasPt, State, Limit, Warn, Fault, Homed };
+
+struct Event {
+  EventKind kind = EventKind::Reply;
+  std::uint32_t client = 0, seq = 0;  // Reply
+  CommandKind command = CommandKind::StopMv;
+  Refusal refusal = Refusal::None;    // Reply: None = Ok
+  Mode mode = Mode::Free;             // State
+  Warning warning = Warning::TipNotFree;
+  FaultKind fault = FaultKind::CommLost;
+  std::int8_t axis = -1, side = 0;    // Limit: axis index, -1 negative / +1 positive
+  bool compensated = false;           // MeasPt: radius corrected (false: ForcePt)
+  Vec3 p = Vec3::Zero();              // MeasPt / Warn position
+  Vec3 dir = Vec3::Zero();            // MeasPt: approach direction used
+  Nanos time{0};
+};
+
+struct Snapshot {
+  std::uint64_t cycle = 0;
+  Nanos time{0};
+  Mode mode = Mode::Free;
+  Vec3 position = Vec3::Zero();
+  bool loops_closed = false, tip_touched = false, homed = false, referenced = false;
+  AxisArray<std::int8_t> limit{};     // -1 negative switch, +1 positive, 0 none
+  AxisArray<std::uint32_t> status{};  // raw axis status words
+  AxisArray<std::uint8_t> inputs{};
+  CoreParams params;
+  bool simulated = false;
+  std::uint64_t events_dropped = 0;
+  std::uint64_t hardware_errors = 0;
+};
+
+}  // namespace imess::core

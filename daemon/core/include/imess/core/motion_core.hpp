@@ -1,0 +1,83 @@
+// MotionCore: the machine's behaviour, one cycle at a time. Reads the hardware, takes a
+// bounded number of commands, runs jog / move / probe-hit / retract / homing / idle logic,
+// writes the hardware, pushes events and publishes a snapshot. cycle() never allocates,
+// locks, logs, throws or blocks; time comes in as an argument (real or virtual).
+#pragma once
+#include "imess/core/hand_travel.hpp"
+#include "imess/core/homing.hpp"
+#include "imess/core/queues.hpp"
+#include "imess/core/triple_buffer.hpp"
+#include "imess/hal/motion_backend.hpp"
+
+namespace imess::core {
+
+class MotionCore {
+ public:
+  // sim: the simulator's hooks, or nullptr on real hardware (HandMv is then refused).
+  MotionCore(hal::MotionBackend& hardware, CoreConfig config, hal::SimHooks* sim = nullptr);
+
+  // Set-up: the backend is initialised; reads the first state. Not real-time.
+  void start(Nanos now);
+  // One motion cycle. Measured budget on the simulated card: see bench/ and docs.
+  void cycle(Nanos now) noexcept;
+
+  // Crossings. commands(): pushed by exactly one thread (the io thread); events() and
+  // snapshot(): read by exactly one thread.
+  CommandQueue& commands() noexcept { return commands_; }
+  EventQueue& events() noexcept { return events_; }
+  const Snapshot& snapshot() noexcept { return snapshot_.read(); }
+
+  // For tests and the loop's owner, read on the loop's own thread only.
+  Mode mode() const noexcept { return mode_; }
+  const hal::MachineState& machine() const noexcept { return ms_; }
+
+ private:
+  void handle(const Command& c, Nanos now) noexcept;
+  Refusal start_jog(const Vec3& percent, Nanos now) noexcept;
+  Refusal go_to(const Vec3& target, double speed, Nanos now) noexcept;
+  // A new motion while moving brakes to rest first and starts from there (straight paths,
+  // no axis retargeted at a fraction of its acceleration).
+  void launch_pending(Nanos now) noexcept;
+  Refusal start_homing(Nanos now) noexcept;
+  void stop_motion() noexcept;
+  void on_probe_latch(Nanos now) noexcept;
+  void retract_from(const Vec3& latched, const Vec3& dir, Nanos now) noexcept;
+  void check_limits(Nanos now) noexcept;
+  void update_mode(Nanos now) noexcept;
+  void enter(Mode m, Nanos now) noexcept;
+  void fault(FaultKind f, Nanos now) noexcept;
+  void emit(const Event& e) noexcept;
+  void reply(const Command& c, Refusal r) noexcept;
+  void measured(const Vec3& point, const Vec3& dir, bool compensated, Nanos now) noexcept;
+  void warn(Warning w, const Vec3& where, Nanos now) noexcept;
+  void publish(Nanos now) noexcept;
+  // Per-axis speeds and accelerations for a straight path along unit direction u.
+  AxisArray<hal::AxisMove> straight_moves(const Vec3& target, const Vec3& u, double speed) const noexcept;
+  bool moving_into_limit(int axis, int side) const noexcept;
+  double effective_speed(double mm_per_s) const noexcept;
+
+  hal::MotionBackend& hw_;
+  CoreConfig config_;
+  hal::SimHooks* sim_;
+  CommandQueue commands_;
+  EventQueue events_;
+  TripleBuffer<Snapshot> snapshot_;
+
+  hal::MachineState ms_;
+  Mode mode_ = Mode::Free;
+  bool homed_ = false, referenced_ = false;
+  Vec3 motion_dir_ = Vec3::Zero();      // unit direction of the current jog / move
+  AxisArray<std::int8_t> started_in_limit_{};  // side of a limit an axis sat in when motion began
+  Nanos mode_since_{0};
+  Nanos last_hand_hit_{-1'000'000'000'000};
+  HandTravel hand_;
+  Homing homing_;
+  int comm_failures_ = 0;
+  bool state_stale_ = false;
+  enum class Pending : std::uint8_t { None, Jog, GoTo } pending_ = Pending::None;
+  Vec3 pending_v_ = Vec3::Zero();
+  double pending_speed_ = 0;  // a move was commanded after this cycle's state was read
+  std::uint64_t cycles_ = 0, events_dropped_ = 0, hardware_errors_ = 0;
+};
+
+}  // namespace imess::core

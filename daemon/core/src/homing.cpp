@@ -1,0 +1,145 @@
+// Homing phases; every phase has a timeout so a missing switch fails instead of hanging.
+#include "imess/core/homing.hpp"
+
+#include <cmath>
+
+namespace imess::core {
+
+namespace in = hal::input;
+
+void Homing::begin(const CoreConfig& config, Nanos now) noexcept {
+  config_ = &config;
+  order_pos_ = 0;
+  failure_ = "";
+  enter(Phase::Start, now);
+}
+
+bool Homing::jog(hal::MotionBackend& hw, double target, double speed) noexcept {
+  AxisArray<hal::AxisMove> m{};
+  m[axis_] = {target, speed, config_->params.max_accel};
+  return hw.move(m, 1u << axis_);
+}
+
+Homing::Result Homing::step(const hal::MachineState& ms, hal::MotionBackend& hw, Nanos now) noexcept {
+  const auto& h = config_->homing;
+  const double pos = ms.position[axis_];
+  const bool cam = ms.input(axis_, in::kHome);
+  const bool index = ms.input(axis_, in::kIndex);
+  const bool limit_here = ms.input(axis_, dir_ < 0 ? in::kLimitNeg : in::kLimitPos);
+  const bool limit_away = ms.input(axis_, dir_ < 0 ? in::kLimitPos : in::kLimitNeg);
+  const bool done = (ms.status[axis_] & hal::status::kProfileEnd) != 0;
+  constexpr double kFar = 1e5;
+  if (phase_ != Phase::Start && hal::seconds(now - phase_start_) > h.phase_timeout)
+    return fail("a homing phase timed out: switch or index not found");
+
+  switch (phase_) {
+    case Phase::Start:
+      if (order_pos_ >= kAxes) return Result::Done;
+      axis_ = h.order[order_pos_];
+      dir_ = config_->axes[axis_].home_direction < 0 ? -1 : 1;
+      backed_off_ = reversed_ = have_entry_ = false;
+      if (ms.input(axis_, dir_ < 0 ? in::kLimitNeg : in::kLimitPos)) {
+        if (!jog(hw, pos - dir_ * h.limit_escape, h.search_speed)) return fail("the controller refused a move");
+        enter(Phase::EscapeLimit, now);
+      } else {
+        if (!jog(hw, pos + dir_ * kFar, h.search_speed)) return fail("the controller refused a move");
+        search_start_ = now;
+        enter(Phase::Search, now);
+      }
+      return Result::Running;
+
+    case Phase::EscapeLimit:
+      if (limit_away) return fail("ran into the opposite limit while leaving a limit switch");
+      if (done) {
+        jog(hw, pos + dir_ * kFar, h.search_speed);
+        search_start_ = now;
+        enter(Phase::Search, now);
+      }
+      return Result::Running;
+
+    case Phase::Search:
+      if (cam) {
+        hw.stop(Vec3::Constant(config_->params.max_accel));
+        enter(Phase::SearchStopping, now);
+      } else if (limit_here && !reversed_) {  // switch not on this side of us: reverse at the limit
+        reversed_ = true;
+        jog(hw, pos - dir_ * kFar, h.search_speed);
+      } else if (limit_away || (limit_here && reversed_ && done)) {
+        return fail("home switch not found between the limits");
+      }
+      return Result::Running;
+
+    case Phase::SearchStopping:
+      if (!done) return Result::Running;
+      if (!backed_off_ && hal::seconds(now - search_start_) < h.min_search_time) {
+        backed_off_ = true;  // found too soon: approach again from a distance at full speed
+        jog(hw, pos - dir_ * h.backoff, h.search_speed);
+        enter(Phase::BackOff, now);
+      } else {
+        jog(hw, pos - dir_ * kFar, h.index_speed);
+        prev_index_ = index;
+        enter(Phase::LeaveSwitch, now);
+      }
+      return Result::Running;
+
+    case Phase::BackOff:
+      if (limit_away) return fail("ran into the opposite limit while backing off");
+      if (done) {
+        jog(hw, pos + dir_ * kFar, h.search_speed);
+        search_start_ = now;
+        reversed_ = false;
+        enter(Phase::Search, now);
+      }
+      return Result::Running;
+
+    case Phase::LeaveSwitch:
+      if (limit_away) return fail("no encoder index found after the home switch");
+      if (!cam && index && !prev_index_) {
+        hw.stop(Vec3::Constant(config_->params.max_accel));
+        enter(Phase::IndexStopping, now);
+      }
+      prev_index_ = index;
+      return Result::Running;
+
+    case Phase::IndexStopping:
+      if (done) {  // go back past the index, then creep over it
+        jog(hw, pos + dir_ * 0.1, h.index_speed);
+        enter(Phase::CreepBack, now);
+      }
+      return Result::Running;
+
+    case Phase::CreepBack:
+      if (done) {
+        jog(hw, pos - dir_ * kFar, h.creep_speed);
+        prev_index_ = index;
+        have_entry_ = false;
+        enter(Phase::Creep, now);
+      }
+      return Result::Running;
+
+    case Phase::Creep:
+      if (index && !prev_index_) {
+        entry_ = pos;
+        have_entry_ = true;
+      } else if (!index && prev_index_ && have_entry_) {
+        exit_ = pos;
+        hw.stop(Vec3::Constant(config_->params.max_accel));
+        enter(Phase::CreepStopping, now);
+      }
+      prev_index_ = index;
+      return Result::Running;
+
+    case Phase::CreepStopping:
+      if (done) {
+        double centre = 0.5 * (entry_ + exit_);
+        if (!hw.set_position(axis_, config_->axes[axis_].home_position + (pos - centre)))
+          return fail("the controller refused to set the home position");
+        ++order_pos_;
+        enter(Phase::Start, now);
+      }
+      return Result::Running;
+  }
+  return Result::Running;
+}
+
+}  // namespace imess::core

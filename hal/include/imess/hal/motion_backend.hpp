@@ -1,0 +1,80 @@
+// MotionBackend: what the motion core needs from a machine — read axes and inputs, run
+// per-axis trapezoid moves, stop, open/close the position loops, read the probe latch.
+// Real-time calls are noexcept and allocate nothing; set-up calls may throw.
+#pragma once
+#include <string>
+
+#include "imess/hal/types.hpp"
+
+namespace imess::hal {
+
+// Axis status word bits (the MCU-style card's layout; every backend reports in it).
+namespace status {
+inline constexpr std::uint32_t kCommTimeout = 1u << 0, kEmergency = 1u << 1, kDriveNotReady = 1u << 2,
+                               kHardLimitNeg = 1u << 3, kHardLimitPos = 1u << 4, kSoftLimitNeg = 1u << 5,
+                               kSoftLimitPos = 1u << 6, kFollowingError = 1u << 7, kDataError = 1u << 8,
+                               kConfigError = 1u << 9, kProfileEnd = 1u << 12, kClosedLoop = 1u << 13,
+                               kInPosition = 1u << 14, kUserInput = 1u << 15, kLatchValid = 1u << 16;
+inline constexpr std::uint32_t kFaultMask =
+    kCommTimeout | kEmergency | kDriveNotReady | kFollowingError | kDataError | kConfigError;
+}  // namespace status
+
+// Module input bits per axis. 0x2/0x4/0x8 as on the 1996 card; home and index are ours.
+namespace input {
+inline constexpr std::uint8_t kLimitPos = 0x2, kLimitNeg = 0x4, kTip = 0x8, kHome = 0x10, kIndex = 0x20;
+}
+
+struct MachineState {
+  Vec3 position = Vec3::Zero();          // mm, actual (encoder), in machine coordinates
+  AxisArray<std::uint32_t> status{};     // status word per axis
+  AxisArray<std::uint8_t> inputs{};      // module inputs per axis (raw)
+  bool tip_touched = false;              // probe deflected, switch polarity already applied
+
+  bool all(std::uint32_t bit) const { return (status[0] & status[1] & status[2] & bit) != 0; }
+  bool any(std::uint32_t bit) const { return ((status[0] | status[1] | status[2]) & bit) != 0; }
+  bool input(int axis, std::uint8_t bit) const { return (inputs[axis] & bit) != 0; }
+  bool loops_closed() const { return all(status::kClosedLoop); }
+  bool motion_done() const { return all(status::kProfileEnd); }
+  bool latch_valid() const { return any(status::kLatchValid); }
+  bool faulted() const { return any(status::kFaultMask); }
+};
+
+struct AxisMove {
+  double target = 0;    // mm, absolute
+  double velocity = 0;  // mm/s, > 0
+  double accel = 0;     // mm/s², > 0
+};
+
+class MotionBackend {
+ public:
+  virtual ~MotionBackend() = default;
+
+  // ---- set-up (not real-time; may throw std::runtime_error naming the problem) ----
+  // Brings the hardware to a known state: firmware, parameters, loops open.
+  virtual void initialise(bool force_reboot) = 0;
+  virtual std::string describe() const = 0;
+
+  // ---- real-time (noexcept, no allocation); false = the hardware did not answer properly ----
+  virtual bool read_state(MachineState& out) noexcept = 0;
+  // Positions latched at the probe edge; reading clears the latch-valid bit.
+  virtual bool read_latch(Vec3& latched) noexcept = 0;
+  virtual bool set_loops(bool closed) noexcept = 0;
+  // Starts a trapezoid move on the axes whose bit is set in axis_mask; others keep going.
+  virtual bool move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept = 0;
+  // Decelerates every axis to rest with the given per-axis deceleration (mm/s²).
+  virtual bool stop(const Vec3& decel) noexcept = 0;
+  // Redefines the current position of one axis (homing: the index becomes value).
+  virtual bool set_position(int axis, double value) noexcept = 0;
+  // Clears latched fault bits (after the cause is gone); leaves the loops open.
+  virtual bool reset_faults() noexcept = 0;
+};
+
+// Simulator-only hooks (hand pushes); a real machine has none, and the core refuses them.
+class SimHooks {
+ public:
+  virtual ~SimHooks() = default;
+  // Moves the carriage by hand by delta at speed (mm/s); only while the loops are open.
+  virtual void push_by_hand(const Vec3& delta, double speed) noexcept = 0;
+};
+
+}  // namespace imess::hal

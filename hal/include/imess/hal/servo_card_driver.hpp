@@ -1,0 +1,57 @@
+// ServoCardDriver: the MotionBackend for an MCU-style servo card that closes the position
+// loops and runs trapezoid profiles itself; spoken to only through a Link.
+#pragma once
+#include <string>
+
+#include "imess/hal/link.hpp"
+#include "imess/hal/link_codec.hpp"
+#include "imess/hal/motion_backend.hpp"
+#include "imess/hal/servo_card_protocol.hpp"
+
+namespace imess::hal {
+
+struct ServoCardConfig {
+  std::string firmware = "IMESS-MCU 1.0";   // revision the daemon requires
+  AxisArray<double> max_velocity{150, 150, 150};       // mm/s, card-side limit
+  AxisArray<double> max_accel{1000, 1000, 1000};       // mm/s²
+  AxisArray<double> max_following_error{5, 5, 5};     // mm
+  bool tip_reversed = false;                          // probe switch opens on contact
+  int boot_retries = 3;
+};
+
+class ServoCardDriver final : public MotionBackend {
+ public:
+  ServoCardDriver(Link& link, ServoCardConfig config);
+
+  void initialise(bool force_reboot) override;
+  std::string describe() const override;
+
+  bool read_state(MachineState& out) noexcept override;
+  bool read_latch(Vec3& latched) noexcept override;
+  bool set_loops(bool closed) noexcept override;
+  bool move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept override;
+  bool stop(const Vec3& decel) noexcept override;
+  bool set_position(int axis, double value) noexcept override;
+  bool reset_faults() noexcept override;
+
+  // Link transactions that failed or were refused since start (for Stats and -dt).
+  unsigned long errors() const noexcept { return errors_; }
+
+ private:
+  LinkWriter& begin(card::Op op) noexcept;
+  void table(unsigned axis_mask) noexcept;
+  // Sends writer_, checks the status byte; on success reply_ holds the payload after it.
+  bool exchange(std::span<const std::uint8_t>& payload) noexcept;
+  bool simple() noexcept;
+  [[noreturn]] void fail(const std::string& what) const;
+  void set_up_call(const char* what);
+
+  Link& link_;
+  ServoCardConfig config_;
+  LinkWriter writer_;
+  std::array<std::uint8_t, kMaxFrame> reply_{};
+  std::string revision_;
+  unsigned long errors_ = 0;
+};
+
+}  // namespace imess::hal

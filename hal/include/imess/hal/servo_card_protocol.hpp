@@ -1,0 +1,39 @@
+// The servo card's link protocol (see docs/servo-card-link.md): one opcode byte, an axis
+// table {count, axis...} for multi-axis operations, then little-endian u32 / f64 values.
+// Replies start with a status byte. Shared by the driver (hal) and the emulated card (sim).
+#pragma once
+#include <cstdint>
+
+namespace imess::hal::card {
+
+enum class Op : std::uint8_t {
+  ReadInfo = 0x01,      // -> status, u8 axes, u8 booted, u8 params_loaded, u8 len, revision bytes
+  Boot = 0x02,          // u8 len, firmware revision bytes -> status
+  LoadParams = 0x03,    // u8 latch_on_falling, table, per axis f64 vmax, f64 amax, f64 max_following_error -> status
+  ResetAxes = 0x04,     // table -> status (clears fault bits, stops profiles, opens loops)
+  CloseLoops = 0x10,    // table -> status
+  OpenLoops = 0x11,     // table -> status
+  JogAbsolute = 0x21,   // table, per axis f64 target, f64 velocity, f64 accel -> status
+  JogStop = 0x22,       // table, per axis f64 decel -> status
+  SetPosition = 0x23,   // table, per axis f64 value -> status
+  ReadState = 0x30,     // table -> status, per axis f64 position, u32 status word, u8 inputs
+  ReadLatch = 0x31,     // table -> status, per axis f64 latched position (clears latch-valid)
+  WriteOutputs = 0x40,  // table, per axis u8 output bits -> status
+};
+
+enum class Status : std::uint8_t {
+  Ok = 0,
+  BadOpcode = 1,
+  BadLength = 2,   // frame shorter or longer than the operation needs
+  BadAxis = 3,     // axis number not on the card, or a count of 0
+  NotReady = 4,    // no firmware booted or no parameters loaded yet
+  BadValue = 5,    // non-finite number, non-positive speed
+  WrongFirmware = 6,
+};
+
+// Output bits per axis module (WriteOutputs).
+namespace output {
+inline constexpr std::uint8_t kLimitSwitchesOn = 0x1, kReferenceSwitchOn = 0x2, kProbeOn = 0x4;
+}
+
+}  // namespace imess::hal::card

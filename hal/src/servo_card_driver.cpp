@@ -1,0 +1,188 @@
+// ServoCardDriver: frames every operation of the card link protocol. Real-time calls use
+// only the fixed writer_/reply_ buffers.
+#include "imess/hal/servo_card_driver.hpp"
+
+#include <stdexcept>
+
+#include "imess/hal/servo_card_protocol.hpp"
+
+namespace imess::hal {
+
+using card::Op;
+using card::Status;
+
+namespace {
+constexpr unsigned kAllAxes = (1u << kAxes) - 1;
+
+const char* status_text(std::uint8_t s) {
+  switch (static_cast<Status>(s)) {
+    case Status::Ok: return "ok";
+    case Status::BadOpcode: return "unknown opcode";
+    case Status::BadLength: return "bad frame length";
+    case Status::BadAxis: return "bad axis table";
+    case Status::NotReady: return "no firmware or parameters loaded";
+    case Status::BadValue: return "bad value";
+    case Status::WrongFirmware: return "wrong firmware";
+  }
+  return "unknown status";
+}
+}  // namespace
+
+ServoCardDriver::ServoCardDriver(Link& link, ServoCardConfig config) : link_(link), config_(std::move(config)) {}
+
+LinkWriter& ServoCardDriver::begin(Op op) noexcept {
+  writer_.clear();
+  return writer_.u8(static_cast<std::uint8_t>(op));
+}
+
+void ServoCardDriver::table(unsigned axis_mask) noexcept {
+  std::uint8_t count = 0;
+  for (int a = 0; a < kAxes; ++a) count += (axis_mask >> a) & 1u;
+  writer_.u8(count);
+  for (int a = 0; a < kAxes; ++a)
+    if (axis_mask & (1u << a)) writer_.u8(static_cast<std::uint8_t>(a));
+}
+
+bool ServoCardDriver::exchange(std::span<const std::uint8_t>& payload) noexcept {
+  if (!writer_.ok()) {
+    ++errors_;
+    return false;
+  }
+  int n = link_.transact(writer_.bytes(), reply_);
+  if (n < 1 || reply_[0] != static_cast<std::uint8_t>(Status::Ok)) {
+    ++errors_;
+    return false;
+  }
+  payload = std::span<const std::uint8_t>(reply_.data() + 1, static_cast<std::size_t>(n - 1));
+  return true;
+}
+
+bool ServoCardDriver::simple() noexcept {
+  std::span<const std::uint8_t> payload;
+  return exchange(payload);
+}
+
+void ServoCardDriver::fail(const std::string& what) const {
+  throw std::runtime_error("servo card: " + what);
+}
+
+void ServoCardDriver::set_up_call(const char* what) {
+  int n = link_.transact(writer_.bytes(), reply_);
+  if (n < 1) fail(std::string(what) + ": no answer on the link");
+  if (reply_[0] != 0) fail(std::string(what) + ": card answered '" + status_text(reply_[0]) + "'");
+}
+
+void ServoCardDriver::initialise(bool force_reboot) {
+  // 1. Firmware: boot when missing, wrong, or forced (-r); retry a wrong revision.
+  for (int attempt = 0;; ++attempt) {
+    begin(Op::ReadInfo);
+    int n = link_.transact(writer_.bytes(), reply_);
+    if (n < 1) fail("no answer to ReadInfo — is the card present and the link configured?");
+    LinkReader r(std::span<const std::uint8_t>(reply_.data(), static_cast<std::size_t>(n)));
+    auto st = r.u8();
+    auto axes = r.u8();
+    bool booted = r.u8() != 0;
+    r.u8();  // params loaded: reloaded below in every case
+    auto len = r.u8();
+    std::string rev;
+    for (int i = 0; i < len; ++i) rev.push_back(static_cast<char>(r.u8()));
+    if (!r.ok() || st != 0) fail("malformed ReadInfo reply");
+    if (axes < kAxes) fail("card reports " + std::to_string(axes) + " axes, messd needs " + std::to_string(kAxes));
+    if (booted && rev == config_.firmware && !force_reboot) {
+      revision_ = rev;
+      break;
+    }
+    if (attempt >= config_.boot_retries)
+      fail("firmware revision '" + rev + "' after " + std::to_string(attempt) + " boots, need '" + config_.firmware + "'");
+    begin(Op::Boot).u8(static_cast<std::uint8_t>(config_.firmware.size()));
+    for (char c : config_.firmware) writer_.u8(static_cast<std::uint8_t>(c));
+    set_up_call("booting firmware");
+    force_reboot = false;
+  }
+  // 2. Control parameters.
+  begin(Op::LoadParams).u8(config_.tip_reversed ? 1 : 0);
+  table(kAllAxes);
+  for (int a = 0; a < kAxes; ++a)
+    writer_.f64(config_.max_velocity[a]).f64(config_.max_accel[a]).f64(config_.max_following_error[a]);
+  set_up_call("loading control parameters");
+  // 3. Reset axes (loops open, faults cleared), switch limit/reference/probe inputs on.
+  begin(Op::ResetAxes);
+  table(kAllAxes);
+  set_up_call("resetting axes");
+  begin(Op::WriteOutputs);
+  table(kAllAxes);
+  for (int a = 0; a < kAxes; ++a)
+    writer_.u8(card::output::kLimitSwitchesOn | card::output::kReferenceSwitchOn | card::output::kProbeOn);
+  set_up_call("switching limit, reference and probe inputs on");
+}
+
+std::string ServoCardDriver::describe() const { return "servo card, firmware '" + revision_ + "'"; }
+
+bool ServoCardDriver::read_state(MachineState& out) noexcept {
+  begin(Op::ReadState);
+  table(kAllAxes);
+  std::span<const std::uint8_t> payload;
+  if (!exchange(payload)) return false;
+  LinkReader r(payload);
+  for (int a = 0; a < kAxes; ++a) {
+    out.position[a] = r.f64();
+    out.status[a] = r.u32();
+    out.inputs[a] = r.u8();
+  }
+  if (!r.ok() || !r.at_end()) {
+    ++errors_;
+    return false;
+  }
+  // The tip is wired to every axis module; axis 0 carries it.
+  bool contact = (out.inputs[0] & input::kTip) != 0;
+  out.tip_touched = config_.tip_reversed ? !contact : contact;
+  return true;
+}
+
+bool ServoCardDriver::read_latch(Vec3& latched) noexcept {
+  begin(Op::ReadLatch);
+  table(kAllAxes);
+  std::span<const std::uint8_t> payload;
+  if (!exchange(payload)) return false;
+  LinkReader r(payload);
+  for (int a = 0; a < kAxes; ++a) latched[a] = r.f64();
+  return r.ok() && r.at_end();
+}
+
+bool ServoCardDriver::set_loops(bool closed) noexcept {
+  begin(closed ? Op::CloseLoops : Op::OpenLoops);
+  table(kAllAxes);
+  return simple();
+}
+
+bool ServoCardDriver::move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept {
+  if ((axis_mask & kAllAxes) == 0) return true;
+  begin(Op::JogAbsolute);
+  table(axis_mask);
+  for (int a = 0; a < kAxes; ++a)
+    if (axis_mask & (1u << a)) writer_.f64(moves[a].target).f64(moves[a].velocity).f64(moves[a].accel);
+  return simple();
+}
+
+bool ServoCardDriver::stop(const Vec3& decel) noexcept {
+  begin(Op::JogStop);
+  table(kAllAxes);
+  for (int a = 0; a < kAxes; ++a) writer_.f64(decel[a]);
+  return simple();
+}
+
+bool ServoCardDriver::set_position(int axis, double value) noexcept {
+  if (axis < 0 || axis >= kAxes) return false;
+  begin(Op::SetPosition);
+  table(1u << axis);
+  writer_.f64(value);
+  return simple();
+}
+
+bool ServoCardDriver::reset_faults() noexcept {
+  begin(Op::ResetAxes);
+  table(kAllAxes);
+  return simple();
+}
+
+}  // namespace imess::hal

@@ -1,0 +1,89 @@
+// Mechanics: the physical machine behind any simulated controller — three axes with motor
+// lag, limit/home switches and encoder index marks, a touch probe against the scene, and
+// hand pushes while the drives are free. World coordinates, mm.
+#pragma once
+#include "imess/hal/motion_backend.hpp"
+#include "imess/sim/scene.hpp"
+
+namespace imess::sim {
+
+struct SimAxisConfig {
+  double travel_min = 0, travel_max = 1000;  // usable travel
+  double limit_margin = 5;                   // limit switch closes this far beyond the travel
+  double hard_margin = 20;                   // mechanical end stop this far beyond the travel
+  int home_direction = -1;                   // the end where the home cam sits
+  double home_cam_margin = 2;                // cam closes this far beyond that travel end
+  double index_pitch = 5;                    // encoder index marks every pitch from travel_min
+  double index_width = 0.04;                 // width of one index pulse
+};
+
+struct SimProbeConfig {
+  double ball_radius = 2.0;
+  double pretravel = 0.0;        // deflection at which the switch triggers
+  double overtravel = 8.0;       // deflection the stylus survives
+  double hysteresis = 0.0005;    // re-seat this much below the trigger point
+  bool normally_closed = false;  // switch opens on contact
+};
+
+struct MechanicsConfig {
+  hal::AxisArray<SimAxisConfig> axes{SimAxisConfig{}, SimAxisConfig{},
+                                     SimAxisConfig{0, 600, 5, 20, +1, 2, 5, 0.04}};  // Z homes up
+  SimProbeConfig probe{};
+  Vec3 start = Vec3(430, 330, 100);  // ball centre at power-on
+  double motor_time_constant = 0.004;  // s, velocity response of a driven axis
+};
+
+class Mechanics final : public hal::SimHooks {
+ public:
+  Mechanics(MechanicsConfig config, Scene scene);
+
+  // Drive side: a driven axis follows the demanded velocity with the motor lag; a free
+  // axis stands still unless pushed by hand.
+  void set_driven(int axis, bool driven) noexcept { driven_[axis] = driven; }
+  void set_motor_velocity(int axis, double v) noexcept { demand_[axis] = v; }
+
+  void step(double dt) noexcept;
+
+  struct ProbeEdge {
+    bool valid = false;    // an edge happened during the last step
+    bool contact = false;  // true: touched, false: re-seated
+    Vec3 position = Vec3::Zero();  // ball centre at the edge, exact
+  };
+  const ProbeEdge& probe_edge() const noexcept { return edge_; }
+
+  const Vec3& carriage() const noexcept { return pos_; }
+  double velocity(int axis) const noexcept { return vel_[axis]; }
+  bool tip_contact() const noexcept { return contact_; }
+  bool tip_signal() const noexcept { return contact_ != config_.probe.normally_closed; }  // raw switch
+  double deflection() const noexcept;
+  bool probe_overtravel() const noexcept { return deflection() > config_.probe.overtravel; }
+  bool limit_neg(int a) const noexcept;
+  bool limit_pos(int a) const noexcept;
+  bool home_switch(int a) const noexcept;
+  bool index_mark(int a) const noexcept;
+  unsigned long hard_stop_hits() const noexcept { return hard_stop_hits_; }
+  const MechanicsConfig& config() const noexcept { return config_; }
+  const Scene& scene() const noexcept { return scene_; }
+
+  // SimHooks: a hand push, carried out over the next steps while the axes are free.
+  void push_by_hand(const Vec3& delta, double speed) noexcept override;
+  bool hand_moving() const noexcept { return hand_active_; }
+
+ private:
+  double deflection_at(const Vec3& p) const noexcept;
+  void find_edge(const Vec3& from, const Vec3& to, bool to_contact) noexcept;
+
+  MechanicsConfig config_;
+  Scene scene_;
+  Vec3 pos_;
+  hal::AxisArray<double> vel_{}, demand_{};
+  hal::AxisArray<bool> driven_{};
+  bool contact_ = false;
+  ProbeEdge edge_;
+  Vec3 hand_target_ = Vec3::Zero();
+  double hand_speed_ = 0;
+  bool hand_active_ = false;
+  unsigned long hard_stop_hits_ = 0;
+};
+
+}  // namespace imess::sim

@@ -1,0 +1,51 @@
+// Reference search: after Home the machine coordinates equal the true (world) positions.
+#include <catch2/catch.hpp>
+
+#include "core_rig.hpp"
+
+using namespace imess::test;
+
+namespace {
+RigOptions relative_scales(Vec3 start) {
+  auto o = default_options();
+  o.sim.card.absolute_scales = false;
+  o.core.referenced_at_start = false;
+  o.sim.mechanics.start = start;
+  return o;
+}
+}  // namespace
+
+TEST_CASE("without homing the zero is where the machine stands at start") {
+  CoreRig rig(relative_scales({430, 330, 100}));
+  CHECK(rig.position().norm() < 1e-6);
+}
+
+TEST_CASE("Home finds switch and index on every axis and zeroes the machine there") {
+  CoreRig rig(relative_scales({430, 330, 100}));
+  REQUIRE(rig.simple(CommandKind::Home) == imess::core::Refusal::None);
+  REQUIRE(rig.mode() == Mode::Home);
+  REQUIRE(rig.run_until([&] { return rig.mode() != Mode::Home; }, 240.0));
+  CHECK(rig.take(EventKind::Warn).empty());
+  REQUIRE(rig.take(EventKind::Homed).size() == 1);
+  CHECK(rig.mode() == Mode::Idle);
+  Vec3 error = rig.position() - rig.mechanics().carriage();
+  CHECK(error.cwiseAbs().maxCoeff() < 0.001);
+  CHECK(rig.core().snapshot().homed);
+}
+
+TEST_CASE("Home from close to the switch backs off and searches again") {
+  CoreRig rig(relative_scales({10, 15, 590}));
+  REQUIRE(rig.simple(CommandKind::Home) == imess::core::Refusal::None);
+  REQUIRE(rig.run_until([&] { return rig.mode() != Mode::Home; }, 240.0));
+  REQUIRE(rig.take(EventKind::Homed).size() == 1);
+  CHECK((rig.position() - rig.mechanics().carriage()).cwiseAbs().maxCoeff() < 0.001);
+}
+
+TEST_CASE("StopMv aborts homing") {
+  CoreRig rig(relative_scales({430, 330, 100}));
+  rig.simple(CommandKind::Home);
+  rig.run(1.0);
+  rig.simple(CommandKind::StopMv);
+  CHECK(rig.mode() == Mode::Idle);
+  CHECK_FALSE(rig.core().snapshot().homed);
+}

@@ -1,0 +1,76 @@
+// Real-time discipline: a motion cycle allocates nothing — counted by replacing the global
+// allocator while the core jogs, hits, retracts, measures by hand, homes and faults.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "core_rig.hpp"
+
+namespace {
+std::atomic<long> g_allocations{0};
+std::atomic<bool> g_counting{false};
+}  // namespace
+
+void* operator new(std::size_t n) {
+  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+using namespace imess::test;
+
+namespace {
+// Steps the core directly (no event collection, which allocates in the test's vectors).
+long cycles_allocations(CoreRig& rig, int cycles) {
+  auto& core = rig.core();
+  g_allocations = 0;
+  g_counting = true;
+  for (int i = 0; i < cycles; ++i) {
+    rig.clock().advance(CoreRig::kPeriod);
+    core.cycle(rig.clock().now());
+    Event e;
+    while (core.events().pop(e)) {}
+  }
+  g_counting = false;
+  return g_allocations.load();
+}
+void push(CoreRig& rig, Command c) { rig.core().commands().push(c); }
+}  // namespace
+
+TEST_CASE("the allocation counter works") {
+  g_allocations = 0;
+  g_counting = true;
+  auto* p = new int(3);
+  g_counting = false;
+  delete p;
+  REQUIRE(g_allocations.load() == 1);
+}
+
+TEST_CASE("no motion cycle allocates: jog, hit, retract, idle, hand hits, GoTo, homing, fault") {
+  CoreRig rig;
+  push(rig, {CommandKind::StartMv, 1, 1, Vec3(0, 0, -20)});
+  CHECK(cycles_allocations(rig, 3000) == 0);  // jog, hit, MeasPt, retract
+  CHECK(rig.mode() == Mode::Idle);
+  CHECK(cycles_allocations(rig, 7500) == 0);  // loops open after 7 s
+  CHECK(rig.mode() == Mode::Free);
+  push(rig, {CommandKind::HandMv, 1, 2, Vec3(0, 0, -3), 10});
+  CHECK(cycles_allocations(rig, 1000) == 0);  // hand hit
+  push(rig, {CommandKind::HandMv, 1, 3, Vec3(0, 0, 5), 10});
+  CHECK(cycles_allocations(rig, 1000) == 0);
+  push(rig, {CommandKind::GoTo, 1, 4, Vec3(300, 300, 200), 100});
+  push(rig, {CommandKind::ForcePt, 1, 5});
+  push(rig, {CommandKind::SetParam, 1, 6, Vec3::Zero(), 0, imess::core::ParamId::SpeedLevel, 0.5});
+  CHECK(cycles_allocations(rig, 4000) == 0);
+  push(rig, {CommandKind::Home, 1, 7});
+  CHECK(cycles_allocations(rig, 60000) == 0);
+  push(rig, {CommandKind::StopMv, 1, 8});
+  push(rig, {CommandKind::Free, 1, 9});
+  push(rig, {CommandKind::HandMv, 1, 10, Vec3(0, 0, -700), 100});
+  CHECK(cycles_allocations(rig, 8000) == 0);  // into the table: overtravel fault
+  CHECK(rig.mode() == Mode::Fault);
+}

@@ -1,0 +1,125 @@
+// CoreRig: the motion core on the simulated CMM in virtual time — step the loop, send
+// commands, collect events. No threads, no sleeping: deterministic and fast.
+#pragma once
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "imess/core/motion_core.hpp"
+#include "imess/hal/servo_card_driver.hpp"
+#include "imess/sim/simulated_cmm.hpp"
+
+namespace imess::test {
+
+using core::Command;
+using core::CommandKind;
+using core::Event;
+using core::EventKind;
+using core::Mode;
+using hal::Vec3;
+
+class VirtualClock final : public hal::Clock {
+ public:
+  hal::Nanos now() const noexcept override { return t_; }
+  void advance(hal::Nanos d) { t_ += d; }
+
+ private:
+  hal::Nanos t_{1'000'000'000};
+};
+
+struct RigOptions {
+  sim::SimulatedCmmConfig sim;
+  core::CoreConfig core;
+  bool tip_reversed = false;
+};
+
+inline RigOptions default_options() {
+  RigOptions o;
+  o.core.referenced_at_start = o.sim.card.absolute_scales;
+  return o;
+}
+
+class CoreRig {
+ public:
+  static constexpr hal::Nanos kPeriod{1'000'000};
+
+  explicit CoreRig(RigOptions options = default_options())
+      : options_(options),
+        cmm_(options.sim, clock_),
+        driver_(cmm_.link(), card_config(options)),
+        core_(driver_, options.core, &cmm_.mechanics()) {
+    driver_.initialise(false);
+    core_.start(clock_.now());
+  }
+
+  static hal::ServoCardConfig card_config(const RigOptions& o) {
+    hal::ServoCardConfig c;
+    c.firmware = o.sim.card.firmware;
+    c.tip_reversed = o.tip_reversed;
+    return c;
+  }
+
+  void step() {
+    clock_.advance(kPeriod);
+    core_.cycle(clock_.now());
+    drain();
+  }
+  void run(double seconds) {
+    for (long i = 0, n = static_cast<long>(seconds * 1000 + 0.5); i < n; ++i) step();
+  }
+  // Steps until pred() holds or the time runs out; returns whether it held.
+  bool run_until(const std::function<bool()>& pred, double max_seconds) {
+    for (long i = 0, n = static_cast<long>(max_seconds * 1000); i < n; ++i) {
+      if (pred()) return true;
+      step();
+    }
+    return pred();
+  }
+
+  // Sends a command; returns the reply (None = Ok) after the next cycle.
+  core::Refusal send(Command c) {
+    c.client = 1;
+    c.seq = ++seq_;
+    core_.commands().push(c);
+    step();
+    for (auto& e : events_)
+      if (e.kind == EventKind::Reply && e.seq == c.seq) return e.refusal;
+    return core::Refusal::Hardware;  // no reply: a test failure shows it
+  }
+  core::Refusal start_mv(Vec3 percent) { return send({CommandKind::StartMv, 0, 0, percent}); }
+  core::Refusal go_to(Vec3 target, double speed = 0) { return send({CommandKind::GoTo, 0, 0, target, speed}); }
+  core::Refusal hand(Vec3 delta, double speed = 10) { return send({CommandKind::HandMv, 0, 0, delta, speed}); }
+  core::Refusal simple(CommandKind k) { return send({k}); }
+
+  std::vector<Event> take(EventKind kind) {
+    std::vector<Event> out, keep;
+    for (auto& e : events_) (e.kind == kind ? out : keep).push_back(e);
+    events_.swap(keep);
+    return out;
+  }
+  const std::vector<Event>& events() const { return events_; }
+  void clear_events() { events_.clear(); }
+
+  Mode mode() const { return core_.mode(); }
+  Vec3 position() const { return core_.machine().position; }
+  sim::Mechanics& mechanics() { return cmm_.mechanics(); }
+  core::MotionCore& core() { return core_; }
+  VirtualClock& clock() { return clock_; }
+  const RigOptions& options() const { return options_; }
+
+ private:
+  void drain() {
+    Event e;
+    while (core_.events().pop(e)) events_.push_back(e);
+  }
+
+  RigOptions options_;
+  VirtualClock clock_;
+  sim::SimulatedCmm cmm_;
+  hal::ServoCardDriver driver_;
+  core::MotionCore core_;
+  std::vector<Event> events_;
+  std::uint32_t seq_ = 0;
+};
+
+}  // namespace imess::test
