@@ -20,6 +20,7 @@ constexpr std::array kErrors{
     ErrorInfo{ErrorCode::LoopsClosed, "LoopsClosed", "the position loops are closed; hand pushes need them open"},
     ErrorInfo{ErrorCode::OutOfTravel, "OutOfTravel", "the target lies outside the configured travel"},
     ErrorInfo{ErrorCode::Faulted, "Faulted", "the machine is in fault state; Reset clears it"},
+    ErrorInfo{ErrorCode::TooManyClients, "TooManyClients", "the connection limit is reached; this connection is closed"},
     ErrorInfo{ErrorCode::UnknownParameter, "UnknownParameter", "no parameter of that name; Get lists them"},
     ErrorInfo{ErrorCode::ReadOnlyParameter, "ReadOnlyParameter", "the parameter can be read but not set"},
     ErrorInfo{ErrorCode::Internal, "Internal", "the daemon failed internally; see its log"},

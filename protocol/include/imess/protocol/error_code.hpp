@@ -23,6 +23,7 @@ enum class ErrorCode : int {
   LoopsClosed = 205,      // hand push while the servo loops hold the axes
   OutOfTravel = 206,      // target outside the configured travel
   Faulted = 207,          // machine in fault state; clear with Reset
+  TooManyClients = 208,   // the connection limit is reached; the connection is closed
   // 3xx: parameters
   UnknownParameter = 300, // Get/Set of a name that does not exist
   ReadOnlyParameter = 301,

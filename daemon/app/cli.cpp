@@ -1,0 +1,60 @@
+// Command-line parsing for messd.
+#include "cli.hpp"
+
+#include <stdexcept>
+#include <string_view>
+
+#include "imess/protocol/numbers.hpp"
+
+namespace imess::app {
+
+const char* usage_text() {
+  return "usage: messd [--config FILE] [--rc FILE] [--port N] [--listen ADDR] [--home] [--no-rt]\n"
+         "             [-dc] [-dm] [-dt] [-p] [-r] [-v] [-h]\n"
+         "  --config FILE  JSON configuration (default: the built-in simulated CMM)\n"
+         "  --rc FILE      1996 messdrc (SpeedLevel, TipReversed, TipRadius); default ./messdrc if present\n"
+         "  --port N       TCP port (default 1066; 0 = any free port, printed at start)\n"
+         "  --listen ADDR  address to listen on (default 0.0.0.0, all interfaces)\n"
+         "  --home         run the reference search at start\n"
+         "  --no-rt        do not ask for SCHED_FIFO and mlockall\n"
+         "  -dc            echo all socket traffic\n"
+         "  -dm            motion commands and measured coordinates in detail\n"
+         "  -dt            controller status bits every 5 s\n"
+         "  -p             motion-loop timing every 5 s\n"
+         "  -r             force a controller reboot (reload firmware and parameters)\n"
+         "  -v             version\n"
+         "  -h, --help     this text\n";
+}
+
+CliOptions parse_cli(int argc, char** argv) {
+  CliOptions o;
+  for (int i = 1; i < argc; ++i) {
+    std::string_view a = argv[i];
+    auto value = [&](const char* what) -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(std::string(a) + " needs " + what);
+      return argv[++i];
+    };
+    if (a == "--config") o.config = value("a file name");
+    else if (a == "--rc") o.rc = value("a file name");
+    else if (a == "--listen") o.listen = value("an address such as 0.0.0.0 or 127.0.0.1");
+    else if (a == "--port") {
+      auto text = value("a port number");
+      auto n = protocol::parse_number(text);
+      if (!n || *n < 0 || *n > 65535 || *n != static_cast<int>(*n))
+        throw std::invalid_argument("--port takes a whole number from 0 to 65535, got '" + text + "'");
+      o.port = static_cast<int>(*n);
+    } else if (a == "--home") o.home = true;
+    else if (a == "--no-rt") o.no_realtime = true;
+    else if (a == "-dc") o.debug_comm = true;
+    else if (a == "-dm") o.debug_motion = true;
+    else if (a == "-dt") o.debug_status = true;
+    else if (a == "-p") o.timing = true;
+    else if (a == "-r") o.reboot = true;
+    else if (a == "-v" || a == "--version") o.version = true;
+    else if (a == "-h" || a == "--help") o.help = true;
+    else throw std::invalid_argument("unknown option '" + std::string(a) + "'");
+  }
+  return o;
+}
+
+}  // namespace imess::app

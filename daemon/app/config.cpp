@@ -1,0 +1,203 @@
+// Configuration loading: JSON (strict, documented in docs/configuration.md) and messdrc.
+#include "config.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "imess/protocol/numbers.hpp"
+#include "json_object.hpp"
+
+namespace imess::app {
+
+namespace {
+
+sim::Solid read_solid(JsonObject& o) {
+  auto type = o.text("type", "", {"plane", "box", "sphere", "cylinder"});
+  if (type.empty()) o.fail("type", "one of \"plane\", \"box\", \"sphere\", \"cylinder\"");
+  if (type == "plane") {
+    sim::PlaneSolid p;
+    p.point = o.vec3("point", p.point);
+    p.normal = o.vec3("normal", p.normal);
+    if (p.normal.norm() < 1e-9) o.fail("normal", "a non-zero vector");
+    o.finish();
+    return p;
+  }
+  if (type == "box") {
+    sim::BoxSolid b;
+    b.center = o.vec3("center", b.center);
+    b.size = o.vec3("size", Eigen::Vector3d(100, 100, 100));
+    if ((b.size.array() <= 0).any()) o.fail("size", "three positive lengths");
+    b.yaw_deg = o.number("yaw_deg", 0, -360, 360);
+    if (auto f = o.object("fillet")) {
+      auto edge = f->text("edge", "front-top", {"front-top", "back-top", "left-top", "right-top"});
+      b.fillet = edge == "front-top"  ? sim::FilletEdge::FrontTop
+                 : edge == "back-top" ? sim::FilletEdge::BackTop
+                 : edge == "left-top" ? sim::FilletEdge::LeftTop
+                                      : sim::FilletEdge::RightTop;
+      b.fillet_radius = f->number("radius", 5, 0.001, b.size.minCoeff() / 2);
+      f->finish();
+    }
+    if (auto bores = o.objects("bores"))
+      for (auto& bo : *bores) {
+        sim::Bore bore;
+        bore.x = bo.number("x", 0, -b.size.x() / 2, b.size.x() / 2);
+        bore.y = bo.number("y", 0, -b.size.y() / 2, b.size.y() / 2);
+        bore.diameter = bo.number("diameter", 10, 0.01, b.size.head<2>().minCoeff());
+        bo.finish();
+        b.bores.push_back(bore);
+      }
+    o.finish();
+    return b;
+  }
+  if (type == "sphere") {
+    sim::SphereSolid s;
+    s.center = o.vec3("center", s.center);
+    s.diameter = o.number("diameter", 25, 0.01, 1e4);
+    o.finish();
+    return s;
+  }
+  sim::CylinderSolid c;
+  c.base = o.vec3("base", c.base);
+  c.diameter = o.number("diameter", 20, 0.01, 1e4);
+  c.height = o.number("height", 50, 0.01, 1e4);
+  o.finish();
+  return c;
+}
+
+}  // namespace
+
+void load_json_config(const std::string& path, DaemonConfig& cfg) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path + ": cannot open the configuration file");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in, nullptr, true, /*ignore_comments=*/true);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw ConfigError(path + ": not valid JSON: " + e.what());
+  }
+  JsonObject top(j, path, "");
+  if (auto s = top.object("server")) {
+    cfg.server.port = static_cast<std::uint16_t>(s->number("port", cfg.server.port, 0, 65535));
+    cfg.server.listen = s->text("listen", cfg.server.listen);
+    cfg.server.report_hz = s->number("report_hz", cfg.server.report_hz, 0.1, 100);
+    cfg.server.max_clients = static_cast<std::size_t>(s->number("max_clients", double(cfg.server.max_clients), 1, 10000));
+    s->finish();
+  }
+  if (auto m = top.object("motion")) {
+    auto& p = cfg.core.params;
+    cfg.period_us = m->number("period_us", cfg.period_us, 100, 100000);
+    cfg.realtime = m->boolean("realtime", cfg.realtime);
+    p.tip_radius = m->number("tip_radius", p.tip_radius, 0, 50);
+    p.speed_level = m->number("speed_level", p.speed_level, 0.01, 2);
+    p.max_speed = m->number("max_speed", p.max_speed, 0.1, 1000);
+    p.max_accel = m->number("max_accel", p.max_accel, 1, 20000);
+    cfg.core.max_velocity = m->number("max_velocity", cfg.core.max_velocity, 0.1, 2000);
+    p.retract_distance = m->number("retract_distance", p.retract_distance, 0, 20);
+    p.retract_speed = m->number("retract_speed", p.retract_speed, 0.1, 200);
+    p.retract_timeout = m->number("retract_timeout_s", p.retract_timeout, 0.1, 60);
+    p.idle_open_time = m->number("idle_open_s", p.idle_open_time, 0.1, 1e9);
+    p.goto_speed = m->number("goto_speed", p.goto_speed, 0.1, 1000);
+    p.hand_min_travel = m->number("hand_min_travel", p.hand_min_travel, 0.1, 50);
+    p.hand_min_interval = m->number("hand_min_interval_s", p.hand_min_interval, 0, 60);
+    cfg.home_on_start = m->boolean("home_on_start", cfg.home_on_start);
+    m->finish();
+  }
+  if (auto axes = top.object("axes")) {
+    for (int a = 0; a < core::kAxes; ++a) {
+      auto ax = axes->object(std::string(1, hal::kAxisNames[a]));
+      if (!ax) continue;
+      auto& s = cfg.core.axes[a];
+      s.travel_min = ax->number("travel_min", s.travel_min, -1e5, 1e5);
+      s.travel_max = ax->number("travel_max", s.travel_max, -1e5, 1e5);
+      if (s.travel_max <= s.travel_min) ax->fail("travel_max", "greater than travel_min");
+      auto dir = ax->text("home_direction", s.home_direction < 0 ? "neg" : "pos", {"neg", "pos"});
+      s.home_direction = dir == "neg" ? -1 : 1;
+      s.home_position = ax->number("home_position", s.home_direction < 0 ? s.travel_min : s.travel_max, -1e5, 1e5);
+      ax->finish();
+    }
+    axes->finish();
+  }
+  if (auto b = top.object("backend")) {
+    cfg.backend = b->text("type", cfg.backend, {"sim-servo-card"});
+    cfg.card.firmware = b->text("firmware", cfg.card.firmware);
+    cfg.card.tip_reversed = b->boolean("tip_reversed", cfg.card.tip_reversed);
+    double ferr = b->number("max_following_error", cfg.card.max_following_error[0], 0.01, 100);
+    cfg.card.max_following_error = {ferr, ferr, ferr};
+    b->finish();
+  }
+  if (auto s = top.object("sim")) {
+    auto& m = cfg.sim.mechanics;
+    m.start = s->vec3("start", m.start);
+    cfg.sim.card.absolute_scales = s->boolean("absolute_scales", cfg.sim.card.absolute_scales);
+    cfg.sim.card.firmware = s->text("firmware", cfg.sim.card.firmware);
+    if (auto pr = s->object("probe")) {
+      m.probe.ball_radius = pr->number("ball_radius", m.probe.ball_radius, 0, 50);
+      m.probe.pretravel = pr->number("pretravel", m.probe.pretravel, 0, 5);
+      m.probe.overtravel = pr->number("overtravel", m.probe.overtravel, 0.1, 50);
+      if (pr->has("normally_closed")) cfg.sim_probe_nc_set = true;
+      m.probe.normally_closed = pr->boolean("normally_closed", m.probe.normally_closed);
+      pr->finish();
+    }
+    if (auto scene = s->objects("scene")) {
+      std::vector<sim::Solid> solids;
+      for (auto& o : *scene) solids.push_back(read_solid(o));
+      cfg.sim.scene = sim::Scene(std::move(solids));
+    }
+    s->finish();
+  }
+  top.finish();
+  cfg.notes.push_back("configuration read from " + path);
+}
+
+std::vector<std::string> load_messdrc(const std::string& path, DaemonConfig& cfg) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path + ": cannot open the messdrc file");
+  std::vector<std::string> warnings;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    if (auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    std::istringstream words(line);
+    std::string key, value, extra;
+    if (!(words >> key)) continue;
+    words >> value >> extra;
+    std::string at = path + ":" + std::to_string(n) + ": ";
+    auto number = [&](double lo, double hi) {
+      auto v = protocol::parse_number(value);
+      if (!v || *v < lo || *v > hi || !extra.empty())
+        throw ConfigError(at + key + " takes one number from " + nlohmann::json(lo).dump() + " to " +
+                          nlohmann::json(hi).dump() + ", got '" + value + "'");
+      return *v;
+    };
+    if (key == "SpeedLevel") {
+      cfg.core.params.speed_level = number(0.01, 2);
+      cfg.notes.push_back("messdrc: SpeedLevel " + value);
+    } else if (key == "TipRadius") {
+      cfg.core.params.tip_radius = number(0, 50);
+      cfg.notes.push_back("messdrc: TipRadius " + value);
+    } else if (key == "TipReversed") {
+      if ((value != "true" && value != "false") || !extra.empty())
+        throw ConfigError(at + "TipReversed takes true or false, got '" + value + "'");
+      cfg.card.tip_reversed = value == "true";
+      cfg.notes.push_back("messdrc: TipReversed " + value);
+    } else {
+      warnings.push_back(at + "unknown setting '" + key + "' ignored (known: SpeedLevel, TipReversed, TipRadius)");
+    }
+  }
+  return warnings;
+}
+
+void finish_config(DaemonConfig& cfg) {
+  for (int a = 0; a < core::kAxes; ++a) {
+    auto& m = cfg.sim.mechanics.axes[a];
+    const auto& c = cfg.core.axes[a];
+    m.travel_min = c.travel_min;
+    m.travel_max = c.travel_max;
+    m.home_direction = c.home_direction;
+  }
+  if (!cfg.sim_probe_nc_set) cfg.sim.mechanics.probe.normally_closed = cfg.card.tip_reversed;
+  cfg.core.referenced_at_start = cfg.backend == "sim-servo-card" && cfg.sim.card.absolute_scales;
+  for (int a = 0; a < core::kAxes; ++a) cfg.card.max_velocity[a] = cfg.core.max_velocity;
+  for (int a = 0; a < core::kAxes; ++a) cfg.card.max_accel[a] = 20000;  // the drives' limit; MaxAccel shapes moves
+}
+
+}  // namespace imess::app

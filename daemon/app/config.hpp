@@ -1,0 +1,37 @@
+// DaemonConfig: everything messd is set up from — defaults, then the JSON configuration,
+// then the 1996 messdrc, then the command line.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "imess/core/core_types.hpp"
+#include "imess/hal/servo_card_driver.hpp"
+#include "imess/net/server.hpp"
+#include "imess/sim/simulated_cmm.hpp"
+
+namespace imess::app {
+
+struct DaemonConfig {
+  net::ServerConfig server;
+  core::CoreConfig core;
+  double period_us = 1000;
+  bool realtime = true;        // try SCHED_FIFO + mlockall
+  bool home_on_start = false;
+  std::string backend = "sim-servo-card";
+  hal::ServoCardConfig card;
+  sim::SimulatedCmmConfig sim;
+  bool sim_probe_nc_set = false;  // sim.probe.normally_closed given explicitly
+  std::vector<std::string> notes;  // what was read from where, for the start-up log
+};
+
+// Reads a JSON configuration file over the defaults; throws ConfigError naming file and key.
+void load_json_config(const std::string& path, DaemonConfig& config);
+
+// Reads a 1996 messdrc (SpeedLevel, TipReversed, TipRadius, # comments). Unknown lines are
+// returned as warnings; a bad value throws ConfigError naming file and line.
+std::vector<std::string> load_messdrc(const std::string& path, DaemonConfig& config);
+
+// Derives what follows from other settings (sim axes from the travel, probe polarity).
+void finish_config(DaemonConfig& config);
+
+}  // namespace imess::app

@@ -1,0 +1,84 @@
+// Strict configuration reading.
+#include "json_object.hpp"
+
+#include <cmath>
+
+namespace imess::app {
+
+JsonObject::JsonObject(const nlohmann::json& j, std::string file, std::string path)
+    : j_(j), file_(std::move(file)), path_(std::move(path)) {
+  if (!j_.is_object())
+    throw ConfigError(file_ + ": '" + (path_.empty() ? std::string("the top level") : path_) +
+                      "' must be a JSON object { ... }");
+}
+
+void JsonObject::fail(const std::string& key, const std::string& expected) const {
+  std::string got = j_.contains(key) ? j_.at(key).dump() : "nothing";
+  if (got.size() > 60) got = got.substr(0, 57) + "...";
+  throw ConfigError(file_ + ": key '" + where(key) + "' must be " + expected + ", got " + got);
+}
+
+double JsonObject::number(const std::string& key, double def, double min, double max) {
+  read_.insert(key);
+  if (!j_.contains(key)) return def;
+  const auto& v = j_.at(key);
+  if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < min || v.get<double>() > max)
+    fail(key, "a number from " + nlohmann::json(min).dump() + " to " + nlohmann::json(max).dump());
+  return v.get<double>();
+}
+
+bool JsonObject::boolean(const std::string& key, bool def) {
+  read_.insert(key);
+  if (!j_.contains(key)) return def;
+  if (!j_.at(key).is_boolean()) fail(key, "true or false");
+  return j_.at(key).get<bool>();
+}
+
+std::string JsonObject::text(const std::string& key, const std::string& def, const std::vector<std::string>& allowed) {
+  read_.insert(key);
+  if (!j_.contains(key)) return def;
+  std::string list;
+  for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
+  if (!j_.at(key).is_string()) fail(key, allowed.empty() ? "a string" : "one of " + list);
+  auto s = j_.at(key).get<std::string>();
+  if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), s) == allowed.end()) fail(key, "one of " + list);
+  return s;
+}
+
+hal::Vec3 JsonObject::vec3(const std::string& key, const hal::Vec3& def) {
+  read_.insert(key);
+  if (!j_.contains(key)) return def;
+  const auto& v = j_.at(key);
+  if (!v.is_array() || v.size() != 3) fail(key, "an array of three numbers [x, y, z]");
+  hal::Vec3 out;
+  for (int i = 0; i < 3; ++i) {
+    if (!v[i].is_number()) fail(key, "an array of three numbers [x, y, z]");
+    out[i] = v[i].get<double>();
+  }
+  return out;
+}
+
+std::optional<JsonObject> JsonObject::object(const std::string& key) {
+  read_.insert(key);
+  if (!j_.contains(key)) return std::nullopt;
+  if (!j_.at(key).is_object()) fail(key, "an object { ... }");
+  return JsonObject(j_.at(key), file_, where(key));
+}
+
+std::optional<std::vector<JsonObject>> JsonObject::objects(const std::string& key) {
+  read_.insert(key);
+  if (!j_.contains(key)) return std::nullopt;
+  if (!j_.at(key).is_array()) fail(key, "an array of objects [ {...}, ... ]");
+  std::vector<JsonObject> out;
+  for (std::size_t i = 0; i < j_.at(key).size(); ++i)
+    out.emplace_back(j_.at(key)[i], file_, where(key) + "[" + std::to_string(i) + "]");
+  return out;
+}
+
+void JsonObject::finish() const {
+  for (auto it = j_.begin(); it != j_.end(); ++it)
+    if (!read_.count(it.key()))
+      throw ConfigError(file_ + ": unknown key '" + where(it.key()) + "' (see docs/configuration.md for the accepted keys)");
+}
+
+}  // namespace imess::app

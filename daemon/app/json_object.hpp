@@ -1,0 +1,43 @@
+// JsonObject: strict reading of one configuration object — typed getters with defaults and
+// ranges, and finish() rejecting any key that was not read. Errors name file, key and form.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "imess/hal/types.hpp"
+
+namespace imess::app {
+
+class ConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class JsonObject {
+ public:
+  JsonObject(const nlohmann::json& j, std::string file, std::string path);
+
+  double number(const std::string& key, double def, double min, double max);
+  bool boolean(const std::string& key, bool def);
+  std::string text(const std::string& key, const std::string& def, const std::vector<std::string>& allowed = {});
+  hal::Vec3 vec3(const std::string& key, const hal::Vec3& def);
+  std::optional<JsonObject> object(const std::string& key);
+  // Array of objects (may be absent: nullopt).
+  std::optional<std::vector<JsonObject>> objects(const std::string& key);
+  bool has(const std::string& key) const { return j_.contains(key); }
+  // Throws for keys present but never read.
+  void finish() const;
+  [[noreturn]] void fail(const std::string& key, const std::string& expected) const;
+  std::string where(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+ private:
+  const nlohmann::json& j_;
+  std::string file_, path_;
+  std::set<std::string> read_;
+};
+
+}  // namespace imess::app

@@ -1,0 +1,128 @@
+// messd: the controller daemon. Reads the configuration, brings up the controller (the
+// simulated CMM unless configured otherwise), starts the motion loop and serves TCP.
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <boost/asio.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "cli.hpp"
+#include "config.hpp"
+#include "imess/core/loop_runner.hpp"
+#include "imess/core/motion_core.hpp"
+#include "imess/net/server.hpp"
+#include "json_object.hpp"
+
+using namespace imess;
+
+namespace {
+constexpr const char* kVersion = "0.1.0";
+
+app::DaemonConfig configure(const app::CliOptions& cli) {
+  app::DaemonConfig cfg;
+  if (cli.config)
+    app::load_json_config(*cli.config, cfg);
+  else
+    cfg.notes.push_back("no --config given: the built-in simulated CMM with the 1996 worked example");
+  std::optional<std::string> rc = cli.rc;
+  if (!rc && std::filesystem::exists("messdrc")) rc = "messdrc";  // the 1996 place
+  if (rc)
+    for (const auto& w : app::load_messdrc(*rc, cfg)) spdlog::warn("{}", w);
+  if (cli.port) cfg.server.port = static_cast<std::uint16_t>(*cli.port);
+  if (cli.listen) cfg.server.listen = *cli.listen;
+  if (cli.home) cfg.home_on_start = true;
+  if (cli.no_realtime) cfg.realtime = false;
+  cfg.server.log_traffic = cli.debug_comm;
+  cfg.server.log_motion = cli.debug_motion;
+  cfg.server.log_status = cli.debug_status;
+  cfg.server.log_timing = cli.timing;
+  cfg.server.version = kVersion;
+  app::finish_config(cfg);
+  return cfg;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  auto logger = spdlog::stderr_color_mt("messd");
+  spdlog::set_default_logger(logger);
+  spdlog::set_pattern("%H:%M:%S.%e messd %^%l%$: %v");
+
+  app::CliOptions cli;
+  try {
+    cli = app::parse_cli(argc, argv);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "messd: " << e.what() << "\n" << app::usage_text();
+    return 2;
+  }
+  if (cli.help) {
+    std::cout << app::usage_text();
+    return 0;
+  }
+  if (cli.version) {
+    std::cout << "messd " << kVersion << " (IMESS interactive measuring machine controller)\n";
+    return 0;
+  }
+
+  app::DaemonConfig cfg;
+  try {
+    cfg = configure(cli);
+  } catch (const app::ConfigError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  for (const auto& n : cfg.notes) spdlog::info("{}", n);
+  spdlog::info("TipRadius {:.3f} mm, SpeedLevel {:.3f}, TipReversed {}", cfg.core.params.tip_radius,
+               cfg.core.params.speed_level, cfg.card.tip_reversed ? "true" : "false");
+
+  core::MonotonicClock clock;
+  sim::SimulatedCmm cmm(cfg.sim, clock);
+  hal::ServoCardDriver driver(cmm.link(), cfg.card);
+  try {
+    driver.initialise(cli.reboot);
+  } catch (const std::exception& e) {
+    spdlog::error("controller start failed: {}", e.what());
+    return 1;
+  }
+  spdlog::info("controller: {} (simulated CMM, {} scales)", driver.describe(),
+               cfg.sim.card.absolute_scales ? "absolute" : "incremental");
+
+  core::MotionCore core(driver, cfg.core, &cmm.mechanics());
+  core.start(clock.now());
+  core::LoopRunner runner(core, clock, std::chrono::nanoseconds(static_cast<long>(cfg.period_us * 1000)));
+  std::string rt = runner.start(cfg.realtime);
+  if (rt.find("not permitted") != std::string::npos)
+    spdlog::warn("{}", rt);
+  else
+    spdlog::info("{}", rt);
+
+  boost::asio::io_context io;
+  net::Server server(io, cfg.server, core, &runner);
+  try {
+    server.start();
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    runner.stop();
+    return 1;
+  }
+  if (cfg.home_on_start) {
+    spdlog::info("reference search requested at start");
+    core.commands().push(core::Command{core::CommandKind::Home});
+  }
+  boost::asio::signal_set signals(io, SIGINT, SIGTERM);
+  signals.async_wait([&](boost::system::error_code, int sig) {
+    spdlog::info("signal {}: stopping", sig);
+    server.stop();
+    io.stop();
+  });
+  std::printf("messd: OK, listening on %s:%u\n", cfg.server.listen.c_str(), static_cast<unsigned>(server.port()));
+  std::fflush(stdout);
+  io.run();
+
+  runner.stop();
+  driver.stop(hal::Vec3::Constant(cfg.core.params.max_accel));
+  driver.set_loops(false);
+  spdlog::info("motion stopped, loops open; bye");
+  return 0;
+}

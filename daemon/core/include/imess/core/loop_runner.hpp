@@ -1,0 +1,69 @@
+// LoopRunner: runs MotionCore::cycle in its own thread at a fixed period with absolute
+// deadlines (clock_nanosleep TIMER_ABSTIME), SCHED_FIFO and mlockall when permitted, and
+// measures its own wake-up latency, cycle time and overruns.
+#pragma once
+#include <array>
+#include <atomic>
+#include <string>
+#include <thread>
+
+#include "imess/core/motion_core.hpp"
+
+namespace imess::core {
+
+// CLOCK_MONOTONIC, the clock the runner sleeps on.
+class MonotonicClock final : public hal::Clock {
+ public:
+  Nanos now() const noexcept override;
+};
+
+struct LoopStats {
+  double period_us = 0;
+  std::uint64_t cycles = 0, overruns = 0;
+  double latency_p50_us = 0, latency_p99_us = 0, latency_p999_us = 0, latency_max_us = 0;
+  double cycle_p99_us = 0, cycle_max_us = 0;  // time spent inside cycle()
+  bool realtime = false;                       // SCHED_FIFO granted
+};
+
+// Latency histogram with 1 µs buckets; the last bucket collects everything longer.
+class LatencyHistogram {
+ public:
+  static constexpr std::size_t kBuckets = 5001;
+  void add(double us) noexcept;
+  double percentile(double p) const noexcept;  // p in [0, 1]
+  double max() const noexcept { return max_; }
+  std::uint64_t count() const noexcept { return count_; }
+
+ private:
+  std::array<std::uint32_t, kBuckets> buckets_{};
+  std::uint64_t count_ = 0;
+  double max_ = 0;
+};
+
+class LoopRunner {
+ public:
+  LoopRunner(MotionCore& core, const MonotonicClock& clock, Nanos period);
+  ~LoopRunner();
+  LoopRunner(const LoopRunner&) = delete;
+  LoopRunner& operator=(const LoopRunner&) = delete;
+
+  // Locks memory and starts the thread; returns what real-time support was granted, in words.
+  std::string start(bool want_realtime);
+  void stop();
+  const LoopStats& stats() noexcept { return stats_.read(); }
+
+ private:
+  void run() noexcept;
+
+  MotionCore& core_;
+  const MonotonicClock& clock_;
+  Nanos period_;
+  std::atomic<bool> running_{false};
+  std::thread thread_;
+  std::atomic<bool> realtime_{false};
+  LatencyHistogram latency_, cycle_time_;
+  std::uint64_t overruns_ = 0;
+  TripleBuffer<LoopStats> stats_;
+};
+
+}  // namespace imess::core

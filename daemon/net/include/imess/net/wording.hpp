@@ -1,0 +1,28 @@
+// The words the daemon uses on the wire for the motion loop's enums: modes, warnings,
+// faults, refusals (with their protocol error codes), command verbs.
+#pragma once
+#include <string>
+#include <string_view>
+
+#include "imess/core/core_types.hpp"
+#include "imess/protocol/error_code.hpp"
+
+namespace imess::net {
+
+std::string_view mode_name(core::Mode m);
+std::string_view command_verb(core::CommandKind k);
+
+struct Wording {
+  std::string_view name;  // one CamelCase word
+  std::string_view text;  // for people
+};
+Wording warning_wording(core::Warning w);
+Wording fault_wording(core::FaultKind f);
+
+struct RefusalWording {
+  protocol::ErrorCode code;
+  std::string_view text;
+};
+RefusalWording refusal_wording(core::Refusal r);
+
+}  // namespace imess::net

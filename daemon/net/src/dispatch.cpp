@@ -1,0 +1,172 @@
+// Client lines -> replies (answered here) or motion-loop commands (answered by the loop).
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+
+#include "imess/net/params.hpp"
+#include "imess/net/server.hpp"
+#include "imess/net/wording.hpp"
+#include "imess/protocol/messages.hpp"
+#include "imess/protocol/numbers.hpp"
+#include "imess/protocol/verbs.hpp"
+
+namespace imess::net {
+
+using protocol::ErrorCode;
+using protocol::format_err;
+using protocol::format_ok;
+
+namespace {
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
+
+core::Vec3 vec(const protocol::Xyz& p) { return {p.x, p.y, p.z}; }
+
+std::string fixed(double v, int decimals = 3) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+}  // namespace
+
+void Server::on_line(Session& s, const protocol::FramedLine& line) {
+  if (config_.log_traffic) spdlog::info("[{}] > {}", s.id(), line.text);
+  if (line.overlong) {
+    send(s, format_err(ErrorCode::LineTooLong, "line longer than " + std::to_string(protocol::kMaxLineLength) +
+                                                   " characters; it was discarded"));
+    return;
+  }
+  if (protocol::is_blank(line.text)) return;  // an empty line is no command (telnet users press Enter)
+  auto parsed = protocol::parse_command(line.text);
+  if (auto* err = std::get_if<protocol::ParseError>(&parsed)) {
+    send(s, format_err(err->code, err->text));
+    return;
+  }
+  on_command(s, std::get<protocol::Command>(parsed));
+}
+
+bool Server::to_core(Session& s, core::Command c) {
+  c.client = s.id();
+  c.seq = next_seq_++;
+  if (config_.log_motion)
+    spdlog::info("client {}: {} {:.3f} {:.3f} {:.3f}", s.id(), command_verb(c.kind), c.v.x(), c.v.y(), c.v.z());
+  if (!core_.commands().push(c)) {
+    send(s, format_err(ErrorCode::QueueFull, "the motion loop's command queue is full; retry"));
+    return false;
+  }
+  return true;
+}
+
+void Server::on_command(Session& s, const protocol::Command& cmd) {
+  using core::CommandKind;
+  std::visit(
+      Overloaded{
+          [&](const protocol::StartMv& c) { to_core(s, {CommandKind::StartMv, 0, 0, vec(c.percent)}); },
+          [&](const protocol::StopMv&) { to_core(s, {CommandKind::StopMv}); },
+          [&](const protocol::ForcePt&) { to_core(s, {CommandKind::ForcePt}); },
+          [&](const protocol::GoTo& c) { to_core(s, {CommandKind::GoTo, 0, 0, vec(c.target), c.speed.value_or(0)}); },
+          [&](const protocol::Home&) { to_core(s, {CommandKind::Home}); },
+          [&](const protocol::Free&) { to_core(s, {CommandKind::Free}); },
+          [&](const protocol::Reset&) { to_core(s, {CommandKind::Reset}); },
+          [&](const protocol::HandMv& c) { to_core(s, {CommandKind::HandMv, 0, 0, vec(c.delta), c.speed.value_or(0)}); },
+          [&](const protocol::Hello& c) {
+            if (!c.client.empty()) spdlog::info("client {} is '{}'", s.id(), c.client);
+            const bool sim = core_.snapshot().simulated;
+            send(s, format_ok("Hello", "IMESS 1 messd " + config_.version + " Caps jog goto home probe hand stats" +
+                                           (sim ? " sim" : "")));
+          },
+          [&](const protocol::Help&) {
+            for (const auto& v : protocol::verb_table()) send(s, protocol::help_line(v) + "\n");
+            send(s, format_ok("Help"));
+          },
+          [&](const protocol::Status&) { send(s, format_ok("Status", status_line())); },
+          [&](const protocol::Stats&) { send(s, format_ok("Stats", stats_line())); },
+          [&](const protocol::Get& c) {
+            const auto& snap = core_.snapshot();
+            auto value = [&](const ParamSpec& p) {
+              return p.core_id ? fixed(core::param_value(snap.params, *p.core_id)) : fixed(config_.report_hz);
+            };
+            if (c.name.empty()) {
+              std::string all;
+              for (const auto& p : param_table()) all += (all.empty() ? "" : " ") + std::string(p.name) + " " + value(p);
+              send(s, format_ok("Get", all));
+              return;
+            }
+            const ParamSpec* p = find_param(c.name);
+            if (!p) {
+              send(s, format_err(ErrorCode::UnknownParameter, "no parameter '" + c.name + "'; Get alone lists them all"));
+              return;
+            }
+            send(s, format_ok("Get", std::string(p->name) + " " + value(*p)));
+          },
+          [&](const protocol::Set& c) {
+            const ParamSpec* p = find_param(c.name);
+            if (!p) {
+              send(s, format_err(ErrorCode::UnknownParameter, "no parameter '" + c.name + "'; Get alone lists them all"));
+              return;
+            }
+            if (p->read_only) {
+              send(s, format_err(ErrorCode::ReadOnlyParameter, std::string(p->name) + " can be read but not set"));
+              return;
+            }
+            std::string error;
+            auto v = parse_param_value(*p, c.value, error);
+            if (!v) {
+              send(s, format_err(ErrorCode::BadValue, error));
+              return;
+            }
+            spdlog::info("client {} sets {} to {}", s.id(), p->name, *v);
+            if (p->core_id) {
+              core::Command cc{CommandKind::SetParam};
+              cc.param = *p->core_id;
+              cc.value = *v;
+              to_core(s, cc);
+            } else {
+              config_.report_hz = *v;
+              send(s, format_ok("Set"));
+            }
+          },
+          [&](const protocol::Quit&) {
+            send(s, format_ok("Quit"));
+            s.close_after_flush();
+          },
+      },
+      cmd);
+}
+
+std::string Server::status_line() {
+  const auto& snap = core_.snapshot();
+  std::string limits;
+  for (int a = 0; a < core::kAxes; ++a)
+    if (snap.limit[a] != 0)
+      limits += (limits.empty() ? "" : ",") + std::string(1, hal::kAxisNames[a]) + (snap.limit[a] < 0 ? "neg" : "pos");
+  std::string line = "State " + std::string(mode_name(snap.mode)) + " Pos";
+  for (int a = 0; a < core::kAxes; ++a) {
+    line.push_back(' ');
+    protocol::append_mm(line, snap.position[a]);
+  }
+  line += std::string(" Loops ") + (snap.loops_closed ? "closed" : "open");
+  line += std::string(" Tip ") + (snap.tip_touched ? "touched" : "free");
+  line += " Limits " + (limits.empty() ? std::string("none") : limits);
+  line += std::string(" Homed ") + (snap.homed ? "yes" : "no");
+  line += std::string(" Referenced ") + (snap.referenced ? "yes" : "no");
+  line += " TipRadius " + fixed(snap.params.tip_radius) + " SpeedLevel " + fixed(snap.params.speed_level);
+  line += " Clients " + std::to_string(sessions_.size());
+  return line;
+}
+
+std::string Server::stats_line() {
+  core::LoopStats st;
+  if (runner_) st = runner_->stats();
+  return "Period " + fixed(st.period_us, 0) + " Cycles " + std::to_string(st.cycles) + " LatP50 " +
+         fixed(st.latency_p50_us, 1) + " LatP99 " + fixed(st.latency_p99_us, 1) + " LatP999 " +
+         fixed(st.latency_p999_us, 1) + " LatMax " + fixed(st.latency_max_us, 1) + " CycleP99 " +
+         fixed(st.cycle_p99_us, 1) + " CycleMax " + fixed(st.cycle_max_us, 1) + " Overruns " +
+         std::to_string(st.overruns) + " Realtime " + (st.realtime ? "yes" : "no");
+}
+
+}  // namespace imess::net

@@ -1,0 +1,88 @@
+// Motion-loop events -> replies and broadcasts; the CurrCor reporter; periodic debug logs.
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include "imess/net/server.hpp"
+#include "imess/net/wording.hpp"
+#include "imess/protocol/messages.hpp"
+
+namespace imess::net {
+
+using core::EventKind;
+
+void Server::pump_events() {
+  core::Event e;
+  while (core_.events().pop(e)) {
+    switch (e.kind) {
+      case EventKind::Reply: {
+        auto it = sessions_.find(e.client);
+        if (it == sessions_.end()) break;  // the client left before the answer
+        if (e.refusal == core::Refusal::None) {
+          send(*it->second, protocol::format_ok(command_verb(e.command)));
+        } else {
+          auto w = refusal_wording(e.refusal);
+          send(*it->second, protocol::format_err(w.code, std::string(w.text)));
+        }
+        break;
+      }
+      case EventKind::MeasPt: {
+        ++points_;
+        broadcast(protocol::format_meas_pt({e.p.x(), e.p.y(), e.p.z()}));
+        if (config_.log_motion)
+          spdlog::info("point {}: {:.4f} {:.4f} {:.4f} {} dir {:.4f} {:.4f} {:.4f}", points_, e.p.x(), e.p.y(), e.p.z(),
+                       e.compensated ? "compensated" : "as is (ForcePt)", e.dir.x(), e.dir.y(), e.dir.z());
+        else
+          spdlog::info("point {}: {:.3f} {:.3f} {:.3f}", points_, e.p.x(), e.p.y(), e.p.z());
+        if (config_.beep && isatty(STDERR_FILENO)) {
+          [[maybe_unused]] auto n = ::write(STDERR_FILENO, "\a", 1);
+        }
+        break;
+      }
+      case EventKind::State:
+        broadcast(protocol::format_event("State", mode_name(e.mode)));
+        if (config_.log_motion) spdlog::info("state {}", mode_name(e.mode));
+        break;
+      case EventKind::Limit: {
+        std::string text = std::string(1, hal::kAxisNames[e.axis]) + (e.side < 0 ? " neg" : " pos");
+        broadcast(protocol::format_event("Limit", text));
+        spdlog::warn("limit switch {}", text);
+        break;
+      }
+      case EventKind::Warn: {
+        auto w = warning_wording(e.warning);
+        broadcast(protocol::format_event("Warn", std::string(w.name) + " " + std::string(w.text)));
+        spdlog::warn("{}: {} (at {:.3f} {:.3f} {:.3f})", w.name, w.text, e.p.x(), e.p.y(), e.p.z());
+        break;
+      }
+      case EventKind::Fault: {
+        auto w = fault_wording(e.fault);
+        broadcast(protocol::format_event("Fault", std::string(w.name) + " " + std::string(w.text)));
+        spdlog::error("fault {}: {}", w.name, w.text);
+        break;
+      }
+      case EventKind::Homed:
+        broadcast(protocol::format_event("Homed", ""));
+        spdlog::info("reference search done: machine homed");
+        break;
+    }
+  }
+}
+
+void Server::report_position() {
+  const auto& snap = core_.snapshot();
+  std::string line = protocol::format_curr_cor({snap.position.x(), snap.position.y(), snap.position.z()});
+  if (line == last_curr_cor_) return;  // only when it changed
+  last_curr_cor_ = line;
+  broadcast(line);
+}
+
+void Server::log_periodic() {
+  const auto& snap = core_.snapshot();
+  if (config_.log_status)
+    spdlog::info("status X {:#07x} Y {:#07x} Z {:#07x} inputs {:#04x} {:#04x} {:#04x} hw errors {} events dropped {}",
+                 snap.status[0], snap.status[1], snap.status[2], snap.inputs[0], snap.inputs[1], snap.inputs[2],
+                 snap.hardware_errors, snap.events_dropped);
+  if (config_.log_timing) spdlog::info("loop: {}", stats_line());
+}
+
+}  // namespace imess::net
