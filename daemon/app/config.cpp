@@ -76,6 +76,7 @@ void load_json_config(const std::string& path, DaemonConfig& cfg) {
     throw ConfigError(path + ": not valid JSON: " + e.what());
   }
   JsonObject top(j, path, "");
+  top.text("_comment", "");  // free text for people
   if (auto s = top.object("server")) {
     cfg.server.port = static_cast<std::uint16_t>(s->number("port", cfg.server.port, 0, 65535));
     cfg.server.listen = s->text("listen", cfg.server.listen);

@@ -1,9 +1,19 @@
 // Strict configuration reading.
 #include "json_object.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace imess::app {
+
+namespace {
+std::string compact(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+}  // namespace
 
 JsonObject::JsonObject(const nlohmann::json& j, std::string file, std::string path)
     : j_(j), file_(std::move(file)), path_(std::move(path)) {
@@ -23,7 +33,7 @@ double JsonObject::number(const std::string& key, double def, double min, double
   if (!j_.contains(key)) return def;
   const auto& v = j_.at(key);
   if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < min || v.get<double>() > max)
-    fail(key, "a number from " + nlohmann::json(min).dump() + " to " + nlohmann::json(max).dump());
+    fail(key, "a number from " + compact(min) + " to " + compact(max));
   return v.get<double>();
 }
 

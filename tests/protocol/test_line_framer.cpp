@@ -24,7 +24,7 @@ Collected feed_all(LineFramer& f, const std::vector<std::string>& chunks) {
 }
 }  // namespace
 
-TEST_CASE("LF and CRLF both end a line; CR is never part of it") {
+TEST_CASE("LF and CRLF both end a line and CR is never part of it") {
   LineFramer f;
   auto c = feed_all(f, {"StopMv\nForcePt\r\nStatus\r\n"});
   REQUIRE(c.lines == std::vector<std::string>{"StopMv", "ForcePt", "Status"});

@@ -35,56 +35,58 @@ std::string fixed(double v, int decimals = 3) {
 
 void Server::on_line(Session& s, const protocol::FramedLine& line) {
   if (config_.log_traffic) spdlog::info("[{}] > {}", s.id(), line.text);
+  if (!line.overlong && protocol::is_blank(line.text)) return;  // no command: telnet users press Enter
+  const std::uint32_t slot = s.reserve_reply();
   if (line.overlong) {
-    send(s, format_err(ErrorCode::LineTooLong, "line longer than " + std::to_string(protocol::kMaxLineLength) +
+    reply(s, slot, format_err(ErrorCode::LineTooLong, "line longer than " + std::to_string(protocol::kMaxLineLength) +
                                                    " characters; it was discarded"));
     return;
   }
-  if (protocol::is_blank(line.text)) return;  // an empty line is no command (telnet users press Enter)
   auto parsed = protocol::parse_command(line.text);
   if (auto* err = std::get_if<protocol::ParseError>(&parsed)) {
-    send(s, format_err(err->code, err->text));
+    reply(s, slot, format_err(err->code, err->text));
     return;
   }
-  on_command(s, std::get<protocol::Command>(parsed));
+  on_command(s, slot, std::get<protocol::Command>(parsed));
 }
 
-bool Server::to_core(Session& s, core::Command c) {
+bool Server::to_core(Session& s, std::uint32_t slot, core::Command c) {
   c.client = s.id();
-  c.seq = next_seq_++;
+  c.seq = slot;
   if (config_.log_motion)
     spdlog::info("client {}: {} {:.3f} {:.3f} {:.3f}", s.id(), command_verb(c.kind), c.v.x(), c.v.y(), c.v.z());
   if (!core_.commands().push(c)) {
-    send(s, format_err(ErrorCode::QueueFull, "the motion loop's command queue is full; retry"));
+    reply(s, slot, format_err(ErrorCode::QueueFull, "the motion loop's command queue is full; retry"));
     return false;
   }
   return true;
 }
 
-void Server::on_command(Session& s, const protocol::Command& cmd) {
+void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command& cmd) {
   using core::CommandKind;
   std::visit(
       Overloaded{
-          [&](const protocol::StartMv& c) { to_core(s, {CommandKind::StartMv, 0, 0, vec(c.percent)}); },
-          [&](const protocol::StopMv&) { to_core(s, {CommandKind::StopMv}); },
-          [&](const protocol::ForcePt&) { to_core(s, {CommandKind::ForcePt}); },
-          [&](const protocol::GoTo& c) { to_core(s, {CommandKind::GoTo, 0, 0, vec(c.target), c.speed.value_or(0)}); },
-          [&](const protocol::Home&) { to_core(s, {CommandKind::Home}); },
-          [&](const protocol::Free&) { to_core(s, {CommandKind::Free}); },
-          [&](const protocol::Reset&) { to_core(s, {CommandKind::Reset}); },
-          [&](const protocol::HandMv& c) { to_core(s, {CommandKind::HandMv, 0, 0, vec(c.delta), c.speed.value_or(0)}); },
+          [&](const protocol::StartMv& c) { to_core(s, slot, {CommandKind::StartMv, 0, 0, vec(c.percent)}); },
+          [&](const protocol::StopMv&) { to_core(s, slot, {CommandKind::StopMv}); },
+          [&](const protocol::ForcePt&) { to_core(s, slot, {CommandKind::ForcePt}); },
+          [&](const protocol::GoTo& c) { to_core(s, slot, {CommandKind::GoTo, 0, 0, vec(c.target), c.speed.value_or(0)}); },
+          [&](const protocol::Home&) { to_core(s, slot, {CommandKind::Home}); },
+          [&](const protocol::Free&) { to_core(s, slot, {CommandKind::Free}); },
+          [&](const protocol::Reset&) { to_core(s, slot, {CommandKind::Reset}); },
+          [&](const protocol::HandMv& c) { to_core(s, slot, {CommandKind::HandMv, 0, 0, vec(c.delta), c.speed.value_or(0)}); },
           [&](const protocol::Hello& c) {
             if (!c.client.empty()) spdlog::info("client {} is '{}'", s.id(), c.client);
             const bool sim = core_.snapshot().simulated;
-            send(s, format_ok("Hello", "IMESS 1 messd " + config_.version + " Caps jog goto home probe hand stats" +
+            reply(s, slot, format_ok("Hello", "IMESS 1 messd " + config_.version + " Caps jog goto home probe hand stats" +
                                            (sim ? " sim" : "")));
           },
           [&](const protocol::Help&) {
-            for (const auto& v : protocol::verb_table()) send(s, protocol::help_line(v) + "\n");
-            send(s, format_ok("Help"));
+            std::string lines;
+            for (const auto& v : protocol::verb_table()) lines += protocol::help_line(v) + "\n";
+            reply(s, slot, lines + format_ok("Help"));
           },
-          [&](const protocol::Status&) { send(s, format_ok("Status", status_line())); },
-          [&](const protocol::Stats&) { send(s, format_ok("Stats", stats_line())); },
+          [&](const protocol::Status&) { reply(s, slot, format_ok("Status", status_line())); },
+          [&](const protocol::Stats&) { reply(s, slot, format_ok("Stats", stats_line())); },
           [&](const protocol::Get& c) {
             const auto& snap = core_.snapshot();
             auto value = [&](const ParamSpec& p) {
@@ -93,30 +95,30 @@ void Server::on_command(Session& s, const protocol::Command& cmd) {
             if (c.name.empty()) {
               std::string all;
               for (const auto& p : param_table()) all += (all.empty() ? "" : " ") + std::string(p.name) + " " + value(p);
-              send(s, format_ok("Get", all));
+              reply(s, slot, format_ok("Get", all));
               return;
             }
             const ParamSpec* p = find_param(c.name);
             if (!p) {
-              send(s, format_err(ErrorCode::UnknownParameter, "no parameter '" + c.name + "'; Get alone lists them all"));
+              reply(s, slot, format_err(ErrorCode::UnknownParameter, "no parameter '" + c.name + "'; Get alone lists them all"));
               return;
             }
-            send(s, format_ok("Get", std::string(p->name) + " " + value(*p)));
+            reply(s, slot, format_ok("Get", std::string(p->name) + " " + value(*p)));
           },
           [&](const protocol::Set& c) {
             const ParamSpec* p = find_param(c.name);
             if (!p) {
-              send(s, format_err(ErrorCode::UnknownParameter, "no parameter '" + c.name + "'; Get alone lists them all"));
+              reply(s, slot, format_err(ErrorCode::UnknownParameter, "no parameter '" + c.name + "'; Get alone lists them all"));
               return;
             }
             if (p->read_only) {
-              send(s, format_err(ErrorCode::ReadOnlyParameter, std::string(p->name) + " can be read but not set"));
+              reply(s, slot, format_err(ErrorCode::ReadOnlyParameter, std::string(p->name) + " can be read but not set"));
               return;
             }
             std::string error;
             auto v = parse_param_value(*p, c.value, error);
             if (!v) {
-              send(s, format_err(ErrorCode::BadValue, error));
+              reply(s, slot, format_err(ErrorCode::BadValue, error));
               return;
             }
             spdlog::info("client {} sets {} to {}", s.id(), p->name, *v);
@@ -124,14 +126,14 @@ void Server::on_command(Session& s, const protocol::Command& cmd) {
               core::Command cc{CommandKind::SetParam};
               cc.param = *p->core_id;
               cc.value = *v;
-              to_core(s, cc);
+              to_core(s, slot, cc);
             } else {
               config_.report_hz = *v;
-              send(s, format_ok("Set"));
+              reply(s, slot, format_ok("Set"));
             }
           },
           [&](const protocol::Quit&) {
-            send(s, format_ok("Quit"));
+            reply(s, slot, format_ok("Quit"));
             s.close_after_flush();
           },
       },

@@ -18,10 +18,10 @@ void Server::pump_events() {
         auto it = sessions_.find(e.client);
         if (it == sessions_.end()) break;  // the client left before the answer
         if (e.refusal == core::Refusal::None) {
-          send(*it->second, protocol::format_ok(command_verb(e.command)));
+          reply(*it->second, e.seq, protocol::format_ok(command_verb(e.command)));
         } else {
           auto w = refusal_wording(e.refusal);
-          send(*it->second, protocol::format_err(w.code, std::string(w.text)));
+          reply(*it->second, e.seq, protocol::format_err(w.code, std::string(w.text)));
         }
         break;
       }

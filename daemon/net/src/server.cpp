@@ -35,6 +35,8 @@ void Server::start() {
                              (ec == asio::error::address_in_use ? " - is another messd running? (--port chooses another)" : ""));
   port_ = acceptor_.local_endpoint().port();
   running_ = true;
+  const auto& snap = core_.snapshot();  // clients get the position on connect; report changes only
+  last_curr_cor_ = protocol::format_curr_cor({snap.position.x(), snap.position.y(), snap.position.z()});
   accept();
   schedule(event_timer_, std::chrono::microseconds(1000), &Server::pump_events);
   schedule(report_timer_, std::chrono::microseconds(static_cast<long>(1e6 / config_.report_hz)), &Server::report_position);
@@ -98,6 +100,11 @@ void Server::accept() {
 void Server::send(Session& s, std::string line) {
   if (config_.log_traffic) spdlog::info("[{}] < {}", s.id(), std::string_view(line).substr(0, line.size() - 1));
   s.send(std::move(line));
+}
+
+void Server::reply(Session& s, std::uint32_t slot, std::string lines) {
+  if (config_.log_traffic) spdlog::info("[{}] < {}", s.id(), std::string_view(lines).substr(0, lines.size() - 1));
+  s.fill_reply(slot, std::move(lines));
 }
 
 void Server::broadcast(const std::string& line) {

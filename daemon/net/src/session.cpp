@@ -34,7 +34,7 @@ void Session::read() {
 }
 
 void Session::send(std::string line) {
-  if (!open_ || close_when_flushed_) return;
+  if (!open_) return;
   if (queued_bytes_ + line.size() > max_queue_bytes_) {  // not reading: drop it, never block
     close();
     return;
@@ -44,10 +44,24 @@ void Session::send(std::string line) {
   if (!writing_) write();
 }
 
+std::uint32_t Session::reserve_reply() {
+  replies_.emplace_back(next_slot_, std::string{});
+  return next_slot_++;
+}
+
+void Session::fill_reply(std::uint32_t slot, std::string lines) {
+  for (auto& [id, text] : replies_)
+    if (id == slot) text = std::move(lines);
+  while (!replies_.empty() && !replies_.front().second.empty()) {
+    send(std::move(replies_.front().second));
+    replies_.pop_front();
+  }
+}
+
 void Session::write() {
   if (queue_.empty()) {
     writing_ = false;
-    if (close_when_flushed_) close();
+    if (close_when_flushed_ && replies_.empty()) close();
     return;
   }
   writing_ = true;
@@ -63,7 +77,7 @@ void Session::write() {
 }
 
 void Session::close_after_flush() {
-  if (!writing_ && queue_.empty()) {
+  if (!writing_ && queue_.empty() && replies_.empty()) {
     close();
     return;
   }

@@ -42,12 +42,13 @@ class Server {
   // server.cpp
   void accept();
   void broadcast(const std::string& line);
-  void send(Session& s, std::string line);
+  void send(Session& s, std::string line);    // an event line for one client
+  void reply(Session& s, std::uint32_t slot, std::string lines);  // fills a reply slot
   void schedule(boost::asio::steady_timer& t, std::chrono::microseconds every, void (Server::*fn)());
   // dispatch.cpp
   void on_line(Session& s, const protocol::FramedLine& line);
-  void on_command(Session& s, const protocol::Command& cmd);
-  bool to_core(Session& s, core::Command c);
+  void on_command(Session& s, std::uint32_t slot, const protocol::Command& cmd);
+  bool to_core(Session& s, std::uint32_t slot, core::Command c);
   std::string status_line();
   std::string stats_line();
   // events.cpp
@@ -62,7 +63,7 @@ class Server {
   boost::asio::ip::tcp::acceptor acceptor_;
   boost::asio::steady_timer event_timer_, report_timer_, log_timer_;
   std::map<std::uint32_t, std::shared_ptr<Session>> sessions_;
-  std::uint32_t next_id_ = 1, next_seq_ = 1;
+  std::uint32_t next_id_ = 1;
   std::uint16_t port_ = 0;
   std::string last_curr_cor_;
   std::uint64_t points_ = 0;

@@ -22,7 +22,12 @@ class Session : public std::enable_shared_from_this<Session> {
           CloseHandler on_close);
 
   void start();
-  void send(std::string line);  // one complete line with its "\n"
+  void send(std::string line);  // one complete line with its "\n" (events: sent at once)
+
+  // Replies leave in the order of the requests, even when the motion loop answers later
+  // than the io thread: reserve a slot per request, fill it when the answer is known.
+  std::uint32_t reserve_reply();
+  void fill_reply(std::uint32_t slot, std::string lines);
   void close_after_flush();     // Quit: finish writing, then close
   void close();
 
@@ -42,6 +47,8 @@ class Session : public std::enable_shared_from_this<Session> {
   protocol::LineFramer framer_;
   std::array<char, 4096> buffer_{};
   std::deque<std::string> queue_;
+  std::deque<std::pair<std::uint32_t, std::string>> replies_;  // empty text: not answered yet
+  std::uint32_t next_slot_ = 1;
   std::size_t queued_bytes_ = 0;
   bool writing_ = false, open_ = true, close_when_flushed_ = false;
   std::string peer_;

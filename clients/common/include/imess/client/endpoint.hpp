@@ -1,0 +1,24 @@
+// Endpoint: the HOST[:PORT] a client connects to (default port 1066, IPv6 as [::1]:1066).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace imess::client {
+
+inline constexpr std::uint16_t kDefaultPort = 1066;
+
+struct Endpoint {
+  std::string host = "localhost";
+  std::uint16_t port = kDefaultPort;
+
+  // "host:port", with brackets around an IPv6 literal ("[::1]:1066").
+  std::string to_string() const;
+  friend bool operator==(const Endpoint&, const Endpoint&) = default;
+};
+
+// Parses "HOST", "HOST:PORT", ":PORT", "[V6]" or "[V6]:PORT". Throws UsageError naming the
+// text and the accepted forms when it is malformed (empty host, port not 1..65535, ...).
+Endpoint parse_endpoint(std::string_view text);
+
+}  // namespace imess::client

@@ -1,0 +1,67 @@
+// HOST[:PORT] parsing and printing.
+#include "imess/client/endpoint.hpp"
+
+#include <charconv>
+
+#include "imess/client/usage_error.hpp"
+
+namespace imess::client {
+namespace {
+
+constexpr std::string_view kAccepted =
+    "expected HOST[:PORT] with PORT 1..65535, e.g. localhost, localhost:1066, 192.168.0.5:1066 or [::1]:1066";
+
+[[noreturn]] void reject(std::string_view text, std::string_view what) {
+  throw UsageError("bad address '" + std::string(text) + "': " + std::string(what) + "; " +
+                   std::string(kAccepted));
+}
+
+std::uint16_t parse_port(std::string_view all, std::string_view port) {
+  if (port.empty()) reject(all, "the port after ':' is missing");
+  unsigned value = 0;
+  auto [end, ec] = std::from_chars(port.data(), port.data() + port.size(), value);
+  if (ec != std::errc{} || end != port.data() + port.size() || value == 0 || value > 65535)
+    reject(all, "port '" + std::string(port) + "' is not a number 1..65535");
+  return static_cast<std::uint16_t>(value);
+}
+
+bool has_blank(std::string_view s) { return s.find_first_of(" \t\r\n") != std::string_view::npos; }
+
+}  // namespace
+
+std::string Endpoint::to_string() const {
+  bool v6 = host.find(':') != std::string::npos;
+  return (v6 ? "[" + host + "]" : host) + ":" + std::to_string(port);
+}
+
+Endpoint parse_endpoint(std::string_view text) {
+  if (text.empty()) reject(text, "it is empty");
+  if (has_blank(text)) reject(text, "it contains blanks");
+  Endpoint e;
+  if (text.front() == '[') {  // [v6] or [v6]:port
+    auto close = text.find(']');
+    if (close == std::string_view::npos) reject(text, "'[' without a closing ']'");
+    e.host = std::string(text.substr(1, close - 1));
+    if (e.host.empty()) reject(text, "the host inside [] is empty");
+    auto rest = text.substr(close + 1);
+    if (!rest.empty()) {
+      if (rest.front() != ':') reject(text, "expected ':' after ']'");
+      e.port = parse_port(text, rest.substr(1));
+    }
+    return e;
+  }
+  auto first = text.find(':');
+  if (first == std::string_view::npos) {
+    e.host = std::string(text);
+    return e;
+  }
+  if (text.find(':', first + 1) != std::string_view::npos) {  // bare IPv6 literal, no port
+    e.host = std::string(text);
+    return e;
+  }
+  if (first > 0) e.host = std::string(text.substr(0, first));  // ":1066" means localhost
+  e.port = parse_port(text, text.substr(first + 1));
+  return e;
+}
+
+}  // namespace imess::client

@@ -1,0 +1,18 @@
+// JogAction: what an operator asks the jog panel to do, independent of the key that asked.
+#pragma once
+
+namespace imess::messjog {
+
+enum class JogAction {
+  None,
+  XMinus, XPlus, YMinus, YPlus, ZMinus, ZPlus,  // axis jogs
+  Stop,
+  Speed1, Speed2, Speed3,                       // 2 %, 20 %, 100 %
+  Measure,                                      // ForcePt: measure here
+  Mark,                                         // remember the current position (client side)
+  TowardMark, AwayFromMark,                     // oblique move on the line mark <-> current
+  Home,                                         // needs a second press to confirm
+  Quit,
+};
+
+}  // namespace imess::messjog

@@ -1,0 +1,164 @@
+// messcap: file formats, and the built program against a fake daemon — exactly N points,
+// open-ended capture ended by the daemon or by Ctrl-C, never losing a point.
+#include <catch2/catch.hpp>
+
+#include <csignal>
+#include <thread>
+
+#include "capture_options.hpp"
+#include "child_process.hpp"
+#include "fake_daemon.hpp"
+#include "imess/client/usage_error.hpp"
+#include "point_file.hpp"
+
+using namespace imess::messcap;
+using imess::test::ChildProcess;
+using imess::test::client_binary;
+using imess::test::FakeDaemon;
+using imess::test::read_file;
+using imess::test::TempDir;
+
+namespace {
+
+// MeasPt lines among the noise a real messd sends while someone measures.
+const std::vector<std::string> kSession = {
+    "CurrCor 0.000 0.000 0.000", "State jog",      "CurrCor 10.000 0.000 0.000",
+    "MeasPt 10.250 0.000 0.000", "State retract",  "Warn TipNotFree Could not free the tip",
+    "MeasPt 1 2",  // malformed: not a point
+    "CurrCor 9.750 0.000 0.000", "MeasPt -1.500 20.000 3.125", "Ok ForcePt",
+    "MeasPt 0.000 0.000 -7.000", "MeasPt 99.000 99.000 99.000",
+};
+
+std::vector<std::string> args(std::initializer_list<const char*> list) {
+  std::vector<std::string> a{client_binary("messcap")};
+  for (const char* s : list) a.emplace_back(s);
+  return a;
+}
+
+}  // namespace
+
+TEST_CASE("format_for_path: by extension, case-insensitive - others rejected") {
+  CHECK(format_for_path("points.csv") == PointFormat::Csv);
+  CHECK(format_for_path("dir.x/Points.CSV") == PointFormat::Csv);
+  CHECK(format_for_path("a.xyz") == PointFormat::Xyz);
+  CHECK_THROWS_WITH(format_for_path("a.txt"), Catch::Contains("'.txt'") && Catch::Contains(".csv") &&
+                                                   Catch::Contains(".xyz"));
+  CHECK_THROWS_AS(format_for_path("dir.csv/noext"), imess::client::UsageError);
+}
+
+TEST_CASE("format_point: 3 decimals, comma or blank separated") {
+  CHECK(format_point(PointFormat::Csv, {1.5, -2, 0.0004}) == "1.500,-2.000,0.000");
+  CHECK(format_point(PointFormat::Xyz, {1.5, -2, -0.0004}) == "1.500 -2.000 0.000");
+}
+
+TEST_CASE("parse_capture_options: -n and -o in their spellings, errors name the argument") {
+  const char* a1[] = {"messcap", "localhost:1067", "-n", "3", "-o", "p.xyz"};
+  auto o = parse_capture_options(6, a1);
+  CHECK(o.endpoint.port == 1067);
+  CHECK(o.count == 3);
+  CHECK(o.output == "p.xyz");
+  CHECK(o.mode == OpenMode::New);
+  const char* a2[] = {"messcap", "-n5", "--output=q.csv", "--append"};
+  o = parse_capture_options(4, a2);
+  CHECK(o.count == 5);
+  CHECK(o.output == "q.csv");
+  CHECK(o.mode == OpenMode::Append);
+  CHECK(o.endpoint.host == "localhost");
+  const char* a3[] = {"messcap", "-n", "0"};
+  CHECK_THROWS_WITH(parse_capture_options(3, a3), Catch::Contains("-n '0'") && Catch::Contains("whole number"));
+  const char* a4[] = {"messcap", "-n"};
+  CHECK_THROWS_WITH(parse_capture_options(2, a4), Catch::Contains("-n needs a value"));
+  const char* a5[] = {"messcap", "--frobnicate"};
+  CHECK_THROWS_WITH(parse_capture_options(2, a5), Catch::Contains("'--frobnicate'"));
+  const char* a6[] = {"messcap", "--force"};
+  CHECK_THROWS_WITH(parse_capture_options(2, a6), Catch::Contains("needs -o"));
+}
+
+TEST_CASE("messcap -n 3 -o x.csv: exactly the first three points, amid noise") {
+  TempDir dir;
+  auto csv = dir.file("x.csv");
+  FakeDaemon daemon({0, kSession, {}});
+  ChildProcess cap(args({daemon.address().c_str(), "-n", "3", "-o", csv.c_str()}));
+  auto status = cap.wait();
+  REQUIRE(status);
+  CHECK(*status == 0);
+  CHECK(read_file(csv) == "x,y,z\n10.250,0.000,0.000\n-1.500,20.000,3.125\n0.000,0.000,-7.000\n");
+  CHECK(cap.out() ==
+        "point 1: 10.250 0.000 0.000\npoint 2: -1.500 20.000 3.125\npoint 3: 0.000 0.000 -7.000\n");
+  CHECK(daemon.wait_for_line("Hello messcap"));
+}
+
+TEST_CASE("messcap: a point split across TCP segments is still one point") {
+  TempDir dir;
+  auto xyz = dir.file("p.xyz");
+  FakeDaemon daemon({0, {"CurrCor 0.000 0.000 0.000"}, {}});
+  ChildProcess cap(args({daemon.address().c_str(), "-n", "2", "-o", xyz.c_str()}));
+  REQUIRE(daemon.wait_for_line("Hello messcap"));
+  daemon.send_raw("MeasPt 1.0");
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  daemon.send_raw("00 2.000 3.000\nCurrCor 1.000 2.000 3.000\nMeasPt 4.000 5.000 6.000\n");
+  REQUIRE(cap.wait() == 0);
+  CHECK(read_file(xyz) == "1.000 2.000 3.000\n4.000 5.000 6.000\n");
+}
+
+TEST_CASE("messcap without -n: ends when messd closes the connection, every point written") {
+  TempDir dir;
+  auto xyz = dir.file("all.xyz");
+  FakeDaemon daemon({0, kSession, {}});
+  ChildProcess cap(args({daemon.address().c_str(), "-o", xyz.c_str()}));
+  REQUIRE(daemon.wait_for_line("Hello messcap"));
+  daemon.drop_clients();
+  auto status = cap.wait();
+  REQUIRE(status);
+  CHECK(*status == 0);
+  CHECK(read_file(xyz) ==
+        "10.250 0.000 0.000\n-1.500 20.000 3.125\n0.000 0.000 -7.000\n99.000 99.000 99.000\n");
+  CHECK_THAT(cap.err(), Catch::Contains("4 points written") && Catch::Contains("closed by messd"));
+}
+
+TEST_CASE("messcap without -n: Ctrl-C (SIGINT) ends the capture, every point written") {
+  TempDir dir;
+  auto csv = dir.file("int.csv");
+  FakeDaemon daemon({0, kSession, {}});
+  ChildProcess cap(args({daemon.address().c_str(), "-o", csv.c_str()}));
+  REQUIRE(cap.wait_for_output("point 4:"));
+  daemon.send("MeasPt 5.000 5.000 5.000");
+  REQUIRE(cap.wait_for_output("point 5:"));
+  cap.signal(SIGINT);
+  auto status = cap.wait();
+  REQUIRE(status);
+  CHECK(*status == 0);
+  CHECK(read_file(csv) ==
+        "x,y,z\n10.250,0.000,0.000\n-1.500,20.000,3.125\n0.000,0.000,-7.000\n99.000,99.000,99.000\n"
+        "5.000,5.000,5.000\n");
+  CHECK_THAT(cap.err(), Catch::Contains("5 points written") && Catch::Contains("interrupted"));
+}
+
+TEST_CASE("messcap -n: stopped early keeps the points and exits 3") {
+  TempDir dir;
+  auto csv = dir.file("short.csv");
+  FakeDaemon daemon({0, kSession, {}});
+  ChildProcess cap(args({daemon.address().c_str(), "-n", "10", "-o", csv.c_str()}));
+  REQUIRE(cap.wait_for_output("point 4:"));
+  cap.signal(SIGINT);
+  CHECK(cap.wait() == 3);
+  CHECK(read_file(csv) == "x,y,z\n10.250,0.000,0.000\n-1.500,20.000,3.125\n0.000,0.000,-7.000\n"
+                          "99.000,99.000,99.000\n");
+  CHECK_THAT(cap.err(), Catch::Contains("before all 10 points"));
+}
+
+TEST_CASE("messcap: never overwrites a capture unless told - --append continues it") {
+  TempDir dir;
+  auto csv = dir.file("keep.csv");
+  FakeDaemon daemon({0, {"MeasPt 1.000 1.000 1.000"}, {}});
+  REQUIRE(imess::test::run_program(args({daemon.address().c_str(), "-n", "1", "-o", csv.c_str()})).status == 0);
+  auto again = imess::test::run_program(args({daemon.address().c_str(), "-n", "1", "-o", csv.c_str()}));
+  CHECK(again.status == 1);
+  CHECK_THAT(again.err, Catch::Contains("exists") && Catch::Contains("--append"));
+  CHECK(imess::test::run_program(args({daemon.address().c_str(), "-n", "1", "-o", csv.c_str(), "--append"}))
+            .status == 0);
+  CHECK(read_file(csv) == "x,y,z\n1.000,1.000,1.000\n1.000,1.000,1.000\n");  // one header
+  CHECK(imess::test::run_program(args({daemon.address().c_str(), "-n", "1", "-o", csv.c_str(), "--force"}))
+            .status == 0);
+  CHECK(read_file(csv) == "x,y,z\n1.000,1.000,1.000\n");
+}

@@ -1,0 +1,70 @@
+// Every client program: --help, the message and exit 1 when messd is not there, and exit 2
+// naming the bad argument.
+#include <catch2/catch.hpp>
+
+#include "child_process.hpp"
+#include "fake_daemon.hpp"
+
+using imess::test::client_binary;
+using imess::test::file_exists;
+using imess::test::run_program;
+
+TEST_CASE("clients: connection refused -> exit 1 and 'no partner on ... is messd running?'") {
+  auto port = std::to_string(imess::test::unused_port());
+  for (const char* name : {"messjog", "messmon", "messcap"}) {
+    INFO(name);
+    auto r = run_program({client_binary(name), "127.0.0.1:" + port});
+    CHECK(r.status == 1);
+    CHECK(r.err == std::string(name) + ": no partner on 127.0.0.1:" + port +
+                       " (connection refused) — is messd running?\n");
+  }
+}
+
+TEST_CASE("messcap: refused before the first point leaves no empty file behind") {
+  imess::test::TempDir dir;
+  auto csv = dir.file("none.csv");
+  auto port = std::to_string(imess::test::unused_port());
+  auto r = run_program({client_binary("messcap"), "127.0.0.1:" + port, "-o", csv});
+  CHECK(r.status == 1);
+  CHECK_FALSE(file_exists(csv));
+}
+
+TEST_CASE("clients: --help prints usage and exits 0") {
+  for (const char* name : {"messjog", "messmon", "messcap"}) {
+    INFO(name);
+    auto r = run_program({client_binary(name), "--help"});
+    CHECK(r.status == 0);
+    CHECK_THAT(r.out, Catch::StartsWith(std::string("usage: ") + name + " [HOST[:PORT]]") &&
+                          Catch::Contains("Exit status"));
+  }
+}
+
+TEST_CASE("clients: bad arguments -> exit 2 naming the argument and what is accepted") {
+  struct Case {
+    const char* name;
+    std::vector<std::string> args;
+    const char* expected;
+  };
+  std::vector<Case> cases = {
+      {"messjog", {"--bogus"}, "messjog: unknown option '--bogus'; accepted: --wait, --help"},
+      {"messmon", {"host:0"}, "messmon: bad address 'host:0': port '0' is not a number 1..65535"},
+      {"messmon", {"a", "b"}, "messmon: unexpected argument 'b'; expected a single HOST[:PORT]"},
+      {"messcap", {"-o", "points.txt"}, "messcap: output file 'points.txt': unknown extension '.txt'; accepted: .csv"},
+      {"messcap", {"-n", "many"}, "messcap: -n 'many': expected a whole number of points"},
+  };
+  for (const auto& c : cases) {
+    std::vector<std::string> argv{client_binary(c.name)};
+    argv.insert(argv.end(), c.args.begin(), c.args.end());
+    INFO(c.expected);
+    auto r = run_program(argv);
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::StartsWith(c.expected) && Catch::Contains("--help"));
+  }
+}
+
+TEST_CASE("messcap: an unknown extension is refused before connecting") {
+  imess::test::FakeDaemon daemon;
+  auto r = run_program({client_binary("messcap"), daemon.address(), "-o", "x.ply"});
+  CHECK(r.status == 2);
+  CHECK(daemon.accepted() == 0);
+}
