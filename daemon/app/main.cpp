@@ -14,6 +14,7 @@
 #include "imess/core/motion_core.hpp"
 #include "imess/net/server.hpp"
 #include "json_object.hpp"
+#include "machine.hpp"
 
 using namespace imess;
 
@@ -77,18 +78,16 @@ int main(int argc, char** argv) {
                cfg.core.params.speed_level, cfg.card.tip_reversed ? "true" : "false");
 
   core::MonotonicClock clock;
-  sim::SimulatedCmm cmm(cfg.sim, clock);
-  hal::ServoCardDriver driver(cmm.link(), cfg.card);
+  std::unique_ptr<app::Machine> machine;
   try {
-    driver.initialise(cli.reboot);
+    machine = app::make_machine(cfg, clock, cli.reboot);
   } catch (const std::exception& e) {
     spdlog::error("controller start failed: {}", e.what());
     return 1;
   }
-  spdlog::info("controller: {} (simulated CMM, {} scales)", driver.describe(),
-               cfg.sim.card.absolute_scales ? "absolute" : "incremental");
+  spdlog::info("controller: {}", machine->describe());
 
-  core::MotionCore core(driver, cfg.core, &cmm.mechanics());
+  core::MotionCore core(machine->backend(), cfg.core, machine->sim_hooks());
   core.start(clock.now());
   core::LoopRunner runner(core, clock, std::chrono::nanoseconds(static_cast<long>(cfg.period_us * 1000)));
   std::string rt = runner.start(cfg.realtime);
@@ -121,8 +120,8 @@ int main(int argc, char** argv) {
   io.run();
 
   runner.stop();
-  driver.stop(hal::Vec3::Constant(cfg.core.params.max_accel));
-  driver.set_loops(false);
+  machine->backend().stop(hal::Vec3::Constant(cfg.core.params.max_accel));
+  machine->backend().set_loops(false);
   spdlog::info("motion stopped, loops open; bye");
   return 0;
 }

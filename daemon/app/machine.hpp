@@ -1,0 +1,24 @@
+// Machine: the hardware messd drives — a MotionBackend and, when simulated, the simulator
+// behind it. make_machine builds the one the configuration names.
+#pragma once
+#include <memory>
+#include <string>
+
+#include "config.hpp"
+#include "imess/hal/motion_backend.hpp"
+
+namespace imess::app {
+
+class Machine {
+ public:
+  virtual ~Machine() = default;
+  virtual hal::MotionBackend& backend() = 0;
+  virtual hal::SimHooks* sim_hooks() = 0;  // nullptr on real hardware
+  virtual std::string describe() const = 0;
+};
+
+// Builds and initialises the configured machine; throws std::runtime_error naming the
+// problem (device missing, firmware, permissions).
+std::unique_ptr<Machine> make_machine(const DaemonConfig& config, const hal::Clock& clock, bool force_reboot);
+
+}  // namespace imess::app
