@@ -17,8 +17,12 @@ imess_install_deps() {
     || { echo "scripts: could not install ${missing[*]}" >&2; return 1; }
 }
 
-imess_build() {   # imess_build <build-dir> [extra cmake args...]
+imess_build() {   # imess_build <build-dir> [targets...]: configure, then build (all by default)
   local dir=$1; shift
-  cmake -S "$imess_root" -B "$dir" -G Ninja "$@" >/dev/null || return 1
-  cmake --build "$dir" -j "$(nproc)"
+  cmake -S "$imess_root" -B "$dir" -G Ninja >/dev/null || return 1
+  if [ $# -gt 0 ]; then
+    cmake --build "$dir" -j "$(nproc)" --target "$@"
+  else
+    cmake --build "$dir" -j "$(nproc)"
+  fi
 }
