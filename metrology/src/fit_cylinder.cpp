@@ -1,0 +1,156 @@
+// Cylinder fit: candidate starting axes, each refined by Levenberg–Marquardt on the residuals
+// (distance from the axis) - r; the smallest sum of squares wins.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "axis_start.hpp"
+#include "fit_common.hpp"
+#include "imess/metrology/fit.hpp"
+#include "levenberg_marquardt.hpp"
+#include "multi_start.hpp"
+
+namespace imess::metrology {
+namespace {
+
+constexpr std::string_view kName = "cylinder";
+
+// Parameters are linearised in a local frame [u v a] at the current axis point c (centred
+// coordinates): step = (shift along u, shift along v, tilt toward u, tilt toward v, d radius).
+// After each step the axis point is moved back to the foot of the centroid, so the point never
+// drifts along the axis and the tilts stay well conditioned.
+class CylinderProblem {
+ public:
+  struct State {
+    Eigen::Vector3d c;
+    Eigen::Vector3d a;
+    double r = 0.0;
+  };
+  CylinderProblem(const Eigen::Matrix3Xd& q, double scale) : q_(q), scale_(scale) {}
+
+  Eigen::Index residual_count() const { return q_.cols(); }
+  Eigen::Index parameter_count() const { return 5; }
+
+  void evaluate(const State& s, Eigen::VectorXd& res, Eigen::MatrixXd* J) const {
+    Eigen::Vector3d u;
+    Eigen::Vector3d v;
+    detail::perpendicular_basis(s.a, u, v);
+    for (Eigen::Index i = 0; i < q_.cols(); ++i) {
+      const Eigen::Vector3d d = q_.col(i) - s.c;
+      const double x = u.dot(d);
+      const double y = v.dot(d);
+      const double z = s.a.dot(d);
+      const double rho = std::hypot(x, y);
+      res(i) = rho - s.r;
+      if (J) {
+        if (rho > 0.0) {
+          J->row(i) << -x / rho, -y / rho, -x * z / rho, -y * z / rho, -1.0;
+        } else {
+          J->row(i) << 0.0, 0.0, 0.0, 0.0, -1.0;
+        }
+      }
+    }
+  }
+
+  State apply(const State& s, const Eigen::VectorXd& delta) const {
+    Eigen::Vector3d u;
+    Eigen::Vector3d v;
+    detail::perpendicular_basis(s.a, u, v);
+    State n;
+    n.c = s.c + delta(0) * u + delta(1) * v;
+    n.a = (s.a + delta(2) * u + delta(3) * v).normalized();
+    n.r = s.r + delta(4);
+    n.c -= n.c.dot(n.a) * n.a;
+    return n;
+  }
+
+  Eigen::VectorXd scales(const State& s) const {
+    const double len = std::max(scale_, std::abs(s.r));
+    Eigen::VectorXd sc(5);
+    sc << len, len, 1.0, 1.0, len;
+    return sc;
+  }
+
+ private:
+  const Eigen::Matrix3Xd& q_;
+  double scale_;
+};
+
+Fit<Cylinder> refine(std::span<const Eigen::Vector3d> points, const detail::PrincipalAxes<3>& pa,
+                     const Eigen::Matrix3Xd& q, const std::vector<CylinderProblem::State>& starts,
+                     const FitOptions& options, bool sample_starts) {
+  const CylinderProblem pb(q, detail::rms_spread<3>(q));
+  const auto valid = [](const CylinderProblem::State& st) { return st.r > 0.0; };
+  // Large clouds: compare the starts on a subsample, then refine the winner on every point.
+  std::vector<CylinderProblem::State> full_starts = starts;
+  if (sample_starts && q.cols() > detail::kStartSample) {
+    const Eigen::Matrix3Xd qs = detail::start_sample(q);
+    const CylinderProblem ps(qs, detail::rms_spread<3>(qs));
+    const auto pick = detail::multi_start(ps, starts, options, valid);
+    if (pick.state) full_starts = {*pick.state};
+  }
+  const auto best = detail::multi_start(pb, full_starts, options, valid);
+  if (!best.state) {
+    std::ostringstream os;
+    if (!best.any_converged) {
+      os << "no convergence within " << options.max_iterations << " iterations from any of "
+         << starts.size() << " starting axes";
+      return detail::make_error(FitErrorCode::NotConverged, kName, os.str());
+    }
+    os << "the " << points.size() << " points do not determine a cylinder (Jacobian condition "
+       << best.worst_condition << ")";
+    return detail::make_error(FitErrorCode::IllConditioned, kName, os.str());
+  }
+  Cylinder cyl;
+  cyl.point = pa.centroid + best.state->c;
+  cyl.direction = detail::canonical_sign(best.state->a);
+  cyl.diameter = 2.0 * best.state->r;
+  Eigen::VectorXd res(q.cols());
+  pb.evaluate(*best.state, res, nullptr);
+  cyl.stats = detail::make_stats(res, best.outcome.iterations);
+  return cyl;
+}
+
+std::optional<FitError> check_cylinder_input(std::span<const Eigen::Vector3d> points,
+                                             detail::PrincipalAxes<3>& pa) {
+  if (auto e = detail::check_input<3>(points, kMinPointsCylinder, kName)) return e;
+  pa = detail::principal_axes<3>(points);
+  return detail::check_spread<3>(pa, points.size(), 3, kName);
+}
+
+}  // namespace
+
+Fit<Cylinder> fit_cylinder(std::span<const Eigen::Vector3d> points, const FitOptions& options) {
+  detail::PrincipalAxes<3> pa;
+  if (auto e = check_cylinder_input(points, pa)) return *e;
+  const Eigen::Matrix3Xd q = detail::centred<3>(points, pa.centroid);
+  const Eigen::Matrix3Xd qs = detail::start_sample(q);
+  std::vector<CylinderProblem::State> starts;
+  for (const Eigen::Vector3d& axis : detail::candidate_axes(qs, pa)) {
+    if (auto pos = detail::axis_position(qs, axis)) starts.push_back({pos->point, axis, pos->radius});
+  }
+  if (starts.empty())
+    return detail::make_error(FitErrorCode::IllConditioned, kName,
+                              "no starting axis found (every projection is degenerate)");
+  return refine(points, pa, q, starts, options, true);
+}
+
+Fit<Cylinder> fit_cylinder(std::span<const Eigen::Vector3d> points, const Cylinder& start,
+                           const FitOptions& options) {
+  detail::PrincipalAxes<3> pa;
+  if (auto e = check_cylinder_input(points, pa)) return *e;
+  if (!start.point.allFinite() || !start.direction.allFinite() || !std::isfinite(start.diameter) ||
+      start.direction.norm() == 0.0 || !(start.diameter > 0.0))
+    return detail::make_error(FitErrorCode::InvalidArgument, kName,
+                              "the starting cylinder needs a finite point, a non-zero direction "
+                              "and a positive diameter");
+  const Eigen::Matrix3Xd q = detail::centred<3>(points, pa.centroid);
+  CylinderProblem::State s;
+  s.a = start.direction.normalized();
+  s.c = start.point - pa.centroid;
+  s.c -= s.c.dot(s.a) * s.a;
+  s.r = 0.5 * start.diameter;
+  return refine(points, pa, q, {s}, options, false);
+}
+
+}  // namespace imess::metrology

@@ -1,0 +1,147 @@
+// Internal Levenberg–Marquardt driver used by the iterative fits (circle, sphere, cylinder, cone).
+// The problem supplies residuals, an analytic Jacobian and how a step changes its state.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <Eigen/Core>
+#include <Eigen/QR>
+#include <Eigen/SVD>
+
+#include "imess/metrology/fit_result.hpp"
+
+namespace imess::metrology::detail {
+
+// What the driver reports. `converged` is false only when the iteration cap was hit.
+struct LmOutcome {
+  int iterations = 0;
+  bool converged = false;
+  double ssq = 0.0;
+  const char* reason = "";
+  double condition = 0.0;  // condition number of the column-scaled Jacobian at the solution
+  double gradient_cosine = 0.0;  // max cosine between r and a column of J at the solution
+};
+
+// Largest cosine between the residual vector and a column of J (0 at a stationary point).
+inline double max_gradient_cosine(const Eigen::MatrixXd& J, const Eigen::VectorXd& r) {
+  const double rnorm = r.norm();
+  double worst = 0.0;
+  if (rnorm == 0.0) return worst;
+  for (Eigen::Index k = 0; k < J.cols(); ++k) {
+    const double cn = J.col(k).norm();
+    if (cn > 0.0) worst = std::max(worst, std::abs(J.col(k).dot(r)) / (cn * rnorm));
+  }
+  return worst;
+}
+
+// Problem requirements:
+//   using State = ...;
+//   Eigen::Index residual_count() const;  Eigen::Index parameter_count() const;
+//   void evaluate(const State&, Eigen::VectorXd& r, Eigen::MatrixXd* J) const;
+//       J is the derivative of r with respect to a step taken from this state (delta = 0)
+//   State apply(const State&, const Eigen::VectorXd& delta) const;
+//   Eigen::VectorXd scales(const State&) const;   typical size of each parameter (step test)
+//
+// Each step solves min |J d + r|^2 + lambda |D d|^2 (D = column norms of J, Moré scaling) by a
+// QR factorisation of the stacked matrix, not via the normal equations, so the step keeps the
+// full precision of J. lambda starts at 0 (pure Gauss–Newton), grows x10 on a rejected step and
+// shrinks x10 on an accepted one. A step is accepted when the sum of squares decreases, or when
+// both its predicted and its actual relative change are at rounding level: there the sum of
+// squares can no longer judge a step, but the step itself (from r and J) is still exact.
+// Convergence: (a) residual vector orthogonal to every column of J within gradient_tolerance
+// (cosine), (b) max |d_k| / scale_k <= step_tolerance, or (c) actual and predicted relative
+// reductions of the sum of squares both <= ssq_tolerance on three accepted steps in a row.
+template <class Problem>
+LmOutcome levenberg_marquardt(const Problem& pb, typename Problem::State& x, const FitOptions& opt) {
+  const Eigen::Index m = pb.residual_count();
+  const Eigen::Index n = pb.parameter_count();
+  Eigen::VectorXd r(m);
+  Eigen::MatrixXd J(m, n);
+  pb.evaluate(x, r, &J);
+  double ssq = r.squaredNorm();
+  Eigen::VectorXd diag = J.colwise().norm().transpose();
+  double lambda = 0.0;
+  LmOutcome out;
+  int flat_steps = 0;
+  constexpr double kRoundingFactor = 64.0;  // safety factor on the rounding estimate below
+
+  Eigen::MatrixXd a(m + n, n);
+  Eigen::VectorXd rhs(m + n);
+  Eigen::VectorXd r_new(m);
+  Eigen::MatrixXd J_new(m, n);
+
+  auto finish = [&](bool converged, const char* why) {
+    out.converged = converged;
+    out.reason = why;
+    out.ssq = ssq;
+    out.gradient_cosine = max_gradient_cosine(J, r);
+    Eigen::MatrixXd js = J;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const double cn = js.col(k).norm();
+      if (cn > 0.0) js.col(k) /= cn;
+    }
+    const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(js).singularValues();
+    out.condition = sv(n - 1) > 0.0 ? sv(0) / sv(n - 1) : std::numeric_limits<double>::infinity();
+    return out;
+  };
+
+  for (int it = 0; it < opt.max_iterations; ++it) {
+    if (ssq == 0.0) return finish(true, "zero residual");
+    if (max_gradient_cosine(J, r) <= opt.gradient_tolerance) return finish(true, "gradient");
+
+    diag = diag.cwiseMax(J.colwise().norm().transpose());
+    a.topRows(m) = J;
+    a.bottomRows(n).setZero();
+    a.bottomRows(n).diagonal() = std::sqrt(lambda) * diag;
+    rhs.head(m) = -r;
+    rhs.tail(n).setZero();
+    const Eigen::VectorXd delta = a.colPivHouseholderQr().solve(rhs);
+    out.iterations = it + 1;
+
+    const Eigen::VectorXd sc = pb.scales(x);
+    const double step = (delta.array().abs() / sc.array()).maxCoeff();
+    const double predicted = ssq - (J * delta + r).squaredNorm();
+
+    const typename Problem::State candidate = pb.apply(x, delta);
+    pb.evaluate(candidate, r_new, &J_new);
+    const double ssq_new = r_new.squaredNorm();
+
+    const double predicted_rel = predicted / ssq;
+    const double actual_rel = (ssq - ssq_new) / ssq;
+    // Near the minimum the sum of squares stops resolving the step (its change is rounding),
+    // while the step itself, computed from the residuals and J, is still accurate: take it.
+    // Rounding of a residual is about eps * (length scale) since it is a difference of lengths
+    // (e.g. |p - c| - r), so the rounding of the sum of squares is about 2 |r| eps L.
+    const double ssq_rounding = kRoundingFactor * std::numeric_limits<double>::epsilon() *
+                                (sc.maxCoeff() * std::sqrt(static_cast<double>(m) * ssq) + ssq);
+    const bool rounding_level = std::isfinite(ssq_new) && predicted_rel <= opt.ssq_tolerance &&
+                                std::abs(ssq - ssq_new) <= ssq_rounding;
+    if (std::isfinite(ssq_new) && (ssq_new < ssq || rounding_level)) {
+      x = candidate;
+      r = r_new;
+      J = J_new;
+      ssq = ssq_new;
+      if (step <= opt.step_tolerance) return finish(true, "step");
+      const bool flat = actual_rel <= opt.ssq_tolerance && predicted_rel <= opt.ssq_tolerance;
+      // Sum of squares stationary (actual and predicted relative change) on 3 undamped steps in a
+      // row. A flat damped step only means the damping is no longer needed: drop it.
+      if (flat && lambda == 0.0) {
+        if (++flat_steps >= 3) return finish(true, "sum of squares");
+      } else {
+        flat_steps = 0;
+      }
+      lambda = (flat || lambda < 1e-10) ? 0.0 : lambda * 0.1;
+    } else {
+      // No decrease: at the rounding floor when the step was already negligible.
+      if (step <= opt.step_tolerance) return finish(true, "step");
+      lambda = lambda == 0.0 ? 1e-4 : lambda * 10.0;
+      if (lambda > 1e30) return finish(true, "stalled");
+    }
+  }
+  return finish(false, "iteration cap");
+}
+
+}  // namespace imess::metrology::detail

@@ -1,0 +1,81 @@
+// Start-up: bad configuration stops messd with one clear message; messdrc is honoured.
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "daemon_process.hpp"
+
+using namespace imess::test;
+
+namespace {
+struct Run {
+  int status;
+  std::string output;
+};
+Run run_messd(const std::string& args) {
+  std::string cmd = std::string(IMESS_BIN_DIR) + "/messd " + args + " --port 0 --no-rt 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[512];
+  while (fgets(buf, sizeof buf, p)) out += buf;
+  int st = pclose(p);
+  return {WEXITSTATUS(st), out};
+}
+std::string temp_file(const std::string& name, const std::string& text) {
+  auto path = std::filesystem::temp_directory_path() / ("imess-test-" + std::to_string(getpid()) + "-" + name);
+  std::ofstream(path) << text;
+  return path.string();
+}
+}  // namespace
+
+TEST_CASE("an unknown configuration key stops start-up naming file and key") {
+  auto f = temp_file("bad.json", R"({"motion": {"tip_radius": 2.0, "tip_radus": 3}})");
+  auto r = run_messd("--config " + f);
+  CHECK(r.status == 2);
+  CHECK(r.output.find(f) != std::string::npos);
+  CHECK(r.output.find("unknown key 'motion.tip_radus'") != std::string::npos);
+}
+
+TEST_CASE("a wrong value stops start-up saying what is expected") {
+  auto f = temp_file("bad2.json", R"({"server": {"port": "http"}})");
+  auto r = run_messd("--config " + f);
+  CHECK(r.status == 2);
+  CHECK(r.output.find("'server.port' must be a number from 0 to 65535") != std::string::npos);
+  auto g = temp_file("bad3.json", R"({"motion": )");
+  r = run_messd("--config " + g);
+  CHECK(r.status == 2);
+  CHECK(r.output.find("not valid JSON") != std::string::npos);
+}
+
+TEST_CASE("every shipped configuration loads") {
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(IMESS_SOURCE_DIR) + "/config")) {
+    if (entry.path().extension() != ".json") continue;
+    INFO(entry.path());
+    DaemonProcess messd({"--config", entry.path().string()});
+    LineClient c(messd.port());
+    CHECK(c.request("Status")->rfind("Ok Status", 0) == 0);
+  }
+}
+
+TEST_CASE("messdrc: values are used, unknown lines warned, bad values refused") {
+  auto rc = temp_file("messdrc", "# stylus file\nSpeedLevel 0.8   # slower\nTipRadius 1.5\nFrobnicate yes\n");
+  DaemonProcess messd({"--rc", rc});
+  LineClient c(messd.port());
+  CHECK(c.request("Get TipRadius") == std::optional<std::string>("Ok Get TipRadius 1.500"));
+  CHECK(c.request("Get SpeedLevel") == std::optional<std::string>("Ok Get SpeedLevel 0.800"));
+  auto bad = temp_file("messdrc-bad", "TipRadius two\n");
+  auto r = run_messd("--rc " + bad);
+  CHECK(r.status == 2);
+  CHECK(r.output.find(":1: TipRadius takes one number") != std::string::npos);
+}
+
+TEST_CASE("command-line errors say what is accepted") {
+  auto r = run_messd("--port nope");
+  CHECK(r.status == 2);
+  CHECK(r.output.find("--port takes a whole number from 0 to 65535") != std::string::npos);
+  r = run_messd("--frobnicate");
+  CHECK(r.status == 2);
+  CHECK(r.output.find("usage: messd") != std::string::npos);
+}

@@ -1,0 +1,74 @@
+// (b) A telnet session: negotiation bytes, CRLF, garbage and an overlong line each get
+// exactly one Err, and the session and the machine keep working.
+#include <catch2/catch.hpp>
+
+#include "daemon_process.hpp"
+
+using namespace imess::test;
+
+TEST_CASE("telnet bytes, garbage and overlong lines get Err and the session goes on") {
+  DaemonProcess messd;
+  LineClient c(messd.port());
+  REQUIRE(c.next());  // CurrCor on connect
+  // What a telnet client sends first: IAC DO SGA, IAC WILL TTYPE, IAC SB NAWS ... IAC SE.
+  c.send_raw(std::string("\xff\xfd\x03\xff\xfb\x18\xff\xfa\x1f\x00\x50\x00\x18\xff\xf0", 15));
+  auto r = c.request("status\r");  // CRLF, lower case
+  REQUIRE(r);
+  CHECK(r->rfind("Ok Status State free", 0) == 0);
+
+  CHECK(c.request("Fly 1 2 3\r")->rfind("Err 100 ", 0) == 0);
+  CHECK(c.request("StartMv 1 x 3\r")->rfind("Err 102 ", 0) == 0);
+  CHECK(c.request("StartMv 1 2\r")->rfind("Err 101 ", 0) == 0);
+  CHECK(c.request("StartMv 0 0 500\r")->rfind("Err 105 ", 0) == 0);
+  CHECK(c.request(std::string("Stat\x01us\r"))->rfind("Err 104 ", 0) == 0);
+  CHECK(c.request(std::string("\xc3\xa4\xc3\xb6\r"))->rfind("Err 104 ", 0) == 0);
+  CHECK(c.request("Set Nonsense 3\r")->rfind("Err 300 ", 0) == 0);
+  CHECK(c.request("Set SpeedLevel 9\r")->rfind("Err 105 ", 0) == 0);
+  CHECK(c.request(std::string(5000, 'A') + "\r")->rfind("Err 103 ", 0) == 0);
+  // Exactly one reply per bad line: the next reply belongs to the next request.
+  CHECK(c.request("Get SpeedLevel\r") == std::optional<std::string>("Ok Get SpeedLevel 1.000"));
+  // Blank lines are no commands and get no reply.
+  c.send_raw("\r\n  \r\n");
+  CHECK(c.request("Hello telnet\r")->rfind("Ok Hello IMESS 1", 0) == 0);
+
+  // The machine still works: a jog to the cube top measures a point.
+  REQUIRE(c.request("StartMv 0 0 -100\r") == std::optional<std::string>("Ok StartMv"));
+  REQUIRE(c.until_prefix("MeasPt 430.000 330.000 80.000", 5.0));
+  CHECK(messd.running());
+}
+
+TEST_CASE("Help lists every command and ends with Ok Help") {
+  DaemonProcess messd;
+  LineClient c(messd.port());
+  c.send("Help");
+  std::vector<std::string> help;
+  REQUIRE(c.until([&](const std::string& l) {
+    if (l.rfind("Help ", 0) == 0) help.push_back(l);
+    return l == "Ok Help";
+  }));
+  CHECK(help.size() == 15);
+  CHECK(help[0].rfind("Help StartMv vx vy vz - ", 0) == 0);
+}
+
+TEST_CASE("Quit closes only this connection") {
+  DaemonProcess messd;
+  LineClient a(messd.port()), b(messd.port());
+  CHECK(a.request("Quit") == std::optional<std::string>("Ok Quit"));
+  CHECK_FALSE(a.next(1.0));
+  CHECK(a.closed());
+  CHECK(b.request("Status")->rfind("Ok Status", 0) == 0);
+}
+
+TEST_CASE("replies come in the order of the requests, whoever answers them") {
+  DaemonProcess messd;
+  LineClient c(messd.port());
+  // Motion commands are answered by the motion loop, the others by the io thread at once.
+  c.send_raw("StartMv 0 0 20\nStatus\nGet TipRadius\nBogus\nStopMv\nHello\nForcePt\nStats\n");
+  std::vector<std::string> replies;
+  REQUIRE(c.until([&](const std::string& l) {
+    if (l.rfind("Ok ", 0) == 0 || l.rfind("Err ", 0) == 0) replies.push_back(l.substr(0, l.find(' ', 4)));
+    return replies.size() == 8;
+  }));
+  CHECK(replies == std::vector<std::string>{"Ok StartMv", "Ok Status", "Ok Get", "Err 100", "Ok StopMv", "Ok Hello",
+                                            "Ok ForcePt", "Ok Stats"});
+}

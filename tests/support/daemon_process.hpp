@@ -1,0 +1,164 @@
+// DaemonProcess: starts build/bin/messd on a free port as a child process and stops it;
+// LineClient: a plain TCP client for tests — send lines, wait for lines with timeouts.
+#pragma once
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace imess::test {
+
+class DaemonProcess {
+ public:
+  explicit DaemonProcess(std::vector<std::string> args = {}) {
+    int out[2];
+    if (pipe(out) != 0) throw std::runtime_error("pipe failed");
+    pid_ = fork();
+    if (pid_ < 0) throw std::runtime_error("fork failed");
+    if (pid_ == 0) {
+      dup2(out[1], STDOUT_FILENO);
+      int devnull = open("/dev/null", O_WRONLY);
+      if (!std::getenv("IMESS_TEST_DAEMON_LOG")) dup2(devnull, STDERR_FILENO);
+      close(out[0]);
+      std::string bin = std::string(IMESS_BIN_DIR) + "/messd";
+      std::vector<std::string> all{bin, "--port", "0", "--listen", "127.0.0.1", "--no-rt"};
+      all.insert(all.end(), args.begin(), args.end());
+      std::vector<char*> argv;
+      for (auto& a : all) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      execv(bin.c_str(), argv.data());
+      _exit(127);
+    }
+    close(out[1]);
+    out_ = fdopen(out[0], "r");
+    char line[256];
+    // "messd: OK, listening on 127.0.0.1:PORT"
+    if (!fgets(line, sizeof line, out_)) throw std::runtime_error("messd did not start (see its stderr)");
+    std::string s(line);
+    auto colon = s.rfind(':');
+    if (s.rfind("messd: OK", 0) != 0 || colon == std::string::npos) throw std::runtime_error("unexpected: " + s);
+    port_ = std::stoi(s.substr(colon + 1));
+  }
+  ~DaemonProcess() { stop(); }
+  DaemonProcess(const DaemonProcess&) = delete;
+  DaemonProcess& operator=(const DaemonProcess&) = delete;
+
+  int port() const { return port_; }
+  bool running() const { return pid_ > 0 && waitpid(pid_, nullptr, WNOHANG) == 0; }
+  // Stops with SIGTERM; returns the exit status.
+  int stop() {
+    if (pid_ <= 0) return status_;
+    kill(pid_, SIGTERM);
+    int st = 0;
+    waitpid(pid_, &st, 0);
+    pid_ = -1;
+    if (out_) fclose(out_);
+    out_ = nullptr;
+    status_ = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    return status_;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  FILE* out_ = nullptr;
+  int port_ = 0, status_ = -1;
+};
+
+class LineClient {
+ public:
+  explicit LineClient(int port) {
+    fd_ = socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(static_cast<uint16_t>(port));
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) throw std::runtime_error("connect failed");
+    int one = 1;
+    setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+  }
+  ~LineClient() {
+    if (fd_ >= 0) close(fd_);
+  }
+  LineClient(const LineClient&) = delete;
+  LineClient& operator=(const LineClient&) = delete;
+
+  void send_raw(const std::string& bytes) {
+    std::size_t off = 0;
+    while (off < bytes.size()) {
+      auto n = ::send(fd_, bytes.data() + off, bytes.size() - off, MSG_NOSIGNAL);
+      if (n <= 0) throw std::runtime_error("send failed");
+      off += static_cast<std::size_t>(n);
+    }
+  }
+  void send(const std::string& line) { send_raw(line + "\n"); }
+
+  // The next line (without "\n"), or nullopt after timeout_s / on close.
+  std::optional<std::string> next(double timeout_s = 5.0) {
+    auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    for (;;) {
+      auto nl = buf_.find('\n');
+      if (nl != std::string::npos) {
+        std::string line = buf_.substr(0, nl);
+        buf_.erase(0, nl + 1);
+        raw_ += line + "\n";
+        return line;
+      }
+      auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+      if (left.count() <= 0) return std::nullopt;
+      pollfd p{fd_, POLLIN, 0};
+      if (poll(&p, 1, static_cast<int>(left.count())) <= 0) continue;
+      char tmp[4096];
+      auto n = recv(fd_, tmp, sizeof tmp, 0);
+      if (n <= 0) {
+        closed_ = true;
+        return std::nullopt;
+      }
+      buf_.append(tmp, static_cast<std::size_t>(n));
+    }
+  }
+  // Reads lines until pred(line) holds; returns that line (nullopt on timeout). Every line
+  // read is kept in seen().
+  std::optional<std::string> until(const std::function<bool(const std::string&)>& pred, double timeout_s = 10.0) {
+    auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    for (;;) {
+      double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+      if (left <= 0) return std::nullopt;
+      auto l = next(left);
+      if (!l) return std::nullopt;
+      seen_.push_back(*l);
+      if (pred(*l)) return l;
+    }
+  }
+  std::optional<std::string> until_prefix(const std::string& prefix, double timeout_s = 10.0) {
+    return until([&](const std::string& l) { return l.rfind(prefix, 0) == 0; }, timeout_s);
+  }
+  // Sends a command and returns its reply (the first Ok/Err line).
+  std::optional<std::string> request(const std::string& line, double timeout_s = 5.0) {
+    send(line);
+    return until([](const std::string& l) { return l.rfind("Ok ", 0) == 0 || l.rfind("Err ", 0) == 0; }, timeout_s);
+  }
+  const std::vector<std::string>& seen() const { return seen_; }
+  const std::string& raw() const { return raw_; }
+  bool closed() const { return closed_; }
+
+ private:
+  int fd_ = -1;
+  std::string buf_, raw_;
+  std::vector<std::string> seen_;
+  bool closed_ = false;
+};
+
+}  // namespace imess::test
