@@ -119,11 +119,15 @@ void load_json_config(const std::string& path, DaemonConfig& cfg) {
     axes->finish();
   }
   if (auto b = top.object("backend")) {
-    cfg.backend = b->text("type", cfg.backend, {"sim-servo-card"});
-    cfg.card.firmware = b->text("firmware", cfg.card.firmware);
+    cfg.backend = b->text("type", cfg.backend, backend_types());
     cfg.card.tip_reversed = b->boolean("tip_reversed", cfg.card.tip_reversed);
-    double ferr = b->number("max_following_error", cfg.card.max_following_error[0], 0.01, 100);
-    cfg.card.max_following_error = {ferr, ferr, ferr};
+    if (cfg.backend == "sim-servo-card") {
+      cfg.card.firmware = b->text("firmware", cfg.card.firmware);
+      double ferr = b->number("max_following_error", cfg.card.max_following_error[0], 0.01, 100);
+      cfg.card.max_following_error = {ferr, ferr, ferr};
+    } else {
+      load_backend_section(*b, cfg);  // backend_config.cpp
+    }
     b->finish();
   }
   if (auto s = top.object("sim")) {
@@ -197,6 +201,7 @@ void finish_config(DaemonConfig& cfg) {
   }
   if (!cfg.sim_probe_nc_set) cfg.sim.mechanics.probe.normally_closed = cfg.card.tip_reversed;
   cfg.core.referenced_at_start = cfg.backend == "sim-servo-card" && cfg.sim.card.absolute_scales;
+  finish_backend_config(cfg);
   for (int a = 0; a < core::kAxes; ++a) cfg.card.max_velocity[a] = cfg.core.max_velocity;
   for (int a = 0; a < core::kAxes; ++a) cfg.card.max_accel[a] = 20000;  // the drives' limit; MaxAccel shapes moves
 }

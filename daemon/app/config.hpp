@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "backend_config.hpp"
 #include "imess/core/core_types.hpp"
 #include "imess/hal/servo_card_driver.hpp"
 #include "imess/net/server.hpp"
@@ -19,6 +20,7 @@ struct DaemonConfig {
   bool home_on_start = false;
   std::string backend = "sim-servo-card";
   hal::ServoCardConfig card;
+  PortBackendConfig ports;  // parport / drive-kit backends (backend_config.hpp)
   sim::SimulatedCmmConfig sim;
   bool sim_probe_nc_set = false;  // sim.probe.normally_closed given explicitly
   std::vector<std::string> notes;  // what was read from where, for the start-up log

@@ -15,6 +15,11 @@ class Machine {
   virtual hal::MotionBackend& backend() = 0;
   virtual hal::SimHooks* sim_hooks() = 0;  // nullptr on real hardware
   virtual std::string describe() const = 0;
+  // Optional fast thread of a backend with a base-period routine (steppers on a real
+  // port). main() starts it after the motion loop and stops it before; returns a line
+  // for the log ("" when there is none).
+  virtual std::string start_base_thread(bool /*want_realtime*/) { return ""; }
+  virtual void stop_base_thread() {}
 };
 
 // Builds and initialises the configured machine; throws std::runtime_error naming the

@@ -96,6 +96,8 @@ int main(int argc, char** argv) {
   else
     spdlog::info("{}", rt);
 
+  if (auto base = machine->start_base_thread(cfg.realtime); !base.empty()) spdlog::info("{}", base);
+
   boost::asio::io_context io;
   net::Server server(io, cfg.server, core, &runner);
   try {
@@ -122,6 +124,7 @@ int main(int argc, char** argv) {
   runner.stop();
   machine->backend().stop(hal::Vec3::Constant(cfg.core.params.max_accel));
   machine->backend().set_loops(false);
+  machine->stop_base_thread();
   spdlog::info("motion stopped, loops open; bye");
   return 0;
 }

@@ -46,7 +46,9 @@ void Mechanics::step(double dt) noexcept {
   const double alpha = 1.0 - std::exp(-dt / config_.motor_time_constant);
   bool any_free = false;
   for (int a = 0; a < hal::kAxes; ++a) {
-    if (driven_[a])
+    if (position_driven_[a])
+      vel_[a] = dt > 0 ? (commanded_[a] - pos_[a]) / dt : 0.0;
+    else if (driven_[a])
       vel_[a] += (demand_[a] - vel_[a]) * alpha;
     else
       any_free = true;
@@ -56,14 +58,14 @@ void Mechanics::step(double dt) noexcept {
     double dist = to_go.norm(), reach = hand_speed_ * dt;
     Vec3 v = dist <= reach ? Vec3(to_go / dt) : Vec3(to_go / dist * hand_speed_);
     for (int a = 0; a < hal::kAxes; ++a)
-      if (!driven_[a]) vel_[a] = v[a];
+      if (!driven_[a] && !position_driven_[a]) vel_[a] = v[a];
     if (dist <= reach) hand_active_ = false;
   } else {
     for (int a = 0; a < hal::kAxes; ++a)
-      if (!driven_[a]) vel_[a] = 0;
+      if (!driven_[a] && !position_driven_[a]) vel_[a] = 0;
   }
   for (int a = 0; a < hal::kAxes; ++a) {
-    pos_[a] += vel_[a] * dt;
+    pos_[a] = position_driven_[a] ? commanded_[a] : pos_[a] + vel_[a] * dt;
     const auto& ax = config_.axes[a];
     double lo = ax.travel_min - ax.hard_margin, hi = ax.travel_max + ax.hard_margin;
     if (pos_[a] < lo || pos_[a] > hi) {

@@ -59,11 +59,17 @@ void MotionCore::cycle(Nanos now) noexcept {
   } else {
     comm_failures_ = 0;
     if (ms_.faulted() && mode_ != Mode::Fault) {
-      FaultKind f = ms_.any(st::kEmergency)        ? FaultKind::Emergency
+      FaultKind f = ms_.any(st::kStopInput)        ? FaultKind::StopInput
+                    : ms_.any(st::kSafetyInput1)   ? FaultKind::SafetyInput1
+                    : ms_.any(st::kSafetyInput2)   ? FaultKind::SafetyInput2
+                    : ms_.any(st::kSafetyInput3)   ? FaultKind::SafetyInput3
+                    : ms_.any(st::kSafetyInput4)   ? FaultKind::SafetyInput4
+                    : ms_.any(st::kEmergency)      ? FaultKind::Emergency
                     : ms_.any(st::kFollowingError) ? FaultKind::FollowingError
                     : ms_.any(st::kDriveNotReady)  ? FaultKind::DriveNotReady
                     : ms_.any(st::kCommTimeout)    ? FaultKind::CommLost
                                                    : FaultKind::ConfigError;
+      if (f == FaultKind::StopInput) homed_ = referenced_ = false;  // the step count is no longer trusted
       fault(f, now);
     }
     if (ms_.latch_valid()) on_probe_latch(now);

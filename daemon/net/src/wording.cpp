@@ -58,6 +58,11 @@ Wording fault_wording(FaultKind f) {
     case FaultKind::Emergency: return {"Emergency", "emergency stop or probe overtravel; free the probe by hand, then Reset"};
     case FaultKind::DriveNotReady: return {"DriveNotReady", "a drive reports not ready; check power, then Reset"};
     case FaultKind::ConfigError: return {"ConfigError", "the controller reports a configuration or data error"};
+    case FaultKind::StopInput: return {"StopInput", "the STOP input stopped all axes at once; steps may be lost: release STOP, Reset, then Home (a reference run is needed)"};
+    case FaultKind::SafetyInput1: return {"SafetyInput1", "safety input 1 opened (normally closed: power-off button in the shipped maps); all motion stopped, outputs off; close it, then Reset"};
+    case FaultKind::SafetyInput2: return {"SafetyInput2", "safety input 2 opened (normally closed: emergency limit switch in the shipped maps); all motion stopped, outputs off; close it, then Reset"};
+    case FaultKind::SafetyInput3: return {"SafetyInput3", "safety input 3 opened (normally closed: E-stop 1 in the shipped maps); all motion stopped, outputs off; close it, then Reset"};
+    case FaultKind::SafetyInput4: return {"SafetyInput4", "safety input 4 opened (normally closed: E-stop 2 in the shipped maps); all motion stopped, outputs off; close it, then Reset"};
   }
   return {"Unknown", ""};
 }
@@ -68,7 +73,9 @@ RefusalWording refusal_wording(Refusal r) {
     case Refusal::TipTouched: return {ErrorCode::TipTouched, "tip is touched, can't move - move the tip free by hand"};
     case Refusal::IntoLimit: return {ErrorCode::IntoLimit, "every requested axis points further into its limit; only moves away are allowed"};
     case Refusal::Busy: return {ErrorCode::Busy, "busy: homing, retract or a move is running; StopMv stops it"};
-    case Refusal::NotSimulated: return {ErrorCode::NotSimulated, "HandMv works on the simulated machine only"};
+    case Refusal::NotSimulated:
+      return {ErrorCode::NotSimulated,
+              "HandMv needs a simulated machine that can be pushed by hand (the servo-card or drive-kit simulation; steppers hold their position)"};
     case Refusal::LoopsClosed: return {ErrorCode::LoopsClosed, "the position loops hold the machine; send Free (or wait IdleOpen s) first"};
     case Refusal::OutOfTravel: return {ErrorCode::OutOfTravel, "target outside the travel; Status and the configuration give the axis ranges"};
     case Refusal::Faulted: return {ErrorCode::Faulted, "machine fault; remove the cause, then send Reset"};

@@ -15,8 +15,14 @@ inline constexpr std::uint32_t kCommTimeout = 1u << 0, kEmergency = 1u << 1, kDr
                                kSoftLimitPos = 1u << 6, kFollowingError = 1u << 7, kDataError = 1u << 8,
                                kConfigError = 1u << 9, kProfileEnd = 1u << 12, kClosedLoop = 1u << 13,
                                kInPosition = 1u << 14, kUserInput = 1u << 15, kLatchValid = 1u << 16;
+// Bits the MCU card leaves unused, set by the port backends: the STOP input of a stepper
+// machine (stopped at once, steps may be lost: a reference run is needed) and the
+// normally-closed safety inputs of a drive-kit machine (one bit per input, 1..4).
+inline constexpr std::uint32_t kStopInput = 1u << 10, kSafetyInput1 = 1u << 17, kSafetyInput2 = 1u << 18,
+                               kSafetyInput3 = 1u << 19, kSafetyInput4 = 1u << 20;
+inline constexpr std::uint32_t kSafetyInputs = kSafetyInput1 | kSafetyInput2 | kSafetyInput3 | kSafetyInput4;
 inline constexpr std::uint32_t kFaultMask =
-    kCommTimeout | kEmergency | kDriveNotReady | kFollowingError | kDataError | kConfigError;
+    kCommTimeout | kEmergency | kDriveNotReady | kFollowingError | kDataError | kConfigError | kStopInput | kSafetyInputs;
 }  // namespace status
 
 // Module input bits per axis. 0x2/0x4/0x8 as on the 1996 card; home and index are ours.

@@ -8,7 +8,7 @@
 
 #include "imess/hal/link.hpp"
 #include "imess/sim/mechanics.hpp"
-#include "imess/sim/trapezoid_profile.hpp"
+#include "imess/hal/trapezoid_planner.hpp"
 
 namespace imess::sim {
 
@@ -37,7 +37,7 @@ class EmulatedCard {
 
  private:
   struct Axis {
-    TrapezoidProfile profile;
+    hal::TrapezoidPlanner profile;  // the firmware runs the same profile law as the host planners
     bool closed = false;
     double vmax = 100, amax = 1000, max_following_error = 5;
     double offset = 0;     // world - machine coordinate

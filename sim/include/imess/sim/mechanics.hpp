@@ -41,6 +41,12 @@ class Mechanics final : public hal::SimHooks {
   // axis stands still unless pushed by hand.
   void set_driven(int axis, bool driven) noexcept { driven_[axis] = driven; }
   void set_motor_velocity(int axis, double v) noexcept { demand_[axis] = v; }
+  // Position drive (a stepper motor, an increment-fed drive): the axis goes to the
+  // commanded position within the next step, hard stops still stop it, hands cannot push
+  // it. Off by default; takes precedence over set_driven.
+  void set_position_driven(int axis, bool on) noexcept { position_driven_[axis] = on; commanded_[axis] = pos_[axis]; }
+  void command_position(int axis, double pos) noexcept { commanded_[axis] = pos; }
+  bool position_driven(int axis) const noexcept { return position_driven_[axis]; }
 
   void step(double dt) noexcept;
 
@@ -78,6 +84,8 @@ class Mechanics final : public hal::SimHooks {
   Vec3 pos_;
   hal::AxisArray<double> vel_{}, demand_{};
   hal::AxisArray<bool> driven_{};
+  hal::AxisArray<bool> position_driven_{};
+  hal::AxisArray<double> commanded_{};
   bool contact_ = false;
   ProbeEdge edge_;
   Vec3 hand_target_ = Vec3::Zero();

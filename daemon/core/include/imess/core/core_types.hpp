@@ -27,7 +27,11 @@ enum class Warning : std::uint8_t {
   MoveRefused,      // a jog or GoTo queued behind a stop could not start (limit, tip)
 };
 
-enum class FaultKind : std::uint8_t { CommLost, FollowingError, Emergency, DriveNotReady, ConfigError };
+enum class FaultKind : std::uint8_t {
+  CommLost, FollowingError, Emergency, DriveNotReady, ConfigError,
+  StopInput,                                             // STOP pressed: steps may be lost, reference run needed
+  SafetyInput1, SafetyInput2, SafetyInput3, SafetyInput4,  // a normally-closed safety input opened
+};
 
 // Runtime parameters (Set/Get). Ranges are checked by the daemon's parameter table.
 struct CoreParams {

@@ -1,15 +1,16 @@
-// The card firmware's profile: ends exactly on target, respects vmax/amax, retargets.
+// TrapezoidPlanner (host planners and the emulated card firmware): ends exactly on target,
+// respects vmax/amax, retargets while moving.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 
-#include "imess/sim/trapezoid_profile.hpp"
+#include "imess/hal/trapezoid_planner.hpp"
 
-using imess::sim::TrapezoidProfile;
+using imess::hal::TrapezoidPlanner;
 
 TEST_CASE("a move ends exactly on the target without exceeding speed or acceleration") {
   for (double dist : {0.001, 0.5, 10.0, 500.0, -123.4}) {
-    TrapezoidProfile p;
+    TrapezoidPlanner p;
     p.reset(0);
     p.start(dist, 100, 1000);
     double dt = 1e-4, prev_v = 0, t = 0;
@@ -32,7 +33,7 @@ TEST_CASE("a move ends exactly on the target without exceeding speed or accelera
 }
 
 TEST_CASE("stop brakes to rest and a new target from speed reverses cleanly") {
-  TrapezoidProfile p;
+  TrapezoidPlanner p;
   p.reset(0);
   p.start(1000, 100, 1000);
   for (int i = 0; i < 5000; ++i) p.step(1e-4);  // 0.5 s: at full speed

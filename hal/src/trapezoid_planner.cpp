@@ -1,39 +1,34 @@
-// Velocity law per tick: the speed from which the axis can still stop at the target,
-// capped by vmax, reached with at most amax; arrival snaps to the target (no overshoot).
-#include "imess/sim/trapezoid_profile.hpp"
+// Per tick: the speed from which the axis can still stop at the target, capped by vmax,
+// reached with at most amax; arrival snaps to the target (no overshoot).
+#include "imess/hal/trapezoid_planner.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace imess::sim {
+namespace imess::hal {
 
-void TrapezoidProfile::reset(double position) noexcept {
+void TrapezoidPlanner::reset(double position) noexcept {
   pos_ = target_ = position;
   vel_ = 0;
   done_ = true;
 }
 
-void TrapezoidProfile::start(double target, double vmax, double amax) noexcept {
+void TrapezoidPlanner::start(double target, double vmax, double amax) noexcept {
   target_ = target;
   vmax_ = vmax;
   amax_ = amax;
   done_ = false;
 }
 
-void TrapezoidProfile::stop(double decel) noexcept {
+void TrapezoidPlanner::stop(double decel) noexcept {
   if (done_) return;
   amax_ = decel;
   vmax_ = std::max(std::abs(vel_), 1e-9);
   target_ = pos_ + vel_ * std::abs(vel_) / (2 * decel);
 }
 
-void TrapezoidProfile::shift(double delta) noexcept {
-  pos_ += delta;
-  target_ += delta;
-}
-
-void TrapezoidProfile::step(double dt) noexcept {
-  if (done_) return;
+void TrapezoidPlanner::step(double dt) noexcept {
+  if (done_ || dt <= 0) return;
   double d = target_ - pos_;
   double dv_max = amax_ * dt;
   if (std::abs(d) < 1e-9 && std::abs(vel_) <= dv_max) {
@@ -42,8 +37,6 @@ void TrapezoidProfile::step(double dt) noexcept {
     done_ = true;
     return;
   }
-  // Largest speed after this tick from which the axis still stops at the target:
-  // v*dt + v²/(2a) <= |d|  (positions advance by v*dt per tick).
   double v_stop = std::sqrt(dv_max * dv_max + 2 * amax_ * std::abs(d)) - dv_max;
   double v_des = std::copysign(std::min(vmax_, v_stop), d);
   vel_ += std::clamp(v_des - vel_, -dv_max, dv_max);
@@ -57,4 +50,4 @@ void TrapezoidProfile::step(double dt) noexcept {
   pos_ += travel;
 }
 
-}  // namespace imess::sim
+}  // namespace imess::hal

@@ -1,0 +1,109 @@
+// DriveKitDriver: the MotionBackend for DC servo axes on port I/O (BRIEF §5): per axis a
+// command port (DAC millivolts in mode 1, increments per period in mode 2) and a position
+// port (signed 16-bit counts, widened here), discrete inputs and outputs. The daemon closes
+// the loops: per servo period a trapezoid set point, PID with velocity feed-forward and
+// anti-windup, following-error watch. Normally-closed safety inputs stop everything.
+#pragma once
+#include <array>
+#include <optional>
+#include <string_view>
+#include <string>
+
+#include "imess/hal/motion_backend.hpp"
+#include "imess/hal/port_io.hpp"
+#include "imess/hal/trapezoid_planner.hpp"
+
+namespace imess::hal {
+
+struct DriveKitAxisConfig {
+  std::uint16_t command_port = 0x306, position_port = 0x30B;
+  std::uint16_t latch_port = 0;            // counter latch on the probe edge; 0: sample the probe at the servo rate
+  double position_unit_mm = 0.1;           // one count on the position port (BRIEF: 0.1 mm)
+  double mv_per_mm_s = 50;                 // mode 1: DAC millivolts per mm/s (the drive's speed constant)
+  double kp = 60;                          // mm/s per mm of following error
+  double ki = 0;                           // mm/s per mm·s
+  double kd = 0;                           // mm/s per mm/s of error change
+  double feed_forward = 1.0;               // fraction of the set-point velocity fed forward
+  double max_following_error = 1.0;        // mm
+  double in_position_mm = 0.005;
+  double max_speed = 150, max_accel = 3000;  // mm/s, mm/s²
+  double index_pitch_mm = 5, index_width_mm = 0.04;  // synthesised index (0: none)
+  int home_direction = -1;
+  std::uint16_t limit_neg_bit = 0, limit_pos_bit = 0, home_bit = 0;  // in the inputs port
+  std::uint16_t enable_bit = 0;            // amplifier enable in the outputs port
+};
+
+struct DriveKitConfig {
+  int mode = 1;                         // 1: DAC mV; 2: increments per period, kit writes 0 back when taken
+  std::uint16_t sync_port = 0x300;      // strobe written after each DAC update (0: none)
+  std::uint16_t inputs_port = 0x304, outputs_port = 0x303;
+  std::uint16_t latch_status_port = 0;  // bit 0 set by the counters when they latched; written 0 to re-arm
+  std::uint16_t probe_bit = 0x0200;
+  std::array<std::uint16_t, 4> safety_bits{0x1000, 0x2000, 0x4000, 0x8000};  // NC, 1 = closed; 0 = not fitted
+  std::uint16_t safe_outputs = 0;       // outputs after a trip (everything off)
+  double dac_limit_mv = 10000;
+  double servo_period_ns = 1'000'000;
+  AxisArray<DriveKitAxisConfig> axes{};
+  Vec3 initial_position = Vec3::Zero();  // mm; the encoder's 16 bits are placed nearest to it
+  bool tip_reversed = false;
+};
+
+// The two port maps of the MRM manual (BRIEF §5), X/Y/Z on the first three axis slots:
+// "mrm-a": sync 0x300, command 0x301-0x303, position 0x306-0x308 (+ ours: inputs 0x30B,
+//          outputs 0x30C, counter latches 0x30D-0x30F, latch status 0x310);
+// "mrm-b": strobe 0x300, outputs 0x303 (0x302 bit 0 = gripper, unused), inputs 0x304,
+//          DAC 0x306-0x308, position 0x30B-0x30D (+ ours: latches 0x310-0x312, status 0x313).
+// Inputs: X limit-/limit+/home 0x0001/0x0002/0x0004, Y 0x0008/0x0010/0x0020, Z
+// 0x0040/0x0080/0x0100, probe 0x0200, safety 0x1000-0x8000; enables 0x1/0x2/0x4.
+std::optional<DriveKitConfig> named_drive_kit_map(std::string_view name);
+
+class DriveKitDriver final : public MotionBackend {
+ public:
+  DriveKitDriver(PortIo& port, const Clock& clock, DriveKitConfig config);
+
+  void initialise(bool force_reboot) override;
+  std::string describe() const override;
+
+  bool read_state(MachineState& out) noexcept override;
+  bool read_latch(Vec3& latched) noexcept override;
+  bool set_loops(bool closed) noexcept override;
+  bool move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept override;
+  bool stop(const Vec3& decel) noexcept override;
+  bool set_position(int axis, double value) noexcept override;
+  bool reset_faults() noexcept override;
+
+  double max_following_error_seen(int axis) const noexcept { return axes_[axis].max_error; }
+  unsigned long handshake_misses() const noexcept { return handshake_misses_; }
+  std::int64_t counts(int axis) const noexcept { return axes_[axis].count; }
+  // DAC resolution in mm/s per mV step (mode 1).
+  double speed_resolution(int axis) const noexcept { return 1.0 / config_.axes[axis].mv_per_mm_s; }
+
+ private:
+  struct Axis {
+    TrapezoidPlanner profile;
+    std::int64_t count = 0;           // widened position counts
+    std::uint16_t last_raw = 0;
+    double offset = 0;                // mm: position = count·unit − offset
+    double integral = 0, last_error = 0, max_error = 0, remainder = 0;
+    std::int64_t release_count = 0;
+    bool last_home = false;
+    std::uint32_t faults = 0;
+  };
+  double position(int a) const noexcept;
+  void write_command(int a, double velocity) noexcept;
+  void safe_state(std::uint16_t outputs) noexcept;
+  std::uint16_t enable_bits() const noexcept;
+
+  PortIo& port_;
+  const Clock& clock_;
+  DriveKitConfig config_;
+  AxisArray<Axis> axes_{};
+  bool loops_closed_ = false, latch_valid_ = false, servo_started_ = false, last_contact_ = false;
+  Vec3 latched_ = Vec3::Zero();
+  Nanos last_servo_{0};
+  std::uint16_t strobe_ = 0, outputs_ = 0;
+  std::uint32_t safety_faults_ = 0;
+  unsigned long handshake_misses_ = 0;
+};
+
+}  // namespace imess::hal

@@ -1,0 +1,303 @@
+// DriveKitDriver: one servo period = read counters and inputs, safety first, set points,
+// PID + feed-forward with anti-windup, write the DACs (or increments), strobe.
+#include "imess/hal/drive_kit_driver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace imess::hal {
+
+namespace {
+constexpr std::array<std::uint32_t, 4> kSafetyStatus{status::kSafetyInput1, status::kSafetyInput2, status::kSafetyInput3,
+                                                     status::kSafetyInput4};
+std::int64_t floor_mod(std::int64_t a, std::int64_t n) { return ((a % n) + n) % n; }
+}  // namespace
+
+std::optional<DriveKitConfig> named_drive_kit_map(std::string_view name) {
+  DriveKitConfig c;
+  std::uint16_t command, position, latch;
+  if (name == "mrm-a") {
+    c.sync_port = 0x300;
+    command = 0x301;
+    position = 0x306;
+    c.inputs_port = 0x30B;
+    c.outputs_port = 0x30C;
+    latch = 0x30D;
+    c.latch_status_port = 0x310;
+  } else if (name == "mrm-b") {
+    c.sync_port = 0x300;
+    c.outputs_port = 0x303;
+    c.inputs_port = 0x304;
+    command = 0x306;
+    position = 0x30B;
+    latch = 0x310;
+    c.latch_status_port = 0x313;
+  } else {
+    return std::nullopt;
+  }
+  for (int a = 0; a < kAxes; ++a) {
+    auto& ax = c.axes[a];
+    auto i = static_cast<std::uint16_t>(a);
+    ax.command_port = static_cast<std::uint16_t>(command + i);
+    ax.position_port = static_cast<std::uint16_t>(position + i);
+    ax.latch_port = static_cast<std::uint16_t>(latch + i);
+    ax.limit_neg_bit = static_cast<std::uint16_t>(0x1u << (3 * a));
+    ax.limit_pos_bit = static_cast<std::uint16_t>(0x2u << (3 * a));
+    ax.home_bit = static_cast<std::uint16_t>(0x4u << (3 * a));
+    ax.enable_bit = static_cast<std::uint16_t>(1u << a);
+  }
+  return c;
+}
+
+DriveKitDriver::DriveKitDriver(PortIo& port, const Clock& clock, DriveKitConfig config)
+    : port_(port), clock_(clock), config_(std::move(config)) {
+  if (config_.mode != 1 && config_.mode != 2) throw std::invalid_argument("drive kit mode must be 1 (DAC mV) or 2 (increments)");
+  for (int a = 0; a < kAxes; ++a) {
+    const auto& ax = config_.axes[a];
+    std::string name = std::string("axis ") + kAxisNames[a];
+    if (!(ax.position_unit_mm > 0) || !(ax.mv_per_mm_s > 0) || !(ax.max_speed > 0) || !(ax.max_accel > 0) ||
+        !(ax.max_following_error > 0))
+      throw std::invalid_argument(name + ": position_unit_mm, mv_per_mm_s, max_speed, max_accel and max_following_error must be positive");
+    if (config_.mode == 1 && ax.max_speed * ax.mv_per_mm_s > config_.dac_limit_mv)
+      throw std::invalid_argument(name + ": max_speed needs " + std::to_string(ax.max_speed * ax.mv_per_mm_s) +
+                                  " mV, beyond the DAC's " + std::to_string(config_.dac_limit_mv) + " mV");
+    // 16 bits of counts must not wrap between two reads.
+    if (ax.max_speed * config_.servo_period_ns * 1e-9 / ax.position_unit_mm > 16000)
+      throw std::invalid_argument(name + ": max_speed moves more than 16000 counts per servo period; the 16-bit position port would wrap unseen");
+  }
+}
+
+double DriveKitDriver::position(int a) const noexcept {
+  return static_cast<double>(axes_[a].count) * config_.axes[a].position_unit_mm - axes_[a].offset;
+}
+
+std::uint16_t DriveKitDriver::enable_bits() const noexcept {
+  std::uint16_t b = 0;
+  for (const auto& ax : config_.axes) b |= ax.enable_bit;
+  return b;
+}
+
+void DriveKitDriver::initialise(bool) {
+  for (int a = 0; a < kAxes; ++a) {
+    const auto& ax = config_.axes[a];
+    port_.out16(ax.command_port, 0);
+    // Place the 16 bits read nearest to where the machine is said to stand.
+    std::uint16_t raw = port_.in16(ax.position_port);
+    auto near = static_cast<std::int64_t>(std::llround(config_.initial_position[a] / ax.position_unit_mm));
+    axes_[a].count = near + static_cast<std::int16_t>(static_cast<std::uint16_t>(raw - static_cast<std::uint16_t>(near)));
+    axes_[a].last_raw = raw;
+    axes_[a].profile.reset(position(a));
+  }
+  outputs_ = config_.safe_outputs;
+  port_.out16(config_.outputs_port, outputs_);
+  if (config_.latch_status_port) port_.out16(config_.latch_status_port, 0);
+  if (port_.errors() != 0) throw std::runtime_error("drive kit: the ports did not answer (" + port_.describe() + ")");
+  loops_closed_ = false;
+}
+
+std::string DriveKitDriver::describe() const {
+  return std::string("drive kit on port I/O, mode ") + (config_.mode == 1 ? "1 (DAC mV)" : "2 (increments)") + ", " +
+         port_.describe();
+}
+
+void DriveKitDriver::write_command(int a, double velocity) noexcept {
+  const auto& ax = config_.axes[a];
+  if (config_.mode == 1) {
+    double mv = std::clamp(velocity * ax.mv_per_mm_s, -config_.dac_limit_mv, config_.dac_limit_mv);
+    port_.out16(ax.command_port, static_cast<std::uint16_t>(static_cast<std::int16_t>(std::lround(mv))));
+    return;
+  }
+  // Mode 2: increments for this period; the fraction is carried, never dropped.
+  Axis& s = axes_[a];
+  double want = velocity * config_.servo_period_ns * 1e-9 / ax.position_unit_mm + s.remainder;
+  double n = std::clamp(std::trunc(want), -32767.0, 32767.0);
+  if (port_.in16(ax.command_port) != 0) {  // the kit has not taken the last one
+    ++handshake_misses_;
+    s.remainder = want;
+    return;
+  }
+  s.remainder = want - n;
+  port_.out16(ax.command_port, static_cast<std::uint16_t>(static_cast<std::int16_t>(n)));
+}
+
+void DriveKitDriver::safe_state(std::uint16_t outputs) noexcept {
+  for (int a = 0; a < kAxes; ++a) {
+    port_.out16(config_.axes[a].command_port, 0);
+    axes_[a].profile.reset(position(a));
+    axes_[a].integral = axes_[a].remainder = 0;
+  }
+  outputs_ = outputs;
+  port_.out16(config_.outputs_port, outputs_);
+  loops_closed_ = false;
+}
+
+bool DriveKitDriver::read_state(MachineState& out) noexcept {
+  Nanos now = clock_.now();
+  double dt = servo_started_ ? seconds(now - last_servo_) : 0.0;
+  dt = std::clamp(dt, 0.0, 0.1);
+  last_servo_ = now;
+  servo_started_ = true;
+
+  const std::uint16_t in = port_.in16(config_.inputs_port);
+  // Safety first: a normally-closed input reading open stops everything this period.
+  std::uint32_t tripped = 0;
+  for (int i = 0; i < 4; ++i)
+    if (config_.safety_bits[i] && !(in & config_.safety_bits[i])) tripped |= kSafetyStatus[i];
+  if (tripped & ~safety_faults_) safe_state(config_.safe_outputs);
+  safety_faults_ |= tripped;
+
+  // Counters: 16 bits widened by the signed difference since the last read.
+  for (int a = 0; a < kAxes; ++a) {
+    std::uint16_t raw = port_.in16(config_.axes[a].position_port);
+    axes_[a].count += static_cast<std::int16_t>(static_cast<std::uint16_t>(raw - axes_[a].last_raw));
+    axes_[a].last_raw = raw;
+  }
+  // Probe: the counters' latch, or the input sampled now.
+  const bool raw_probe = (in & config_.probe_bit) != 0;
+  const bool contact = config_.tip_reversed ? !raw_probe : raw_probe;
+  if (config_.latch_status_port) {
+    if (!latch_valid_ && (port_.in16(config_.latch_status_port) & 1)) {
+      for (int a = 0; a < kAxes; ++a) {
+        const auto& ax = config_.axes[a];
+        std::uint16_t raw = port_.in16(ax.latch_port);
+        std::int64_t c = axes_[a].count + static_cast<std::int16_t>(static_cast<std::uint16_t>(raw - axes_[a].last_raw));
+        latched_[a] = static_cast<double>(c) * ax.position_unit_mm - axes_[a].offset;
+      }
+      latch_valid_ = true;
+    }
+  } else if (contact && !last_contact_ && !latch_valid_) {
+    for (int a = 0; a < kAxes; ++a) latched_[a] = position(a);
+    latch_valid_ = true;
+  }
+  last_contact_ = contact;
+
+  bool following_fault = false;
+  for (int a = 0; a < kAxes; ++a) {
+    const auto& ax = config_.axes[a];
+    Axis& s = axes_[a];
+    const bool lim_neg = ax.limit_neg_bit && (in & ax.limit_neg_bit);
+    const bool lim_pos = ax.limit_pos_bit && (in & ax.limit_pos_bit);
+    const bool home = ax.home_bit && (in & ax.home_bit);
+    if (s.last_home && !home) s.release_count = s.count;
+    s.last_home = home;
+    std::uint8_t bits = 0;
+    if (lim_pos) bits |= input::kLimitPos;
+    if (lim_neg) bits |= input::kLimitNeg;
+    if (raw_probe) bits |= input::kTip;
+    if (home) bits |= input::kHome;
+    if (ax.index_pitch_mm > 0) {
+      auto pitch = static_cast<std::int64_t>(std::llround(ax.index_pitch_mm / ax.position_unit_mm));
+      auto width = std::max<std::int64_t>(1, std::llround(ax.index_width_mm / ax.position_unit_mm));
+      std::int64_t phase = floor_mod(s.count - s.release_count, pitch);
+      if (phase >= pitch / 2 && phase < pitch / 2 + width) bits |= input::kIndex;
+    }
+    out.inputs[a] = bits;
+
+    const double pos = position(a);
+    TrapezoidPlanner& p = s.profile;
+    if (!loops_closed_) {
+      p.reset(pos);
+      s.integral = s.last_error = 0;
+    } else {
+      double v = p.velocity();
+      int heading = v > 0 ? 1 : v < 0 ? -1 : (!p.done() ? (p.target() > p.position() ? 1 : -1) : 0);
+      if ((heading < 0 && lim_neg) || (heading > 0 && lim_pos)) p.stop(ax.max_accel);
+      p.step(dt);
+      double e = p.position() - pos;
+      s.max_error = std::max(s.max_error, std::abs(e));
+      if (std::abs(e) > ax.max_following_error) {
+        s.faults |= status::kFollowingError;
+        following_fault = true;
+      }
+      double de = dt > 0 ? (e - s.last_error) / dt : 0.0;
+      s.last_error = e;
+      double u = ax.feed_forward * p.velocity() + ax.kp * e + ax.ki * s.integral + ax.kd * de;
+      // Anti-windup: integrate only while the command is not saturated in the error's direction.
+      double u_max = config_.mode == 1 ? config_.dac_limit_mv / ax.mv_per_mm_s : ax.max_speed * 1.5;
+      if (std::abs(u) < u_max || (u > 0) != (e > 0)) s.integral += e * dt;
+      write_command(a, std::clamp(u, -u_max, u_max));
+    }
+  }
+  if (following_fault) safe_state(config_.safe_outputs);
+  if (config_.sync_port) port_.out16(config_.sync_port, ++strobe_);
+
+  for (int a = 0; a < kAxes; ++a) {
+    const auto& ax = config_.axes[a];
+    const Axis& s = axes_[a];
+    std::uint32_t st = s.faults | safety_faults_;
+    if (out.inputs[a] & input::kLimitNeg) st |= status::kHardLimitNeg;
+    if (out.inputs[a] & input::kLimitPos) st |= status::kHardLimitPos;
+    if (s.profile.done()) st |= status::kProfileEnd;
+    if (loops_closed_) st |= status::kClosedLoop;
+    if (s.profile.done() && std::abs(s.profile.position() - position(a)) < ax.in_position_mm) st |= status::kInPosition;
+    if (latch_valid_) st |= status::kLatchValid;
+    out.status[a] = st;
+    out.position[a] = position(a);
+  }
+  out.tip_touched = contact;
+  return port_.errors() == 0;
+}
+
+bool DriveKitDriver::read_latch(Vec3& latched) noexcept {
+  latched = latched_;
+  latch_valid_ = false;
+  if (config_.latch_status_port) port_.out16(config_.latch_status_port, 0);  // re-arm the counters' latch
+  return true;
+}
+
+bool DriveKitDriver::set_loops(bool closed) noexcept {
+  bool faulted = safety_faults_ != 0;
+  for (const auto& s : axes_) faulted = faulted || (s.faults & status::kFaultMask);
+  if (closed && faulted) return true;  // like the card: a faulted axis stays open
+  for (int a = 0; a < kAxes; ++a) {
+    axes_[a].profile.reset(position(a));
+    axes_[a].integral = axes_[a].last_error = axes_[a].remainder = 0;
+    port_.out16(config_.axes[a].command_port, 0);
+  }
+  outputs_ = static_cast<std::uint16_t>(closed ? (outputs_ | enable_bits()) : (outputs_ & ~enable_bits()));
+  port_.out16(config_.outputs_port, outputs_);
+  loops_closed_ = closed;
+  return true;
+}
+
+bool DriveKitDriver::move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept {
+  for (int a = 0; a < kAxes; ++a)
+    if ((axis_mask & (1u << a)) && (!std::isfinite(moves[a].target) || !(moves[a].velocity > 0) || !(moves[a].accel > 0)))
+      return false;
+  if (!loops_closed_) return true;
+  for (int a = 0; a < kAxes; ++a)
+    if (axis_mask & (1u << a))
+      axes_[a].profile.start(moves[a].target, std::min(moves[a].velocity, config_.axes[a].max_speed),
+                             std::min(moves[a].accel, config_.axes[a].max_accel));
+  return true;
+}
+
+bool DriveKitDriver::stop(const Vec3& decel) noexcept {
+  for (int a = 0; a < kAxes; ++a) {
+    if (!(decel[a] > 0)) return false;
+    axes_[a].profile.stop(std::min(decel[a], config_.axes[a].max_accel));
+  }
+  return true;
+}
+
+bool DriveKitDriver::set_position(int axis, double value) noexcept {
+  if (axis < 0 || axis >= kAxes || !std::isfinite(value)) return false;
+  double old = position(axis);
+  axes_[axis].offset += old - value;
+  axes_[axis].profile.shift(value - old);
+  return true;
+}
+
+bool DriveKitDriver::reset_faults() noexcept {
+  const std::uint16_t in = port_.in16(config_.inputs_port);
+  std::uint32_t still = 0;
+  for (int i = 0; i < 4; ++i)
+    if (config_.safety_bits[i] && !(in & config_.safety_bits[i])) still |= kSafetyStatus[i];
+  safety_faults_ = still;  // an input still open keeps its fault
+  for (auto& s : axes_) s.faults = 0;
+  set_loops(false);
+  return true;
+}
+
+}  // namespace imess::hal

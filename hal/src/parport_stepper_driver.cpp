@@ -1,0 +1,239 @@
+// ParportStepperDriver: servo-rate planning in floating point, base-rate pulse making and
+// input capture in integers; the two sides meet only in atomics.
+#include "imess/hal/parport_stepper_driver.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace imess::hal {
+
+namespace {
+constexpr unsigned kAllAxes = (1u << kAxes) - 1;
+std::uint32_t ticks(double ns, double base_ns) { return static_cast<std::uint32_t>(std::ceil(ns / base_ns - 1e-9)); }
+std::int64_t floor_mod(std::int64_t a, std::int64_t n) { return ((a % n) + n) % n; }
+}  // namespace
+
+ParportStepperDriver::ParportStepperDriver(PortIo& port, const Clock& clock, ParportStepperConfig config)
+    : port_(port), clock_(clock), config_(std::move(config)) {
+  validate_pin_map(config_.pins);
+  pins_ = compile_pins(config_.pins);
+  const double base = config_.base_period_ns;
+  if (!(base >= 1000 && base <= 1'000'000)) throw std::invalid_argument("base_period_ns must be from 1000 to 1000000");
+  if (!(config_.servo_period_ns >= base)) throw std::invalid_argument("the servo period must be longer than the base period");
+  StepTiming t;
+  t.step_len = std::max(1u, ticks(config_.step_len_ns, base));
+  t.step_space = std::max(1u, ticks(config_.step_space_ns, base));
+  t.dir_setup = std::max(1u, ticks(config_.dir_setup_ns, base));
+  t.dir_hold = std::max(1u, ticks(config_.dir_hold_ns, base));
+  gen_.configure(pins_, t);
+  ticks_per_servo_ = static_cast<std::uint64_t>(std::llround(config_.servo_period_ns / base));
+  for (int a = 0; a < kAxes; ++a) {
+    const auto& ax = config_.axes[a];
+    if (!(ax.steps_per_mm > 0) || !(ax.max_speed > 0) || !(ax.max_accel > 0))
+      throw std::invalid_argument(std::string("axis ") + kAxisNames[a] + ": steps_per_mm, max_speed and max_accel must be positive");
+    vmax_[a] = ax.max_speed * ax.steps_per_mm;
+    amax_[a] = ax.max_accel * ax.steps_per_mm;
+    if (vmax_[a] > max_step_rate() * (1 + 1e-9))
+      throw std::invalid_argument(std::string("axis ") + kAxisNames[a] + ": max_speed " + std::to_string(ax.max_speed) +
+                                  " mm/s needs " + std::to_string(static_cast<long>(vmax_[a])) +
+                                  " steps/s, but step length + step space of " +
+                                  std::to_string(t.step_len + t.step_space) + " base periods of " +
+                                  std::to_string(static_cast<long>(base)) + " ns allow " +
+                                  std::to_string(static_cast<long>(max_step_rate())) + " steps/s");
+    index_pitch_[a] = ax.index_pitch_mm > 0 ? std::llround(ax.index_pitch_mm * ax.steps_per_mm) : 0;
+    index_width_[a] = std::max<std::int64_t>(1, std::llround(ax.index_width_mm * ax.steps_per_mm));
+    // The machine stands at initial_position at power-on, where the step count is 0.
+    zero_[a] = -std::llround(config_.initial_position[a] * ax.steps_per_mm);
+    profile_[a].reset(0);
+  }
+}
+
+double ParportStepperDriver::max_step_rate() const noexcept {
+  const auto& t = gen_.timing();
+  return 1e9 / (config_.base_period_ns * (t.step_len + t.step_space));
+}
+
+std::int64_t ParportStepperDriver::steps_for(int axis, double mm) const noexcept {
+  return std::llround(mm * config_.axes[axis].steps_per_mm) + zero_[axis];
+}
+
+void ParportStepperDriver::initialise(bool) {
+  last_data_ = gen_.idle_data();
+  port_.out8(data_port(), last_data_);
+  port_.out8(static_cast<std::uint16_t>(config_.base + 2), pins_.control_invert ^ pins_.enable_control_mask);
+  std::uint8_t st = port_.in8(status_port());
+  status_.store(st, std::memory_order_relaxed);
+  if (port_.errors() != 0)
+    throw std::runtime_error("parallel port at " + std::to_string(config_.base) + ": the registers did not answer (" +
+                             port_.describe() + ")");
+  for (int a = 0; a < kAxes; ++a) gen_.command(a, gen_.count(a), 0);
+  loops_closed_ = false;
+}
+
+std::string ParportStepperDriver::describe() const {
+  return "stepper machine on the parallel port (pins '" + config_.pins.name + "', " + port_.describe() + "), up to " +
+         std::to_string(static_cast<long>(max_step_rate())) + " steps/s per axis";
+}
+
+// ------------------------------------------------------------------ base rate
+
+void ParportStepperDriver::base_tick() noexcept {
+  std::uint8_t st = port_.in8(status_port());
+  if (active(st, pins_.stop)) halted_.store(true, std::memory_order_relaxed);
+  bool halted = halted_.load(std::memory_order_relaxed);
+  // Probe: latch every axis at the step count of the contact edge (the first edge is held).
+  bool raw = active(st, pins_.probe);
+  bool contact = config_.tip_reversed ? !raw : raw;
+  if (!base_started_) last_contact_ = contact;
+  if (contact && !last_contact_ && !latch_valid_.load(std::memory_order_acquire)) {
+    for (int a = 0; a < kAxes; ++a) latched_[a].store(gen_.count(a), std::memory_order_relaxed);
+    latch_valid_.store(true, std::memory_order_release);
+  }
+  last_contact_ = contact;
+  // Home-side switch releases anchor the synthesised index marks.
+  for (int a = 0; a < kAxes; ++a) {
+    bool sw = active(st, static_cast<std::uint8_t>(pins_.endref[a] | pins_.home[a]));
+    if (base_started_ && last_switch_[a] && !sw) release_count_[a].store(gen_.count(a), std::memory_order_relaxed);
+    last_switch_[a] = sw;
+  }
+  base_started_ = true;
+  status_.store(st, std::memory_order_release);
+  std::uint8_t data = gen_.tick(halted);
+  if (data != last_data_) {
+    port_.out8(data_port(), data);
+    last_data_ = data;
+  }
+}
+
+// ------------------------------------------------------------------ servo rate
+
+bool ParportStepperDriver::read_state(MachineState& out) noexcept {
+  Nanos now = clock_.now();
+  double dt = servo_started_ ? seconds(now - last_servo_) : 0.0;
+  if (dt < 0) dt = 0;
+  if (dt > 0.1) dt = 0.1;  // a stalled caller does not make the profile jump
+  last_servo_ = now;
+  servo_started_ = true;
+
+  const std::uint8_t st = status_.load(std::memory_order_acquire);
+  const bool halted = halted_.load(std::memory_order_relaxed);
+  const bool latch = latch_valid_.load(std::memory_order_acquire);
+  const bool raw_probe = active(st, pins_.probe);
+  for (int a = 0; a < kAxes; ++a) {
+    const auto& ax = config_.axes[a];
+    const std::int64_t count = gen_.count(a);
+    // Inputs in the card's layout; an end/ref switch is the home switch and the limit on its side.
+    bool endref = active(st, pins_.endref[a]);
+    bool lim_neg = active(st, pins_.limit_neg[a]) || (endref && ax.home_direction < 0);
+    bool lim_pos = active(st, pins_.limit_pos[a]) || (endref && ax.home_direction > 0);
+    bool home = endref || active(st, pins_.home[a]);
+    std::uint8_t in = 0;
+    if (lim_pos) in |= input::kLimitPos;
+    if (lim_neg) in |= input::kLimitNeg;
+    if (raw_probe) in |= input::kTip;
+    if (home) in |= input::kHome;
+    if (index_pitch_[a] > 0) {
+      std::int64_t phase = floor_mod(count - release_count_[a].load(std::memory_order_relaxed), index_pitch_[a]);
+      std::int64_t start = index_pitch_[a] / 2;
+      if (phase >= start && phase < start + index_width_[a]) in |= input::kIndex;
+    }
+    out.inputs[a] = in;
+
+    TrapezoidPlanner& p = profile_[a];
+    if (halted || !loops_closed_) {
+      p.reset(static_cast<double>(count));
+      commanded_[a] = count;
+      gen_.command(a, count, 0);
+    } else {
+      // Like the card firmware: a profile heading into a closed limit switch brakes.
+      double v = p.velocity();
+      int heading = v > 0 ? 1 : v < 0 ? -1 : (!p.done() ? (p.target() > p.position() ? 1 : -1) : 0);
+      if ((heading < 0 && lim_neg) || (heading > 0 && lim_pos)) p.stop(amax_[a]);
+      p.step(dt);
+      std::int64_t target = std::llround(p.position());
+      std::uint64_t need = static_cast<std::uint64_t>(target > count ? target - count : count - target);
+      // Spread the steps over the next servo period; the generator caps at its maximum rate.
+      std::uint64_t rate = need >= ticks_per_servo_ ? gen_.max_rate() : need * StepGenerator::kOne / ticks_per_servo_;
+      if (need > 0 && rate == 0) rate = 1;
+      commanded_[a] = target;
+      gen_.command(a, target, rate);
+    }
+    std::uint32_t s = 0;
+    if (halted) s |= status::kStopInput;
+    if (lim_neg) s |= status::kHardLimitNeg;
+    if (lim_pos) s |= status::kHardLimitPos;
+    bool arrived = p.done() && count == commanded_[a];
+    if (arrived) s |= status::kProfileEnd | status::kInPosition;
+    if (loops_closed_ && !halted) s |= status::kClosedLoop;
+    if (latch) s |= status::kLatchValid;
+    out.status[a] = s;
+    out.position[a] = static_cast<double>(count - zero_[a]) / ax.steps_per_mm;
+  }
+  out.tip_touched = config_.tip_reversed ? !raw_probe : raw_probe;
+  return port_.errors() == 0;
+}
+
+bool ParportStepperDriver::read_latch(Vec3& latched) noexcept {
+  for (int a = 0; a < kAxes; ++a)
+    latched[a] = static_cast<double>(latched_[a].load(std::memory_order_relaxed) - zero_[a]) / config_.axes[a].steps_per_mm;
+  latch_valid_.store(false, std::memory_order_release);
+  return true;
+}
+
+bool ParportStepperDriver::set_loops(bool closed) noexcept {
+  if (closed && halted_.load(std::memory_order_relaxed)) return true;  // like the card: a faulted axis stays open
+  loops_closed_ = closed;
+  for (int a = 0; a < kAxes; ++a) {
+    std::int64_t c = gen_.count(a);
+    profile_[a].reset(static_cast<double>(c));
+    commanded_[a] = c;
+    gen_.command(a, c, 0);  // the motors hold where they are
+  }
+  return true;
+}
+
+bool ParportStepperDriver::move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept {
+  for (int a = 0; a < kAxes; ++a) {
+    if (!(axis_mask & (1u << a))) continue;
+    const auto& m = moves[a];
+    if (!std::isfinite(m.target) || !(m.velocity > 0) || !(m.accel > 0)) return false;
+  }
+  if (!loops_closed_) return true;  // like the card: an open axis ignores jogs
+  for (int a = 0; a < kAxes; ++a) {
+    if (!(axis_mask & (1u << a))) continue;
+    const auto& m = moves[a];
+    const double spm = config_.axes[a].steps_per_mm;
+    double target = static_cast<double>(steps_for(a, m.target));
+    profile_[a].start(target, std::min(m.velocity * spm, vmax_[a]), std::min(m.accel * spm, amax_[a]));
+  }
+  return true;
+}
+
+bool ParportStepperDriver::stop(const Vec3& decel) noexcept {
+  for (int a = 0; a < kAxes; ++a) {
+    if (!(decel[a] > 0)) return false;
+    profile_[a].stop(std::min(decel[a] * config_.axes[a].steps_per_mm, amax_[a]));
+  }
+  return true;
+}
+
+bool ParportStepperDriver::set_position(int axis, double value) noexcept {
+  if (axis < 0 || axis >= kAxes || !std::isfinite(value)) return false;
+  zero_[axis] = gen_.count(axis) - std::llround(value * config_.axes[axis].steps_per_mm);
+  return true;
+}
+
+bool ParportStepperDriver::reset_faults() noexcept {
+  // STOP is a level: while it is still pressed the next base tick latches it again.
+  if (!active(status_.load(std::memory_order_acquire), pins_.stop)) halted_.store(false, std::memory_order_relaxed);
+  loops_closed_ = false;
+  for (int a = 0; a < kAxes; ++a) {
+    std::int64_t c = gen_.count(a);
+    profile_[a].reset(static_cast<double>(c));
+    commanded_[a] = c;
+    gen_.command(a, c, 0);
+  }
+  return true;
+}
+
+}  // namespace imess::hal

@@ -1,0 +1,99 @@
+// Real-time discipline of the port backends: neither the servo-rate calls nor the base
+// routine allocate — counted by replacing the global allocator while the core jogs, hits,
+// retracts, moves, homes and stops on each backend.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "port_rigs.hpp"
+
+namespace {
+std::atomic<long> g_allocations{0};
+std::atomic<bool> g_counting{false};
+}  // namespace
+
+void* operator new(std::size_t n) {
+  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+using namespace imess;
+using namespace imess::test;
+
+namespace {
+// Steps the core directly; events are popped and dropped (collecting them allocates).
+long cycles_allocations(MotionRig& rig, int cycles) {
+  auto& core = rig.core();
+  g_allocations = 0;
+  g_counting = true;
+  for (int i = 0; i < cycles; ++i) {
+    rig.clock().advance(MotionRig::kPeriod);
+    core.cycle(rig.clock().now());
+    core::Event e;
+    while (core.events().pop(e)) {}
+  }
+  g_counting = false;
+  return g_allocations.load();
+}
+void push(MotionRig& rig, core::Command c) { rig.core().commands().push(c); }
+core::CoreConfig brisk() {
+  core::CoreConfig c;
+  c.params.max_speed = 80;
+  c.params.max_accel = 2000;
+  c.max_velocity = 80;
+  c.params.idle_open_time = 2;
+  return c;
+}
+}  // namespace
+
+TEST_CASE("the allocation counter works") {
+  g_allocations = 0;
+  g_counting = true;
+  auto* p = new int(3);
+  g_counting = false;
+  delete p;
+  REQUIRE(g_allocations.load() == 1);
+}
+
+TEST_CASE("stepper backend: no servo cycle or base tick allocates") {
+  StepperRig rig;
+  rig.start_core(brisk());
+  push(rig, {CommandKind::StartMv, 1, 1, Vec3(0, 0, -30)});
+  CHECK(cycles_allocations(rig, 2000) == 0);  // jog, hit at base rate, MeasPt, retract
+  CHECK(rig.mode() == Mode::Idle);
+  push(rig, {CommandKind::GoTo, 1, 2, Vec3(380, 300, 120), 80});
+  CHECK(cycles_allocations(rig, 3000) == 0);
+  CHECK(cycles_allocations(rig, 3000) == 0);  // loops open after 2 s
+  CHECK(rig.mode() == Mode::Free);
+  push(rig, {CommandKind::Home, 1, 3});
+  CHECK(cycles_allocations(rig, 30000) == 0);
+  push(rig, {CommandKind::StartMv, 1, 4, Vec3(50, 0, 0)});
+  CHECK(cycles_allocations(rig, 100) == 0);
+  push(rig, {CommandKind::StopMv, 1, 5});
+  CHECK(cycles_allocations(rig, 500) == 0);
+}
+
+TEST_CASE("drive-kit backend: no servo cycle allocates, in either kit mode") {
+  for (int mode : {1, 2}) {
+    DriveRig rig(drive_options(mode, mode == 1 ? "mrm-b" : "mrm-a"));
+    rig.start_core(brisk(), &rig.mechanics());
+    push(rig, {CommandKind::StartMv, 1, 1, Vec3(0, 0, -30)});
+    CHECK(cycles_allocations(rig, 2000) == 0);  // jog, latch, MeasPt, retract
+    push(rig, {CommandKind::GoTo, 1, 2, Vec3(380, 300, 120), 80});
+    CHECK(cycles_allocations(rig, 3000) == 0);
+    CHECK(cycles_allocations(rig, 3000) == 0);  // loops open
+    push(rig, {CommandKind::HandMv, 1, 3, Vec3(0, 0, -3), 10});
+    CHECK(cycles_allocations(rig, 500) == 0);
+    push(rig, {CommandKind::Home, 1, 4});
+    CHECK(cycles_allocations(rig, 20000) == 0);
+    rig.kits().set_safety_open(2, true);
+    CHECK(cycles_allocations(rig, 100) == 0);  // trip
+    CHECK(rig.mode() == Mode::Fault);
+  }
+}
