@@ -87,3 +87,28 @@ TEST_CASE("GoTo ends on the target") {
   rig.run(0.1);
   CHECK((rig.position() - Vec3(300, 200, 150)).norm() < 0.0002);  // settled
 }
+
+TEST_CASE("a normally-closed probe (TipReversed) measures the same point") {
+  auto o = default_options();
+  o.sim.mechanics.probe.normally_closed = true;  // the switch opens on contact
+  o.tip_reversed = true;                         // and messd is told so
+  CoreRig rig(o);
+  CHECK_FALSE(rig.core().machine().tip_touched);
+  rig.start_mv({0, 0, -20});
+  std::vector<Event> pts;
+  REQUIRE(rig.run_until([&] {
+    for (auto& e : rig.take(EventKind::MeasPt)) pts.push_back(e);
+    return !pts.empty();
+  }, 3.0));
+  CHECK(pts[0].p.z() == Approx(80.0).margin(0.001));
+  REQUIRE(rig.run_until([&] { return rig.mode() == Mode::Idle; }, 5.0));
+  CHECK_FALSE(rig.core().machine().tip_touched);
+}
+
+TEST_CASE("a normally-closed probe that messd thinks is normally open reads as touched") {
+  auto o = default_options();
+  o.sim.mechanics.probe.normally_closed = true;  // wrong stylus file: TipReversed false
+  CoreRig rig(o);
+  CHECK(rig.core().machine().tip_touched);
+  CHECK(rig.start_mv({0, 0, -20}) == imess::core::Refusal::TipTouched);  // safe: it will not move
+}
