@@ -2,10 +2,15 @@
 # when any is missing (fresh Debian 12 machine), and nothing otherwise.
 imess_packages=(cmake ninja-build g++ pkg-config libboost-dev libeigen3-dev libspdlog-dev
                 nlohmann-json3-dev catch2 libncurses-dev)
+# Only for scripts/test: the independent readers the export and FreeCAD plugin tests use
+# (ezdxf for DXF; freecadcmd for STEP, IGES, PLY, ASC and the plugin). Debian's python3 comes with them.
+imess_test_packages=(python3 python3-ezdxf freecad-python3)
 
-imess_install_deps() {
+imess_install_deps() {   # imess_install_deps [test]: the build packages, with "test" also the test ones
+  local wanted=("${imess_packages[@]}")
+  [ "${1:-}" = test ] && wanted+=("${imess_test_packages[@]}")
   local missing=()
-  for p in "${imess_packages[@]}"; do
+  for p in "${wanted[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return 0

@@ -1,11 +1,13 @@
-// messcap's command line and --help text. Options take their value as the next argument,
-// attached ("-n3") or after '=' ("--count=3").
+// messcap's capture command line and --help text. Options take their value as the next
+// argument, attached ("-n3") or after '=' ("--count=3").
 #include "capture_options.hpp"
 
 #include <charconv>
 #include <string_view>
 
 #include "imess/client/usage_error.hpp"
+#include "imess/exchange/export_format.hpp"
+#include "option_value.hpp"
 
 namespace imess::messcap {
 namespace {
@@ -21,27 +23,49 @@ int parse_count(std::string_view text) {
   return value;
 }
 
-// Matches an option with a value in any of its spellings; advances i past a separate value.
-std::optional<std::string_view> value_of(std::string_view shortname, std::string_view longname, int& i,
-                                         int argc, const char* const argv[]) {
-  std::string_view a = argv[i];
-  std::string_view name;
-  std::optional<std::string_view> attached;
-  if (a == shortname || a == longname) {
-    name = a;
-  } else if (a.size() > shortname.size() && a.substr(0, shortname.size()) == shortname) {
-    attached = a.substr(shortname.size());
-  } else if (a.size() > longname.size() && a.substr(0, longname.size() + 1) == std::string(longname) + "=") {
-    attached = a.substr(longname.size() + 1);
-  } else {
-    return std::nullopt;
+}  // namespace
+
+void check_output_file(const std::string& path) {
+  try {
+    exchange::export_format_for(path);
+  } catch (const exchange::FormatError& e) {
+    throw UsageError(e.what());
   }
-  if (attached) return attached;
-  if (i + 1 >= argc) throw UsageError(std::string(name) + " needs a value (see messcap --help)");
-  return std::string_view(argv[++i]);
 }
 
-}  // namespace
+bool parse_output_option(OutputOptions& o, int& i, int argc, const char* const argv[]) {
+  std::string_view a = argv[i];
+  if (a == "--outer") {
+    o.outer = true;
+  } else if (auto f = option_value("", "--frames", i, argc, argv)) {
+    if (f->empty()) throw UsageError("--frames needs a frame store file (JSON, see docs/metrology.md)");
+    o.frames_file = std::string(*f);
+  } else if (auto n = option_value("", "--frame", i, argc, argv)) {
+    if (n->empty()) throw UsageError("--frame needs the name of a frame in the --frames file");
+    o.frame = std::string(*n);
+  } else if (auto k = option_value("", "--fit", i, argc, argv)) {
+    try {
+      o.fit = exchange::parse_fit_kind(*k);
+    } catch (const exchange::FitKindError& e) {
+      throw UsageError(std::string("--fit: ") + e.what());
+    }
+  } else {
+    return false;
+  }
+  return true;
+}
+
+void check_output_options(OutputOptions& o, bool append, bool force) {
+  if (o.frame && !o.frames_file) throw UsageError("--frame " + *o.frame + " needs --frames FILE (the frame store)");
+  if (o.frames_file && !o.frame) throw UsageError("--frames needs --frame NAME (which frame of the store)");
+  if (append && force) throw UsageError("--append and --force exclude each other: continue the file or replace it");
+  if ((append || force) && !o.output) throw UsageError(std::string(append ? "--append" : "--force") + " needs -o FILE");
+  if (append && !exchange::export_format_for(*o.output).appendable())
+    throw UsageError("--append: '" + *o.output +
+                     "' is written whole, not line by line; --append works with .csv, .xyz and .asc "
+                     "(use --force to replace the file, or a new name)");
+  o.mode = append ? OpenMode::Append : force ? OpenMode::Overwrite : OpenMode::New;
+}
 
 CaptureOptions parse_capture_options(int argc, const char* const argv[]) {
   CaptureOptions o;
@@ -55,15 +79,18 @@ CaptureOptions parse_capture_options(int argc, const char* const argv[]) {
       append = true;
     } else if (a == "--force") {
       force = true;
-    } else if (auto n = value_of("-n", "--count", i, argc, argv)) {
+    } else if (parse_output_option(o.out, i, argc, argv)) {
+      continue;
+    } else if (auto n = option_value("-n", "--count", i, argc, argv)) {
       o.count = parse_count(*n);
-    } else if (auto f = value_of("-o", "--output", i, argc, argv)) {
-      if (f->empty()) throw UsageError("-o needs a file name ending in .csv or .xyz");
-      format_for_path(*f);
-      o.output = std::string(*f);
+    } else if (auto f = option_value("-o", "--output", i, argc, argv)) {
+      if (f->empty()) throw UsageError("-o needs a file name; accepted extensions: " + exchange::accepted_extensions());
+      check_output_file(std::string(*f));
+      o.out.output = std::string(*f);
     } else if (a.size() > 1 && a.front() == '-') {
       throw UsageError("unknown option '" + std::string(a) +
-                       "'; accepted: -n N, -o FILE, --append, --force, --help");
+                       "'; accepted: -n N, -o FILE, --append, --force, --frame NAME, --frames FILE, "
+                       "--fit KIND, --outer, --help");
     } else if (have_host) {
       throw UsageError("unexpected argument '" + std::string(a) + "'; expected a single HOST[:PORT]");
     } else {
@@ -71,14 +98,19 @@ CaptureOptions parse_capture_options(int argc, const char* const argv[]) {
       have_host = true;
     }
   }
-  if (append && force) throw UsageError("--append and --force exclude each other: continue the file or replace it");
-  if ((append || force) && !o.output) throw UsageError(std::string(append ? "--append" : "--force") + " needs -o FILE");
-  o.mode = append ? OpenMode::Append : force ? OpenMode::Overwrite : OpenMode::New;
+  check_output_options(o.out, append, force);
   return o;
 }
 
 std::string capture_usage() {
+  std::string formats;
+  for (const auto& f : exchange::export_formats())
+    formats += "                   " + std::string(f.extension) + "  " + std::string(f.description) + "\n";
   return "usage: messcap [HOST[:PORT]] [-n N] [-o FILE] [--append | --force]\n"
+         "               [--frame NAME --frames FILE] [--fit KIND] [--outer]\n"
+         "       messcap fit KIND [FILE | -]\n"
+         "       messcap convert IN OUT [--fit KIND] [--frame NAME --frames FILE]\n"
+         "               [--decimals D] [--force] [--outer]\n"
          "Captures measured points (MeasPt) from messd: prints each as it arrives\n"
          "('point 1: x y z') and writes it to FILE at once (flushed to disk per point,\n"
          "so Ctrl-C, a closed connection or a crash never lose a point).\n"
@@ -86,17 +118,30 @@ std::string capture_usage() {
          "\n"
          "  -n, --count N    stop after N points; without -n capture until Ctrl-C\n"
          "                   (SIGINT/SIGTERM) or until messd closes the connection\n"
-         "  -o, --output FILE\n"
-         "                   FILE.csv: header 'x,y,z', then one 'x,y,z' line per point\n"
-         "                   FILE.xyz: one 'x y z' line per point (no header)\n"
-         "                   millimetres with 3 decimals, exactly as messd sent them\n"
-         "  --append         continue an existing FILE (default: refuse to touch it)\n"
+         "  -o, --output FILE  the format follows the extension (millimetres):\n" +
+         formats +
+         "                   .csv/.xyz/.asc grow by one line per point; the others are\n"
+         "                   rewritten whole (temporary file + rename) per point\n"
+         "  --append         continue an existing .csv/.xyz/.asc (default: refuse to touch it)\n"
          "  --force          replace an existing FILE\n"
+         "  --frame NAME --frames FILE\n"
+         "                   write (and print) the points in frame NAME of the frame\n"
+         "                   store FILE (JSON; the frame maps its coordinates to the machine's)\n"
+         "  --fit KIND       when the capture ends, fit KIND to all points and print the\n"
+         "                   result as one JSON line (also into .json and .dmi files)\n"
+         "  --outer          DMIS: the fitted feature is outer (a shaft), not inner (a bore)\n"
          "  -h, --help       this text\n"
          "\n"
+         "messcap fit KIND [FILE | -]: fits KIND to the points of FILE ('x y z' lines,\n"
+         "  the NIST .ds layout or messcap's .csv; '-' or none = stdin) and prints one\n"
+         "  JSON object. KIND: " + std::string(exchange::kFitKinds) + ".\n"
+         "messcap convert IN OUT: reads IN like fit does and writes OUT in the format of\n"
+         "  its extension (--decimals D: 0..12, default 6).\n"
+         "\n"
          "Exit status: 0 all requested points captured (or, without -n, stopped by\n"
-         "Ctrl-C or by messd closing the connection); 1 messd unreachable or a file\n"
-         "error; 2 bad arguments; 3 stopped (Ctrl-C, connection closed) before N points\n"
+         "Ctrl-C or by messd closing the connection), fit/convert done; 1 messd\n"
+         "unreachable, a file error or a failed fit (the message says which points and\n"
+         "why); 2 bad arguments; 3 stopped (Ctrl-C, connection closed) before N points\n"
          "arrived - the points that did arrive are in FILE.\n";
 }
 

@@ -1,58 +1,66 @@
-// PointFile: O_APPEND writes of whole lines plus fdatasync, one point at a time.
+// PointFile: O_APPEND line writes plus fdatasync for line formats, whole-file atomic rewrites
+// (temporary file, fdatasync, rename) for the others.
 #include "point_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
 
-#include "imess/client/usage_error.hpp"
-#include "imess/protocol/numbers.hpp"
-
 namespace imess::messcap {
 namespace {
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  std::transform(out.begin(), out.end(), out.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return out;
+void write_all(int fd, const std::string& text, const std::string& path) {
+  std::size_t done = 0;
+  while (done < text.size()) {
+    ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fdatasync(fd) != 0 && errno != EINVAL)  // EINVAL: a pipe or device, nothing to sync
+    throw std::runtime_error("cannot write '" + path + "' to disk: " + std::strerror(errno));
+}
+
+std::string base_name(const std::string& path) {
+  auto slash = path.rfind('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
 }  // namespace
 
-PointFormat format_for_path(std::string_view path) {
-  auto slash = path.rfind('/');
-  auto name = slash == std::string_view::npos ? path : path.substr(slash + 1);
-  auto dot = name.rfind('.');
-  std::string ext = dot == std::string_view::npos ? "" : lower(name.substr(dot));
-  if (ext == ".csv") return PointFormat::Csv;
-  if (ext == ".xyz") return PointFormat::Xyz;
-  throw client::UsageError("output file '" + std::string(path) + "': " +
-                           (ext.empty() ? std::string("no extension") : "unknown extension '" + ext + "'") +
-                           "; accepted: .csv (x,y,z with a header line) or .xyz (x y z)");
+void write_file_atomically(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error("cannot open '" + tmp + "' for writing: " + std::strerror(errno));
+  try {
+    write_all(fd, text, tmp);
+  } catch (...) {
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw;
+  }
+  ::close(fd);
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    int e = errno;
+    ::unlink(tmp.c_str());
+    throw std::runtime_error("cannot replace '" + path + "': " + std::strerror(e));
+  }
 }
 
-std::string format_point(PointFormat format, const protocol::Xyz& p) {
-  char sep = format == PointFormat::Csv ? ',' : ' ';
-  std::string s;
-  protocol::append_mm(s, p.x);
-  s.push_back(sep);
-  protocol::append_mm(s, p.y);
-  s.push_back(sep);
-  protocol::append_mm(s, p.z);
-  return s;
-}
-
-PointFile::PointFile(std::string path, OpenMode mode) : path_(std::move(path)), format_(format_for_path(path_)) {
+PointFile::PointFile(std::string path, OpenMode mode, exchange::ExportData base)
+    : path_(std::move(path)), format_(&exchange::export_format_for(path_)), data_(std::move(base)) {
+  data_.points.clear();
+  data_.file_name = base_name(path_);
   struct stat st {};
-  bool existed = ::stat(path_.c_str(), &st) == 0;
-  int flags = O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC;
+  const bool existed = ::stat(path_.c_str(), &st) == 0;
+  if (mode == OpenMode::Append && !format_->appendable())
+    throw std::runtime_error("'" + path_ + "' is written whole and cannot be continued; --append works with "
+                             ".csv, .xyz and .asc");
+  int flags = O_WRONLY | O_CREAT | O_CLOEXEC | (format_->appendable() ? O_APPEND : 0);
   if (mode == OpenMode::New) flags |= O_EXCL;
   if (mode == OpenMode::Overwrite) flags |= O_TRUNC;
   fd_ = ::open(path_.c_str(), flags, 0644);
@@ -62,36 +70,47 @@ PointFile::PointFile(std::string path, OpenMode mode) : path_(std::move(path)), 
     throw std::runtime_error("cannot open '" + path_ + "' for writing: " + std::strerror(errno));
   }
   created_ = !existed;
-  if (format_ == PointFormat::Csv && ::lseek(fd_, 0, SEEK_END) == 0) write_line("x,y,z");
+  if (format_->appendable()) {
+    if (::lseek(fd_, 0, SEEK_END) == 0) append_text(format_->header());
+  } else {
+    ::close(fd_);  // the name is claimed; from now on the file is replaced whole
+    fd_ = -1;
+    rewrite();
+  }
 }
 
 PointFile::~PointFile() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-void PointFile::write_line(std::string line) {
-  line.push_back('\n');
-  std::size_t done = 0;
-  while (done < line.size()) {
-    ssize_t n = ::write(fd_, line.data() + done, line.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) throw std::runtime_error("cannot write '" + path_ + "': " + std::strerror(errno));
-    done += static_cast<std::size_t>(n);
-  }
-  if (::fdatasync(fd_) != 0 && errno != EINVAL)  // EINVAL: a pipe or device, nothing to sync
-    throw std::runtime_error("cannot write '" + path_ + "' to disk: " + std::strerror(errno));
+void PointFile::append_text(const std::string& text) {
+  if (!text.empty()) write_all(fd_, text, path_);
 }
 
-void PointFile::append(const protocol::Xyz& p) {
-  write_line(format_point(format_, p));
+void PointFile::rewrite() { write_file_atomically(path_, format_->write(data_)); }
+
+void PointFile::append(const Eigen::Vector3d& p) {
+  if (format_->appendable()) {
+    append_text(format_->point_line(p, data_.decimals));
+  } else {
+    data_.points.push_back(p);
+    rewrite();
+  }
   ++points_;
 }
 
+void PointFile::set_fit(const exchange::FitReport& fit) {
+  if (format_->appendable()) return;
+  data_.fit = fit;
+  rewrite();
+}
+
 void PointFile::discard_if_unused() {
-  if (fd_ < 0 || points_ > 0 || !created_) return;
-  ::close(fd_);
+  if (points_ > 0 || !created_) return;
+  if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
   ::unlink(path_.c_str());
+  created_ = false;
 }
 
 }  // namespace imess::messcap

@@ -1,56 +1,57 @@
-// PointFile: the capture file. Each point is written and flushed to disk (fdatasync) the
-// moment it arrives, so a crash or Ctrl-C loses nothing. Format from the extension:
-// .csv = header "x,y,z" then "1.000,2.000,3.000"; .xyz = "1.000 2.000 3.000".
+// PointFile: the capture file, in the format of its extension. Every point is on disk the
+// moment it arrives: line formats (.csv .xyz .asc) get one appended line plus fdatasync; the
+// others are rewritten whole into FILE.tmp, synced and renamed over FILE, so FILE is always a
+// complete, valid document holding every point so far.
 #pragma once
 #include <string>
-#include <string_view>
 
-#include "imess/protocol/commands.hpp"
+#include "imess/exchange/export_data.hpp"
+#include "imess/exchange/export_format.hpp"
 
 namespace imess::messcap {
 
-enum class PointFormat { Csv, Xyz };
-
-// Format for a file name by its extension (case-insensitive). Throws client::UsageError
-// naming the file and the accepted extensions.
-PointFormat format_for_path(std::string_view path);
-
-// One point as a line of the file, without '\n'.
-std::string format_point(PointFormat format, const protocol::Xyz& p);
-
 enum class OpenMode {
   New,        // refuse to touch an existing file (default: never overwrite an earlier capture)
-  Append,     // continue an existing file (a CSV header only if it is empty)
+  Append,     // continue an existing line-format file (a CSV header only if it is empty)
   Overwrite,  // replace it
 };
 
 class PointFile {
  public:
-  // Creates/opens the file and writes the CSV header if needed. Throws std::runtime_error
-  // naming the file and the reason.
-  PointFile(std::string path, OpenMode mode);
+  // Creates/opens the file and writes its empty document (CSV: the header). `base` carries
+  // the decimals, frame name, ... (its points are ignored). Throws std::runtime_error naming
+  // the file and the reason; exchange::FormatError for an unknown extension.
+  PointFile(std::string path, OpenMode mode, exchange::ExportData base = {});
   ~PointFile();
   PointFile(const PointFile&) = delete;
   PointFile& operator=(const PointFile&) = delete;
 
   // Writes one point and forces it to disk. Throws std::runtime_error on a write error.
-  void append(const protocol::Xyz& p);
+  void append(const Eigen::Vector3d& p);
+  // Adds the fitted feature to the formats that hold one (.json, .dmi) and rewrites them.
+  void set_fit(const exchange::FitReport& fit);
 
-  // Closes and deletes the file if this run created it and wrote no point (the capture never
-  // started, e.g. messd was not reachable).
+  // Deletes the file if this run created it and wrote no point (the capture never started,
+  // e.g. messd was not reachable).
   void discard_if_unused();
 
   const std::string& path() const { return path_; }
   int points() const { return points_; }
 
  private:
-  void write_line(std::string line);
+  void append_text(const std::string& text);
+  void rewrite();
 
   std::string path_;
-  PointFormat format_;
-  int fd_ = -1;
+  const exchange::ExportFormat* format_;
+  exchange::ExportData data_;  // whole-file formats keep every point to rewrite the file
+  int fd_ = -1;                // line formats: the open file
   bool created_ = false;
   int points_ = 0;
 };
+
+// Writes `text` to path.tmp, syncs it and renames it over `path` (a crash leaves either the
+// old or the new file, never half of one). Throws std::runtime_error naming the file.
+void write_file_atomically(const std::string& path, const std::string& text);
 
 }  // namespace imess::messcap

@@ -9,6 +9,7 @@
 #include "child_process.hpp"
 #include "fake_daemon.hpp"
 #include "imess/client/usage_error.hpp"
+#include "imess/exchange/export_format.hpp"
 #include "point_file.hpp"
 
 using namespace imess::messcap;
@@ -37,18 +38,22 @@ std::vector<std::string> args(std::initializer_list<const char*> list) {
 
 }  // namespace
 
-TEST_CASE("format_for_path: by extension, case-insensitive - others rejected") {
-  CHECK(format_for_path("points.csv") == PointFormat::Csv);
-  CHECK(format_for_path("dir.x/Points.CSV") == PointFormat::Csv);
-  CHECK(format_for_path("a.xyz") == PointFormat::Xyz);
-  CHECK_THROWS_WITH(format_for_path("a.txt"), Catch::Contains("'.txt'") && Catch::Contains(".csv") &&
-                                                   Catch::Contains(".xyz"));
-  CHECK_THROWS_AS(format_for_path("dir.csv/noext"), imess::client::UsageError);
+TEST_CASE("export_format_for: by extension, case-insensitive - others rejected naming all") {
+  using imess::exchange::export_format_for;
+  CHECK(export_format_for("points.csv").extension == ".csv");
+  CHECK(export_format_for("dir.x/Points.CSV").extension == ".csv");
+  CHECK(export_format_for("a.xyz").appendable());
+  CHECK_FALSE(export_format_for("a.DXF").appendable());
+  CHECK_THROWS_WITH(export_format_for("a.txt"), Catch::Contains("'.txt'") && Catch::Contains(".csv") &&
+                                                     Catch::Contains(".xyz") && Catch::Contains(".dmi"));
+  CHECK_THROWS_AS(export_format_for("dir.csv/noext"), imess::exchange::FormatError);
 }
 
-TEST_CASE("format_point: 3 decimals, comma or blank separated") {
-  CHECK(format_point(PointFormat::Csv, {1.5, -2, 0.0004}) == "1.500,-2.000,0.000");
-  CHECK(format_point(PointFormat::Xyz, {1.5, -2, -0.0004}) == "1.500 -2.000 0.000");
+TEST_CASE("line formats: 3 decimals, comma or blank separated, never -0.000") {
+  const auto& csv = imess::exchange::export_format_for("p.csv");
+  const auto& xyz = imess::exchange::export_format_for("p.xyz");
+  CHECK(csv.point_line({1.5, -2, 0.0004}, 3) == "1.500,-2.000,0.000\n");
+  CHECK(xyz.point_line({1.5, -2, -0.0004}, 3) == "1.500 -2.000 0.000\n");
 }
 
 TEST_CASE("parse_capture_options: -n and -o in their spellings, errors name the argument") {
@@ -56,13 +61,13 @@ TEST_CASE("parse_capture_options: -n and -o in their spellings, errors name the 
   auto o = parse_capture_options(6, a1);
   CHECK(o.endpoint.port == 1067);
   CHECK(o.count == 3);
-  CHECK(o.output == "p.xyz");
-  CHECK(o.mode == OpenMode::New);
+  CHECK(o.out.output == "p.xyz");
+  CHECK(o.out.mode == OpenMode::New);
   const char* a2[] = {"messcap", "-n5", "--output=q.csv", "--append"};
   o = parse_capture_options(4, a2);
   CHECK(o.count == 5);
-  CHECK(o.output == "q.csv");
-  CHECK(o.mode == OpenMode::Append);
+  CHECK(o.out.output == "q.csv");
+  CHECK(o.out.mode == OpenMode::Append);
   CHECK(o.endpoint.host == "localhost");
   const char* a3[] = {"messcap", "-n", "0"};
   CHECK_THROWS_WITH(parse_capture_options(3, a3), Catch::Contains("-n '0'") && Catch::Contains("whole number"));

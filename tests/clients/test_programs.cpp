@@ -64,7 +64,7 @@ TEST_CASE("clients: bad arguments -> exit 2 naming the argument and what is acce
 
 TEST_CASE("messcap: an unknown extension is refused before connecting") {
   imess::test::FakeDaemon daemon;
-  auto r = run_program({client_binary("messcap"), daemon.address(), "-o", "x.ply"});
+  auto r = run_program({client_binary("messcap"), daemon.address(), "-o", "x.ply.txt"});
   CHECK(r.status == 2);
   CHECK(daemon.accepted() == 0);
 }
