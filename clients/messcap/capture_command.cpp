@@ -10,6 +10,7 @@
 #include "capture_options.hpp"
 #include "fit_message.hpp"
 #include "frame_option.hpp"
+#include "imess/client/stop_signal.hpp"
 #include "imess/client/connect_error.hpp"
 #include "imess/client/connection.hpp"
 #include "imess/client/usage_error.hpp"
@@ -18,20 +19,6 @@
 #include "point_file.hpp"
 
 namespace imess::messcap {
-namespace {
-
-volatile std::sig_atomic_t g_stop_signal = 0;
-extern "C" void on_stop_signal(int) { g_stop_signal = 1; }
-
-void install_signal_handlers() {
-  struct sigaction sa {};
-  sa.sa_handler = on_stop_signal;  // no SA_RESTART: poll() returns EINTR at once
-  sigemptyset(&sa.sa_mask);
-  for (int s : {SIGINT, SIGTERM}) sigaction(s, &sa, nullptr);
-}
-
-}  // namespace
-
 int run_capture(int argc, const char* const argv[]) {
   CaptureOptions options;
   try {
@@ -65,7 +52,7 @@ int run_capture(int argc, const char* const argv[]) {
     std::cerr << "messcap: " << e.what() << "\n";
     return client::kExitFailure;
   }
-  install_signal_handlers();
+  client::install_stop_signals({SIGINT, SIGTERM});
   link->send_line("Hello messcap");
   std::cerr << "messcap: connected to " << options.endpoint.to_string() << "; "
             << (options.count ? "waiting for " + std::to_string(*options.count) + " points"
@@ -97,7 +84,7 @@ int run_capture(int argc, const char* const argv[]) {
   std::string ended_by;
   try {
     while (!done()) {
-      if (g_stop_signal) {
+      if (client::stop_requested()) {
         ended_by = "interrupted";
         break;
       }

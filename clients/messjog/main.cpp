@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "imess/client/stop_signal.hpp"
 #include "imess/client/connect_error.hpp"
 #include "imess/client/connection.hpp"
 #include "imess/client/usage_error.hpp"
@@ -15,20 +16,6 @@
 #include "jog_screen.hpp"
 #include "jog_session.hpp"
 #include "key_map.hpp"
-
-namespace {
-
-volatile std::sig_atomic_t g_stop_signal = 0;
-extern "C" void on_stop_signal(int) { g_stop_signal = 1; }
-
-void install_signal_handlers() {
-  struct sigaction sa {};
-  sa.sa_handler = on_stop_signal;
-  sigemptyset(&sa.sa_mask);
-  for (int s : {SIGTERM, SIGHUP, SIGINT}) sigaction(s, &sa, nullptr);
-}
-
-}  // namespace
 
 int main(int argc, char* argv[]) {
   using namespace imess;
@@ -58,10 +45,10 @@ int main(int argc, char* argv[]) {
     return client::kExitFailure;
   }
 
-  install_signal_handlers();
+  client::install_stop_signals({SIGTERM, SIGHUP, SIGINT});
   messjog::JogScreen screen;
   while (!session.panel().quit_requested()) {
-    if (g_stop_signal) {
+    if (client::stop_requested()) {
       session.act(messjog::JogAction::Quit);
       break;
     }

@@ -6,26 +6,13 @@
 #include <cstdio>
 #include <iostream>
 
+#include "imess/client/stop_signal.hpp"
 #include "imess/client/connect_error.hpp"
 #include "imess/client/reconnector.hpp"
 #include "imess/client/usage_error.hpp"
 #include "iso_time.hpp"
 #include "monitor_line.hpp"
 #include "monitor_options.hpp"
-
-namespace {
-
-volatile std::sig_atomic_t g_stop_signal = 0;
-extern "C" void on_stop_signal(int) { g_stop_signal = 1; }
-
-void install_signal_handlers() {
-  struct sigaction sa {};
-  sa.sa_handler = on_stop_signal;  // no SA_RESTART: poll() returns EINTR at once
-  sigemptyset(&sa.sa_mask);
-  for (int s : {SIGINT, SIGTERM}) sigaction(s, &sa, nullptr);
-}
-
-}  // namespace
 
 int main(int argc, char* argv[]) {
   using namespace imess;
@@ -48,7 +35,7 @@ int main(int argc, char* argv[]) {
     std::cerr << "messmon: " << e.what() << "\n";
     return client::kExitFailure;
   }
-  install_signal_handlers();
+  client::install_stop_signals({SIGINT, SIGTERM});
   std::cerr << "messmon: connected to " << options.endpoint.to_string() << "\n";
   link.send_line("Hello messmon");
 
@@ -60,7 +47,7 @@ int main(int argc, char* argv[]) {
     std::fflush(stdout);  // live through pipes and into files
   };
 
-  while (!g_stop_signal) {
+  while (!client::stop_requested()) {
     if (auto* c = link.connection()) {
       if (c->poll_lines(std::chrono::milliseconds{500}, print) != client::ReadStatus::Closed) continue;
       std::cerr << "messmon: " << options.endpoint.to_string() << ": " << c->close_reason() << "\n";

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "daemon_process.hpp"
+#include "measuring_operator.hpp"
 #include "imess/metrology/fit.hpp"
 #include "imess/protocol/messages.hpp"
 
@@ -17,56 +18,11 @@ using Eigen::Vector3d;
 
 namespace {
 
-class Operator {
- public:
-  explicit Operator(LineClient& c) : c_(c) {}
-
-  void go_to(const Vector3d& p) {
-    if (here_ && (*here_ - p).norm() < 1e-9) return;  // already there: GoTo would not change state
-    here_ = p;
-    std::ostringstream s;
-    s << "GoTo " << p.x() << " " << p.y() << " " << p.z();
-    REQUIRE(c_.request(s.str()) == std::optional<std::string>("Ok GoTo"));
-    bool idle = c_.until_prefix("State idle", 15.0).has_value();
-    if (!idle) {
-      c_.send("Status");
-      c_.until_prefix("Ok Status", 2.0);
-      std::string tail;
-      for (std::size_t i = c_.seen().size() > 12 ? c_.seen().size() - 12 : 0; i < c_.seen().size(); ++i) tail += c_.seen()[i] + "\n";
-      INFO(s.str() << "\n" << tail);
-      REQUIRE(idle);
-    }
-  }
-  Vector3d touch(const Vector3d& dir) {
-    here_.reset();
-    Vector3d v = dir.normalized() * 50.0;
-    std::ostringstream s;
-    s << "StartMv " << v.x() << " " << v.y() << " " << v.z();
-    REQUIRE(c_.request(s.str()) == std::optional<std::string>("Ok StartMv"));
-    auto line = c_.until_prefix("MeasPt ", 15.0);
-    REQUIRE(line);
-    auto m = imess::protocol::parse_message(*line);
-    REQUIRE(std::holds_alternative<imess::protocol::MeasPtMsg>(m));
-    auto p = std::get<imess::protocol::MeasPtMsg>(m).p;
-    REQUIRE(c_.until_prefix("State idle", 10.0));  // retracted
-    return {p.x, p.y, p.z};
-  }
-  Vector3d probe(const Vector3d& start, const Vector3d& dir) {
-    go_to(start);
-    Vector3d p = touch(dir);
-    go_to(start);
-    return p;
-  }
-
- private:
-  LineClient& c_;
-  std::optional<Vector3d> here_;
-};
 
 void measure_the_part(const std::string& config) {
   DaemonProcess messd({"--config", std::string(IMESS_SOURCE_DIR) + "/tests/e2e/" + config});
   LineClient c(messd.port());
-  Operator op(c);
+  MeasuringOperator op(c);
   // The machine stands at (430, 330, 100) over the cube (top z = 80, bore at (460, 350), d 30).
   Vector3d top = op.touch(-Vector3d::UnitZ());
   op.go_to({430, 330, 90});

@@ -9,56 +9,18 @@
 #include <sstream>
 
 #include "daemon_process.hpp"
+#include "measuring_operator.hpp"
 #include "imess/metrology/fit.hpp"
 #include "imess/protocol/messages.hpp"
 
 using namespace imess::test;
 using Eigen::Vector3d;
 
-namespace {
-
-class Operator {
- public:
-  explicit Operator(LineClient& c) : c_(c) {}
-
-  void go_to(const Vector3d& p) {
-    std::ostringstream s;
-    s << "GoTo " << p.x() << " " << p.y() << " " << p.z();
-    REQUIRE(c_.request(s.str()) == std::optional<std::string>("Ok GoTo"));
-    REQUIRE(c_.until_prefix("State idle", 10.0));
-  }
-  // Jogs along dir (percent of MaxSpeed) until the probe touches; returns the point.
-  Vector3d touch(const Vector3d& dir) {
-    Vector3d v = dir.normalized() * 50.0;
-    std::ostringstream s;
-    s << "StartMv " << v.x() << " " << v.y() << " " << v.z();
-    REQUIRE(c_.request(s.str()) == std::optional<std::string>("Ok StartMv"));
-    auto line = c_.until_prefix("MeasPt ", 10.0);
-    REQUIRE(line);
-    auto m = imess::protocol::parse_message(*line);
-    REQUIRE(std::holds_alternative<imess::protocol::MeasPtMsg>(m));
-    auto p = std::get<imess::protocol::MeasPtMsg>(m).p;
-    REQUIRE(c_.until_prefix("State idle", 10.0));  // retracted
-    return {p.x, p.y, p.z};
-  }
-  // Approach: go to start, touch along dir, come back to start.
-  Vector3d probe(const Vector3d& start, const Vector3d& dir) {
-    go_to(start);
-    Vector3d p = touch(dir);
-    go_to(start);
-    return p;
-  }
-
- private:
-  LineClient& c_;
-};
-
-}  // namespace
 
 TEST_CASE("the 1996 worked example: cube and bore reconstructed within 5 um") {
   DaemonProcess messd({"--config", std::string(IMESS_SOURCE_DIR) + "/tests/e2e/fast-cmm.json"});
   LineClient c(messd.port());
-  Operator op(c);
+  MeasuringOperator op(c);
   const double safe_z = 120;
 
   // 1. The resting plane (the table beside the cube), 3 points far apart.

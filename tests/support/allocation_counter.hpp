@@ -1,0 +1,21 @@
+// Counts heap allocations for the real-time tests: replaces the global operator new and
+// delete. Include in exactly one source file of a test executable.
+#pragma once
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+namespace imess::test {
+inline std::atomic<long> g_allocations{0};
+inline std::atomic<bool> g_counting{false};
+}  // namespace imess::test
+
+void* operator new(std::size_t n) {
+  if (imess::test::g_counting.load(std::memory_order_relaxed))
+    imess::test::g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
