@@ -9,20 +9,6 @@
 using namespace imess::test;
 
 namespace {
-// Steps the core directly (no event collection, which allocates in the test's vectors).
-long cycles_allocations(CoreRig& rig, int cycles) {
-  auto& core = rig.core();
-  g_allocations = 0;
-  g_counting = true;
-  for (int i = 0; i < cycles; ++i) {
-    rig.clock().advance(CoreRig::kPeriod);
-    core.cycle(rig.clock().now());
-    Event e;
-    while (core.events().pop(e)) {}
-  }
-  g_counting = false;
-  return g_allocations.load();
-}
 void push(CoreRig& rig, Command c) { rig.core().commands().push(c); }
 }  // namespace
 
@@ -38,23 +24,23 @@ TEST_CASE("the allocation counter works") {
 TEST_CASE("no motion cycle allocates: jog, hit, retract, idle, hand hits, GoTo, homing, fault") {
   CoreRig rig;
   push(rig, {CommandKind::StartMv, 1, 1, Vec3(0, 0, -20)});
-  CHECK(cycles_allocations(rig, 3000) == 0);  // jog, hit, MeasPt, retract
+  CHECK(allocations_over_cycles(rig, 3000) == 0);  // jog, hit, MeasPt, retract
   CHECK(rig.mode() == Mode::Idle);
-  CHECK(cycles_allocations(rig, 7500) == 0);  // loops open after 7 s
+  CHECK(allocations_over_cycles(rig, 7500) == 0);  // loops open after 7 s
   CHECK(rig.mode() == Mode::Free);
   push(rig, {CommandKind::HandMv, 1, 2, Vec3(0, 0, -3), 10});
-  CHECK(cycles_allocations(rig, 1000) == 0);  // hand hit
+  CHECK(allocations_over_cycles(rig, 1000) == 0);  // hand hit
   push(rig, {CommandKind::HandMv, 1, 3, Vec3(0, 0, 5), 10});
-  CHECK(cycles_allocations(rig, 1000) == 0);
+  CHECK(allocations_over_cycles(rig, 1000) == 0);
   push(rig, {CommandKind::GoTo, 1, 4, Vec3(300, 300, 200), 100});
   push(rig, {CommandKind::ForcePt, 1, 5});
   push(rig, {CommandKind::SetParam, 1, 6, Vec3::Zero(), 0, imess::core::ParamId::SpeedLevel, 0.5});
-  CHECK(cycles_allocations(rig, 4000) == 0);
+  CHECK(allocations_over_cycles(rig, 4000) == 0);
   push(rig, {CommandKind::Home, 1, 7});
-  CHECK(cycles_allocations(rig, 60000) == 0);
+  CHECK(allocations_over_cycles(rig, 60000) == 0);
   push(rig, {CommandKind::StopMv, 1, 8});
   push(rig, {CommandKind::Free, 1, 9});
   push(rig, {CommandKind::HandMv, 1, 10, Vec3(0, 0, -700), 100});
-  CHECK(cycles_allocations(rig, 8000) == 0);  // into the table: overtravel fault
+  CHECK(allocations_over_cycles(rig, 8000) == 0);  // into the table: overtravel fault
   CHECK(rig.mode() == Mode::Fault);
 }

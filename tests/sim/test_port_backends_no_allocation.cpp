@@ -11,20 +11,6 @@ using namespace imess;
 using namespace imess::test;
 
 namespace {
-// Steps the core directly; events are popped and dropped (collecting them allocates).
-long cycles_allocations(MotionRig& rig, int cycles) {
-  auto& core = rig.core();
-  g_allocations = 0;
-  g_counting = true;
-  for (int i = 0; i < cycles; ++i) {
-    rig.clock().advance(MotionRig::kPeriod);
-    core.cycle(rig.clock().now());
-    core::Event e;
-    while (core.events().pop(e)) {}
-  }
-  g_counting = false;
-  return g_allocations.load();
-}
 void push(MotionRig& rig, core::Command c) { rig.core().commands().push(c); }
 core::CoreConfig brisk() {
   core::CoreConfig c;
@@ -49,18 +35,18 @@ TEST_CASE("stepper backend: no servo cycle or base tick allocates") {
   StepperRig rig;
   rig.start_core(brisk());
   push(rig, {CommandKind::StartMv, 1, 1, Vec3(0, 0, -30)});
-  CHECK(cycles_allocations(rig, 2000) == 0);  // jog, hit at base rate, MeasPt, retract
+  CHECK(allocations_over_cycles(rig, 2000) == 0);  // jog, hit at base rate, MeasPt, retract
   CHECK(rig.mode() == Mode::Idle);
   push(rig, {CommandKind::GoTo, 1, 2, Vec3(380, 300, 120), 80});
-  CHECK(cycles_allocations(rig, 3000) == 0);
-  CHECK(cycles_allocations(rig, 3000) == 0);  // loops open after 2 s
+  CHECK(allocations_over_cycles(rig, 3000) == 0);
+  CHECK(allocations_over_cycles(rig, 3000) == 0);  // loops open after 2 s
   CHECK(rig.mode() == Mode::Free);
   push(rig, {CommandKind::Home, 1, 3});
-  CHECK(cycles_allocations(rig, 30000) == 0);
+  CHECK(allocations_over_cycles(rig, 30000) == 0);
   push(rig, {CommandKind::StartMv, 1, 4, Vec3(50, 0, 0)});
-  CHECK(cycles_allocations(rig, 100) == 0);
+  CHECK(allocations_over_cycles(rig, 100) == 0);
   push(rig, {CommandKind::StopMv, 1, 5});
-  CHECK(cycles_allocations(rig, 500) == 0);
+  CHECK(allocations_over_cycles(rig, 500) == 0);
 }
 
 TEST_CASE("drive-kit backend: no servo cycle allocates, in either kit mode") {
@@ -68,16 +54,16 @@ TEST_CASE("drive-kit backend: no servo cycle allocates, in either kit mode") {
     DriveRig rig(drive_options(mode, mode == 1 ? "mrm-b" : "mrm-a"));
     rig.start_core(brisk(), &rig.mechanics());
     push(rig, {CommandKind::StartMv, 1, 1, Vec3(0, 0, -30)});
-    CHECK(cycles_allocations(rig, 2000) == 0);  // jog, latch, MeasPt, retract
+    CHECK(allocations_over_cycles(rig, 2000) == 0);  // jog, latch, MeasPt, retract
     push(rig, {CommandKind::GoTo, 1, 2, Vec3(380, 300, 120), 80});
-    CHECK(cycles_allocations(rig, 3000) == 0);
-    CHECK(cycles_allocations(rig, 3000) == 0);  // loops open
+    CHECK(allocations_over_cycles(rig, 3000) == 0);
+    CHECK(allocations_over_cycles(rig, 3000) == 0);  // loops open
     push(rig, {CommandKind::HandMv, 1, 3, Vec3(0, 0, -3), 10});
-    CHECK(cycles_allocations(rig, 500) == 0);
+    CHECK(allocations_over_cycles(rig, 500) == 0);
     push(rig, {CommandKind::Home, 1, 4});
-    CHECK(cycles_allocations(rig, 20000) == 0);
+    CHECK(allocations_over_cycles(rig, 20000) == 0);
     rig.kits().set_safety_open(2, true);
-    CHECK(cycles_allocations(rig, 100) == 0);  // trip
+    CHECK(allocations_over_cycles(rig, 100) == 0);  // trip
     CHECK(rig.mode() == Mode::Fault);
   }
 }

@@ -4,10 +4,28 @@
 #include <atomic>
 #include <cstdlib>
 #include <new>
+#include <type_traits>
 
 namespace imess::test {
 inline std::atomic<long> g_allocations{0};
 inline std::atomic<bool> g_counting{false};
+
+// Allocations during `cycles` motion cycles of a rig (CoreRig, MotionRig): the core is
+// stepped directly and its events popped and dropped — collecting them would allocate.
+template <class Rig>
+long allocations_over_cycles(Rig& rig, int cycles) {
+  auto& core = rig.core();
+  g_allocations = 0;
+  g_counting = true;
+  for (int i = 0; i < cycles; ++i) {
+    rig.clock().advance(Rig::kPeriod);
+    core.cycle(rig.clock().now());
+    typename std::remove_reference_t<decltype(core.events())>::value_type e;
+    while (core.events().pop(e)) {}
+  }
+  g_counting = false;
+  return g_allocations.load();
+}
 }  // namespace imess::test
 
 void* operator new(std::size_t n) {
