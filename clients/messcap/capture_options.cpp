@@ -91,11 +91,8 @@ CaptureOptions parse_capture_options(int argc, const char* const argv[]) {
       throw UsageError("unknown option '" + std::string(a) +
                        "'; accepted: -n N, -o FILE, --append, --force, --frame NAME, --frames FILE, "
                        "--fit KIND, --outer, --help");
-    } else if (have_host) {
-      throw UsageError("unexpected argument '" + std::string(a) + "'; expected a single HOST[:PORT]");
     } else {
-      o.endpoint = client::parse_endpoint(a);
-      have_host = true;
+      client::take_host_argument(a, o.endpoint, have_host);
     }
   }
   check_output_options(o.out, append, force);

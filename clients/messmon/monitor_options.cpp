@@ -21,12 +21,8 @@ MonitorOptions parse_monitor_options(int argc, const char* const argv[]) {
     } else if (a.size() > 1 && a.front() == '-') {
       throw client::UsageError("unknown option '" + std::string(a) +
                                "'; accepted: --json, --reconnect, --help");
-    } else if (have_host) {
-      throw client::UsageError("unexpected argument '" + std::string(a) +
-                               "'; expected a single HOST[:PORT]");
     } else {
-      o.endpoint = client::parse_endpoint(a);
-      have_host = true;
+      client::take_host_argument(a, o.endpoint, have_host);
     }
   }
   return o;

@@ -12,15 +12,6 @@ namespace {
 void push(CoreRig& rig, Command c) { rig.core().commands().push(c); }
 }  // namespace
 
-TEST_CASE("the allocation counter works") {
-  g_allocations = 0;
-  g_counting = true;
-  auto* p = new int(3);
-  g_counting = false;
-  delete p;
-  REQUIRE(g_allocations.load() == 1);
-}
-
 TEST_CASE("no motion cycle allocates: jog, hit, retract, idle, hand hits, GoTo, homing, fault") {
   CoreRig rig;
   push(rig, {CommandKind::StartMv, 1, 1, Vec3(0, 0, -20)});

@@ -22,15 +22,6 @@ core::CoreConfig brisk() {
 }
 }  // namespace
 
-TEST_CASE("the allocation counter works") {
-  g_allocations = 0;
-  g_counting = true;
-  auto* p = new int(3);
-  g_counting = false;
-  delete p;
-  REQUIRE(g_allocations.load() == 1);
-}
-
 TEST_CASE("stepper backend: no servo cycle or base tick allocates") {
   StepperRig rig;
   rig.start_core(brisk());

@@ -1,5 +1,6 @@
 // Counts heap allocations for the real-time tests: replaces the global operator new and
-// delete. Include in exactly one source file of a test executable.
+// delete, and proves the replacement counts. Include in exactly one source file of a test
+// executable (after catch.hpp).
 #pragma once
 #include <atomic>
 #include <cstdlib>
@@ -37,3 +38,12 @@ void* operator new(std::size_t n) {
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+TEST_CASE("the allocation counter works") {
+  imess::test::g_allocations = 0;
+  imess::test::g_counting = true;
+  auto* p = new int(3);
+  imess::test::g_counting = false;
+  delete p;
+  REQUIRE(imess::test::g_allocations.load() == 1);
+}

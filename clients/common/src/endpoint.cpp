@@ -64,4 +64,10 @@ Endpoint parse_endpoint(std::string_view text) {
   return e;
 }
 
+void take_host_argument(std::string_view arg, Endpoint& endpoint, bool& seen) {
+  if (seen) throw UsageError("unexpected argument '" + std::string(arg) + "'; expected a single HOST[:PORT]");
+  endpoint = parse_endpoint(arg);
+  seen = true;
+}
+
 }  // namespace imess::client

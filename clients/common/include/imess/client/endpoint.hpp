@@ -21,4 +21,8 @@ struct Endpoint {
 // text and the accepted forms when it is malformed (empty host, port not 1..65535, ...).
 Endpoint parse_endpoint(std::string_view text);
 
+// The one positional HOST[:PORT] argument of a client's command line: the first sets
+// endpoint and seen; a second throws UsageError.
+void take_host_argument(std::string_view arg, Endpoint& endpoint, bool& seen);
+
 }  // namespace imess::client
