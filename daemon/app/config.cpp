@@ -114,6 +114,8 @@ void load_json_config(const std::string& path, DaemonConfig& cfg) {
       auto dir = ax->text("home_direction", s.home_direction < 0 ? "neg" : "pos", {"neg", "pos"});
       s.home_direction = dir == "neg" ? -1 : 1;
       s.home_position = ax->number("home_position", s.home_direction < 0 ? s.travel_min : s.travel_max, -1e5, 1e5);
+      s.max_velocity = ax->number("max_velocity", cfg.core.max_velocity, 0.1, 2000);
+      s.max_accel = ax->number("max_accel", cfg.core.params.max_accel, 1, 20000);
       ax->finish();
     }
     axes->finish();
@@ -202,7 +204,12 @@ void finish_config(DaemonConfig& cfg) {
   if (!cfg.sim_probe_nc_set) cfg.sim.mechanics.probe.normally_closed = cfg.card.tip_reversed;
   cfg.core.referenced_at_start = cfg.backend == "sim-servo-card" && cfg.sim.card.absolute_scales;
   finish_backend_config(cfg);
-  for (int a = 0; a < core::kAxes; ++a) cfg.card.max_velocity[a] = cfg.core.max_velocity;
+  for (int a = 0; a < core::kAxes; ++a) {
+    auto& s = cfg.core.axes[a];
+    if (s.max_velocity <= 0) s.max_velocity = cfg.core.max_velocity;
+    if (s.max_accel <= 0) s.max_accel = cfg.core.params.max_accel;
+    cfg.card.max_velocity[a] = s.max_velocity;
+  }
   for (int a = 0; a < core::kAxes; ++a) cfg.card.max_accel[a] = 20000;  // the drives' limit; MaxAccel shapes moves
 }
 

@@ -59,6 +59,11 @@ struct AxisSettings {
   double travel_min = 0, travel_max = 1000;  // soft limits once referenced
   int home_direction = -1;                   // side of the home switch
   double home_position = 0;                  // machine coordinate of the index found by Home
+  // The axis' own limits. Every motion stays within them whatever a client sets, and every
+  // stop brakes with max_accel. 0 = the machine-wide value (CoreConfig::max_velocity /
+  // CoreParams::max_accel as configured); MotionCore resolves them at construction.
+  double max_velocity = 0;                   // mm/s
+  double max_accel = 0;                      // mm/s², acceleration and braking deceleration
 };
 
 struct HomingSettings {
