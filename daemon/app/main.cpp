@@ -109,7 +109,7 @@ int main(int argc, char** argv) {
   }
   if (cfg.home_on_start) {
     spdlog::info("reference search requested at start");
-    core.commands().push(core::Command{core::CommandKind::Home});
+    core.submit(core::Command{core::CommandKind::Home});
   }
   boost::asio::signal_set signals(io, SIGINT, SIGTERM);
   signals.async_wait([&](boost::system::error_code, int sig) {
@@ -122,7 +122,9 @@ int main(int argc, char** argv) {
   io.run();
 
   runner.stop();
-  machine->backend().stop(hal::Vec3::Constant(cfg.core.params.max_accel));
+  hal::Vec3 decel;
+  for (int a = 0; a < core::kAxes; ++a) decel[a] = core.config().axes[a].max_accel;
+  machine->backend().stop(decel);
   machine->backend().set_loops(false);
   machine->stop_base_thread();
   spdlog::info("motion stopped, loops open; bye");

@@ -45,7 +45,8 @@ TEST_CASE("StopMv aborts homing") {
   CoreRig rig(relative_scales({430, 330, 100}));
   rig.simple(CommandKind::Home);
   rig.run(1.0);
-  rig.simple(CommandKind::StopMv);
-  CHECK(rig.mode() == Mode::Idle);
+  rig.stop();
+  CHECK(rig.mode() == Mode::Stopping);
+  REQUIRE(rig.run_until([&] { return rig.mode() == Mode::Idle; }, 1.0));
   CHECK_FALSE(rig.core().snapshot().homed);
 }

@@ -84,14 +84,16 @@ TEST_CASE("an axis in a limit switch may only move away from it") {
   CoreRig rig(empty_machine(false));
   rig.start_mv({100, 0, 0});
   REQUIRE(rig.run_until([&] { return !rig.take(EventKind::Limit).empty(); }, 10.0));
-  REQUIRE(rig.run_until([&] { return rig.core().machine().motion_done(); }, 1.0));
-  CHECK(rig.mode() == Mode::Idle);
+  CHECK(rig.mode() == Mode::Stopping);
+  REQUIRE(rig.run_until([&] { return rig.mode() == Mode::Idle; }, 1.0));
+  CHECK(rig.core().machine().motion_done());
   REQUIRE(rig.core().machine().input(0, imess::hal::input::kLimitPos));
   CHECK(rig.start_mv({20, 0, 0}) == Refusal::IntoLimit);
   CHECK(rig.start_mv({20, 20, 0}) == Refusal::None);  // the X part is dropped, Y moves
   rig.run(0.3);
   CHECK(rig.core().machine().input(0, imess::hal::input::kLimitPos));
-  rig.simple(CommandKind::StopMv);
+  rig.stop();
+  REQUIRE(rig.run_until([&] { return rig.mode() == Mode::Idle; }, 1.0));
   CHECK(rig.start_mv({-20, 0, 0}) == Refusal::None);
   rig.run(1.0);
   CHECK_FALSE(rig.core().machine().input(0, imess::hal::input::kLimitPos));

@@ -9,7 +9,7 @@
 using namespace imess::test;
 
 namespace {
-void push(CoreRig& rig, Command c) { rig.core().commands().push(c); }
+void push(CoreRig& rig, Command c) { rig.core().submit(c); }
 }  // namespace
 
 TEST_CASE("no motion cycle allocates: jog, hit, retract, idle, hand hits, GoTo, homing, fault") {
@@ -25,11 +25,11 @@ TEST_CASE("no motion cycle allocates: jog, hit, retract, idle, hand hits, GoTo, 
   CHECK(allocations_over_cycles(rig, 1000) == 0);
   push(rig, {CommandKind::GoTo, 1, 4, Vec3(300, 300, 200), 100});
   push(rig, {CommandKind::ForcePt, 1, 5});
-  push(rig, {CommandKind::SetParam, 1, 6, Vec3::Zero(), 0, imess::core::ParamId::SpeedLevel, 0.5});
+  rig.core().set_param(imess::core::ParamId::SpeedLevel, 0.5);
   CHECK(allocations_over_cycles(rig, 4000) == 0);
   push(rig, {CommandKind::Home, 1, 7});
   CHECK(allocations_over_cycles(rig, 60000) == 0);
-  push(rig, {CommandKind::StopMv, 1, 8});
+  rig.core().request_stop();
   push(rig, {CommandKind::Free, 1, 9});
   push(rig, {CommandKind::HandMv, 1, 10, Vec3(0, 0, -700), 100});
   CHECK(allocations_over_cycles(rig, 8000) == 0);  // into the table: overtravel fault

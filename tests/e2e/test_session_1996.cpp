@@ -52,17 +52,25 @@ TEST_CASE("CurrCor is sent only when the position changed") {
   CHECK_FALSE(c.until_prefix("CurrCor", 1.2));
 }
 
-TEST_CASE("StartMv while the tip is touched gets Err 200 and the machine stays put") {
+TEST_CASE("while the tip is touched, StartMv toward or along the part gets Err 200; away from it moves") {
   DaemonProcess messd;
   LineClient c(messd.port());
   REQUIRE(c.request("HandMv 0 0 -18.5 20") == std::optional<std::string>("Ok HandMv"));
   REQUIRE(c.until_prefix("CurrCor 430.000 330.000 81.500", 5.0));
-  auto r = c.request("StartMv 0 0 20");
-  REQUIRE(r);
-  CHECK(r->rfind("Err 200 ", 0) == 0);
+  for (const char* toward : {"StartMv 0 0 -20", "StartMv 20 0 0"}) {
+    auto r = c.request(toward);
+    REQUIRE(r);
+    CHECK(r->rfind("Err 200 ", 0) == 0);
+  }
   auto st = c.request("Status");
   REQUIRE(st);
   CHECK(st->find("Tip touched") != std::string::npos);
+  CHECK(c.request("StartMv 0 0 20") == std::optional<std::string>("Ok StartMv"));  // back out along the approach
+  REQUIRE(c.until_prefix("CurrCor 430.000 330.000 9", 5.0));
+  c.request("StopMv");
+  st = c.request("Status");
+  REQUIRE(st);
+  CHECK(st->find("Tip free") != std::string::npos);
 }
 
 TEST_CASE("measuring by hand through the protocol: Free, push onto the top, a compensated point") {

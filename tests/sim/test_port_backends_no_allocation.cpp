@@ -11,7 +11,7 @@ using namespace imess;
 using namespace imess::test;
 
 namespace {
-void push(MotionRig& rig, core::Command c) { rig.core().commands().push(c); }
+void push(MotionRig& rig, core::Command c) { rig.core().submit(c); }
 core::CoreConfig brisk() {
   core::CoreConfig c;
   c.params.max_speed = 80;
@@ -36,7 +36,7 @@ TEST_CASE("stepper backend: no servo cycle or base tick allocates") {
   CHECK(allocations_over_cycles(rig, 30000) == 0);
   push(rig, {CommandKind::StartMv, 1, 4, Vec3(50, 0, 0)});
   CHECK(allocations_over_cycles(rig, 100) == 0);
-  push(rig, {CommandKind::StopMv, 1, 5});
+  rig.core().request_stop();
   CHECK(allocations_over_cycles(rig, 500) == 0);
 }
 

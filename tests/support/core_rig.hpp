@@ -80,7 +80,7 @@ class CoreRig {
   core::Refusal send(Command c) {
     c.client = 1;
     c.seq = ++seq_;
-    core_.commands().push(c);
+    core_.submit(c);
     step();
     for (auto& e : events_)
       if (e.kind == EventKind::Reply && e.seq == c.seq) return e.refusal;
@@ -90,6 +90,15 @@ class CoreRig {
   core::Refusal go_to(Vec3 target, double speed = 0) { return send({CommandKind::GoTo, 0, 0, target, speed}); }
   core::Refusal hand(Vec3 delta, double speed = 10) { return send({CommandKind::HandMv, 0, 0, delta, speed}); }
   core::Refusal simple(CommandKind k) { return send({k}); }
+  // The stop lane (StopMv) and the parameter lane (Set), as the io thread uses them.
+  void stop() {
+    core_.request_stop();
+    step();
+  }
+  void set(core::ParamId id, double value) {
+    core_.set_param(id, value);
+    step();
+  }
 
   std::vector<Event> take(EventKind kind) {
     std::vector<Event> out, keep;

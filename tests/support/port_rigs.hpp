@@ -43,7 +43,7 @@ class MotionRig {
   core::Refusal send(Command c) {
     c.client = 1;
     c.seq = ++seq_;
-    core_->commands().push(c);
+    core_->submit(c);
     step();
     for (auto& e : events_)
       if (e.kind == EventKind::Reply && e.seq == c.seq) return e.refusal;
@@ -52,6 +52,15 @@ class MotionRig {
   core::Refusal start_mv(Vec3 percent) { return send({CommandKind::StartMv, 0, 0, percent}); }
   core::Refusal go_to(Vec3 target, double speed = 0) { return send({CommandKind::GoTo, 0, 0, target, speed}); }
   core::Refusal simple(CommandKind k) { return send({k}); }
+  // The stop lane (StopMv) and the parameter lane (Set), as the io thread uses them.
+  void stop() {
+    core_->request_stop();
+    step();
+  }
+  void set(core::ParamId id, double value) {
+    core_->set_param(id, value);
+    step();
+  }
   std::vector<Event> take(EventKind kind) {
     std::vector<Event> out, keep;
     for (auto& e : events_) (e.kind == kind ? out : keep).push_back(e);

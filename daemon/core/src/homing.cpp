@@ -1,6 +1,7 @@
 // Homing phases; every phase has a timeout so a missing switch fails instead of hanging.
 #include "imess/core/homing.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace imess::core {
@@ -16,8 +17,16 @@ void Homing::begin(const CoreConfig& config, Nanos now) noexcept {
 
 bool Homing::jog(hal::MotionBackend& hw, double target, double speed) noexcept {
   AxisArray<hal::AxisMove> m{};
-  m[axis_] = {target, speed, config_->params.max_accel};
+  // Homing is the machine's own procedure: the axis' configured limits, never runtime values.
+  const auto& ax = config_->axes[axis_];
+  m[axis_] = {target, std::min(speed, ax.max_velocity), ax.max_accel};
   return hw.move(m, 1u << axis_);
+}
+
+void Homing::brake(hal::MotionBackend& hw) noexcept {
+  Vec3 decel;
+  for (int a = 0; a < kAxes; ++a) decel[a] = config_->axes[a].max_accel;
+  hw.stop(decel);
 }
 
 Homing::Result Homing::step(const hal::MachineState& ms, hal::MotionBackend& hw, Nanos now) noexcept {
@@ -59,7 +68,7 @@ Homing::Result Homing::step(const hal::MachineState& ms, hal::MotionBackend& hw,
 
     case Phase::Search:
       if (cam) {
-        hw.stop(Vec3::Constant(config_->params.max_accel));
+        brake(hw);
         enter(Phase::SearchStopping, now);
       } else if (limit_here && !reversed_) {  // switch not on this side of us: reverse at the limit
         reversed_ = true;
@@ -95,7 +104,7 @@ Homing::Result Homing::step(const hal::MachineState& ms, hal::MotionBackend& hw,
     case Phase::LeaveSwitch:
       if (limit_away) return fail("no encoder index found after the home switch");
       if (!cam && index && !prev_index_) {
-        hw.stop(Vec3::Constant(config_->params.max_accel));
+        brake(hw);
         enter(Phase::IndexStopping, now);
       }
       prev_index_ = index;
@@ -123,7 +132,7 @@ Homing::Result Homing::step(const hal::MachineState& ms, hal::MotionBackend& hw,
         have_entry_ = true;
       } else if (!index && prev_index_ && have_entry_) {
         exit_ = pos;
-        hw.stop(Vec3::Constant(config_->params.max_accel));
+        brake(hw);
         enter(Phase::CreepStopping, now);
       }
       prev_index_ = index;

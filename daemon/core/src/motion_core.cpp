@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace imess::core {
@@ -13,9 +14,10 @@ namespace st = hal::status;
 
 namespace {
 constexpr double kFar = 1e5;  // mm: a jog target beyond any travel when no soft limits are known
-constexpr unsigned kAllAxes = (1u << kAxes) - 1;
 
-bool moving_mode(Mode m) { return m == Mode::Jog || m == Mode::Move || m == Mode::Retract || m == Mode::Home; }
+bool moving_mode(Mode m) {
+  return m == Mode::Jog || m == Mode::Move || m == Mode::Retract || m == Mode::Home || m == Mode::Stopping;
+}
 int sign(double v) { return (v > 0) - (v < 0); }
 }  // namespace
 
@@ -38,8 +40,39 @@ double& param_ref(CoreParams& p, ParamId id) noexcept {
 
 double param_value(const CoreParams& p, ParamId id) noexcept { return param_ref(const_cast<CoreParams&>(p), id); }
 
+namespace {
+CoreConfig resolved(CoreConfig c) {
+  for (auto& a : c.axes) {
+    if (a.max_velocity <= 0) a.max_velocity = c.max_velocity;
+    if (a.max_accel <= 0) a.max_accel = c.params.max_accel;
+  }
+  return c;
+}
+}  // namespace
+
 MotionCore::MotionCore(hal::MotionBackend& hardware, CoreConfig config, hal::SimHooks* sim)
-    : hw_(hardware), config_(std::move(config)), sim_(sim), referenced_(config_.referenced_at_start) {}
+    : hw_(hardware),
+      config_(resolved(std::move(config))),
+      limits_(config_),
+      sim_(sim),
+      params_out_(config_.params),
+      referenced_(config_.referenced_at_start) {
+  params_in_.back() = params_out_;
+  params_in_.publish();
+}
+
+bool MotionCore::submit(Command c) noexcept {
+  c.ticket = ++next_ticket_;
+  return commands_.push(c);
+}
+
+void MotionCore::request_stop() noexcept { stop_ticket_.store(++next_ticket_, std::memory_order_release); }
+
+void MotionCore::set_param(ParamId id, double value) noexcept {
+  param_ref(params_out_, id) = value;
+  params_in_.back() = params_out_;
+  params_in_.publish();
+}
 
 void MotionCore::start(Nanos now) {
   if (!hw_.read_state(ms_)) throw std::runtime_error("the machine did not report its state after initialisation");
@@ -74,11 +107,14 @@ void MotionCore::cycle(Nanos now) noexcept {
     }
     if (ms_.latch_valid()) on_probe_latch(now);
   }
+  take_stop(now);
   for (int i = 0; i < kCommandsPerCycle; ++i) {
     Command c;
     if (!commands_.pop(c)) break;
+    config_.params = params_in_.read();  // a Set sent before this command applies to it
     handle(c, now);
   }
+  config_.params = params_in_.read();
   check_limits(now);
   update_mode(now);
   publish(now);
@@ -86,17 +122,29 @@ void MotionCore::cycle(Nanos now) noexcept {
 
 // ---------------------------------------------------------------- commands
 
+void MotionCore::take_stop(Nanos now) noexcept {
+  const std::uint64_t t = stop_ticket_.load(std::memory_order_acquire);
+  if (t == stop_taken_) return;
+  stop_taken_ = t;
+  pending_ = Pending::None;
+  if (mode_ == Mode::Jog || mode_ == Mode::Move || mode_ == Mode::Home) {
+    stop_motion();
+    stopped_from_ = mode_;
+    enter(Mode::Stopping, now);
+  }
+  // Retract: the short move away from the part finishes, then the tip is free (the one
+  // exception to "a stop brakes at once": braking would leave the probe deflected).
+}
+
+bool MotionCore::superseded(const Command& c) const noexcept {
+  return c.ticket <= stop_taken_ &&
+         (c.kind == CommandKind::StartMv || c.kind == CommandKind::GoTo || c.kind == CommandKind::Home);
+}
+
 void MotionCore::handle(const Command& c, Nanos now) noexcept {
+  if (superseded(c)) return reply(c, Refusal::None);  // sent before a stop: the stop wins
   switch (c.kind) {
     case CommandKind::StartMv: reply(c, start_jog(c.v, now)); return;
-    case CommandKind::StopMv:
-      pending_ = Pending::None;
-      if (moving_mode(mode_)) {
-        stop_motion();
-        enter(Mode::Idle, now);
-      }
-      reply(c, Refusal::None);
-      return;
     case CommandKind::ForcePt:
       measured(ms_.position, Vec3::Zero(), false, now);
       reply(c, Refusal::None);
@@ -120,47 +168,68 @@ void MotionCore::handle(const Command& c, Nanos now) noexcept {
     case CommandKind::HandMv:
       if (!sim_) return reply(c, Refusal::NotSimulated);
       if (ms_.loops_closed()) return reply(c, Refusal::LoopsClosed);
-      sim_->push_by_hand(c.v, c.speed > 0 ? c.speed : 10.0);
-      return reply(c, Refusal::None);
-    case CommandKind::SetParam:
-      param_ref(config_.params, c.param) = c.value;
+      sim_->push_by_hand(c.v, std::min(c.speed > 0 ? c.speed : 10.0, config_.max_velocity));
       return reply(c, Refusal::None);
   }
 }
 
-double MotionCore::effective_speed(double mm_per_s) const noexcept {
-  return std::min(mm_per_s, config_.max_velocity);
+unsigned MotionCore::moving_axes(const Vec3& u) noexcept {
+  unsigned mask = 0;
+  for (int a = 0; a < kAxes; ++a)
+    if (u[a] != 0) mask |= 1u << a;
+  return mask;
 }
 
-AxisArray<hal::AxisMove> MotionCore::straight_moves(const Vec3& target, const Vec3& u, double speed) const noexcept {
+AxisArray<hal::AxisMove> MotionCore::straight_moves(const Vec3& target, const Vec3& u, double speed,
+                                                   bool configured_accel) const noexcept {
   // Speeds and accelerations in proportion to the direction keep the path on a straight
-  // line through acceleration, cruise and braking.
-  double umax = u.cwiseAbs().maxCoeff();
-  double accel = config_.params.max_accel / (umax > 0 ? umax : 1.0);
+  // line through acceleration, cruise and braking; the path values are the largest that
+  // keep every moving axis within its own limit.
+  double v = std::min(speed, config_.max_velocity), acc = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < kAxes; ++a) {
+    const double ua = std::abs(u[a]);
+    if (ua == 0) continue;
+    const auto& ax = config_.axes[a];
+    v = std::min(v, ax.max_velocity / ua);
+    acc = std::min(acc, (configured_accel ? ax.max_accel : std::min(config_.params.max_accel, ax.max_accel)) / ua);
+  }
   AxisArray<hal::AxisMove> m{};
   for (int a = 0; a < kAxes; ++a) {
-    double ua = std::abs(u[a]);
-    if (ua < 1e-9)
-      m[a] = {target[a], speed, config_.params.max_accel};
-    else
-      m[a] = {target[a], speed * ua, accel * ua};
+    const double ua = std::abs(u[a]);
+    m[a] = ua == 0 ? hal::AxisMove{ms_.position[a], config_.axes[a].max_velocity, config_.axes[a].max_accel}
+                   : hal::AxisMove{target[a], v * ua, acc * ua};
   }
   return m;
 }
 
+bool MotionCore::away_from_touch(const Vec3& u) const noexcept {
+  constexpr double kCosAway = 0.5;  // within 60 degrees of straight back along the approach
+  return !approach_dir_.isZero() && u.dot(approach_dir_) <= -kCosAway;
+}
+
 Refusal MotionCore::start_jog(const Vec3& percent, Nanos now) noexcept {
   if (mode_ == Mode::Fault) return Refusal::Faulted;
-  if (mode_ == Mode::Home || mode_ == Mode::Retract) return Refusal::Busy;
-  if (ms_.tip_touched) return Refusal::TipTouched;
+  if (mode_ == Mode::Home) return Refusal::Busy;
   const auto& p = config_.params;
   Vec3 v = percent / 100.0 * p.max_speed * p.speed_level;
-  if (v.isZero()) {  // all speeds zero: the machine stands
-    if (moving_mode(mode_)) {
+  if (percent.isZero()) {  // all speeds zero: the machine stands
+    pending_ = Pending::None;
+    if (mode_ == Mode::Jog || mode_ == Mode::Move) {
       stop_motion();
-      enter(Mode::Idle, now);
+      stopped_from_ = mode_;
+      enter(Mode::Stopping, now);
     }
     return Refusal::None;
   }
+  for (int a = 0; a < kAxes; ++a)
+    if (std::abs(v[a]) < kMinSpeed) v[a] = 0;  // a negligible share does not move the axis
+  if (v.isZero()) return Refusal::TooSlow;
+  if (mode_ == Mode::Retract || mode_ == Mode::Stopping) {  // starts once at rest (and the tip free)
+    pending_ = Pending::Jog;
+    pending_v_ = percent;
+    return Refusal::None;
+  }
+  if (ms_.tip_touched && !away_from_touch(v.normalized())) return Refusal::TipTouched;
   for (int a = 0; a < kAxes; ++a) {
     int s = sign(v[a]);
     if (s == 0) continue;
@@ -180,7 +249,7 @@ Refusal MotionCore::start_jog(const Vec3& percent, Nanos now) noexcept {
     }
   }
   pending_ = Pending::None;
-  double speed = effective_speed(v.norm());
+  const double speed = v.norm();
   Vec3 u = v.normalized();
   Vec3 target;
   for (int a = 0; a < kAxes; ++a) {
@@ -194,11 +263,7 @@ Refusal MotionCore::start_jog(const Vec3& percent, Nanos now) noexcept {
         static_cast<std::int8_t>(ms_.input(a, in::kLimitNeg) ? -1 : ms_.input(a, in::kLimitPos) ? 1 : 0);
   }
   if (!ms_.loops_closed() && !hw_.set_loops(true)) return Refusal::Hardware;
-  auto moves = straight_moves(target, u, speed);
-  unsigned mask = 0;
-  for (int a = 0; a < kAxes; ++a)
-    if (u[a] != 0) mask |= 1u << a;
-  if (!hw_.move(moves, mask)) return Refusal::Hardware;
+  if (!hw_.move(straight_moves(target, u, speed), moving_axes(u))) return Refusal::Hardware;
   motion_dir_ = u;
   enter(Mode::Jog, now);
   return Refusal::None;
@@ -207,10 +272,17 @@ Refusal MotionCore::start_jog(const Vec3& percent, Nanos now) noexcept {
 Refusal MotionCore::go_to(const Vec3& target, double speed, Nanos now) noexcept {
   if (mode_ == Mode::Fault) return Refusal::Faulted;
   if (mode_ == Mode::Home || mode_ == Mode::Retract) return Refusal::Busy;
-  if (ms_.tip_touched) return Refusal::TipTouched;
   if (referenced_)
     for (int a = 0; a < kAxes; ++a)
       if (target[a] < config_.axes[a].travel_min || target[a] > config_.axes[a].travel_max) return Refusal::OutOfTravel;
+  const double v = speed > 0 ? speed : config_.params.goto_speed * config_.params.speed_level;
+  if (v < kMinSpeed) return Refusal::TooSlow;
+  if (mode_ == Mode::Stopping) {
+    pending_ = Pending::GoTo;
+    pending_v_ = target;
+    pending_speed_ = speed;
+    return Refusal::None;
+  }
   if ((mode_ == Mode::Jog || mode_ == Mode::Move) && (!ms_.motion_done() || state_stale_)) {
     stop_motion();
     pending_ = Pending::GoTo;
@@ -221,14 +293,16 @@ Refusal MotionCore::go_to(const Vec3& target, double speed, Nanos now) noexcept 
   }
   pending_ = Pending::None;
   Vec3 d = target - ms_.position;
-  if (d.norm() < 1e-4) return Refusal::None;
-  double v = effective_speed(speed > 0 ? speed : config_.params.goto_speed * config_.params.speed_level);
+  for (int a = 0; a < kAxes; ++a)
+    if (std::abs(d[a]) < kNegligibleTravel) d[a] = 0;  // this axis stays where it is
+  if (d.isZero()) return Refusal::None;
   Vec3 u = d.normalized();
+  if (ms_.tip_touched && !away_from_touch(u)) return Refusal::TipTouched;
   for (int a = 0; a < kAxes; ++a)
     started_in_limit_[a] =
         static_cast<std::int8_t>(ms_.input(a, in::kLimitNeg) ? -1 : ms_.input(a, in::kLimitPos) ? 1 : 0);
   if (!ms_.loops_closed() && !hw_.set_loops(true)) return Refusal::Hardware;
-  if (!hw_.move(straight_moves(target, u, v), kAllAxes)) return Refusal::Hardware;
+  if (!hw_.move(straight_moves(target, u, v), moving_axes(u))) return Refusal::Hardware;
   motion_dir_ = u;
   enter(Mode::Move, now);
   return Refusal::None;
@@ -236,7 +310,7 @@ Refusal MotionCore::go_to(const Vec3& target, double speed, Nanos now) noexcept 
 
 Refusal MotionCore::start_homing(Nanos now) noexcept {
   if (mode_ == Mode::Fault) return Refusal::Faulted;
-  if (mode_ == Mode::Home || mode_ == Mode::Retract) return Refusal::Busy;
+  if (mode_ == Mode::Home || mode_ == Mode::Retract || mode_ == Mode::Stopping) return Refusal::Busy;
   if (ms_.tip_touched) return Refusal::TipTouched;
   if (moving_mode(mode_)) stop_motion();
   if (!ms_.loops_closed() && !hw_.set_loops(true)) return Refusal::Hardware;
@@ -256,13 +330,14 @@ void MotionCore::launch_pending(Nanos now) noexcept {
 }
 
 void MotionCore::stop_motion() noexcept {
-  double umax = motion_dir_.cwiseAbs().maxCoeff();
-  double accel = config_.params.max_accel / (umax > 0 ? umax : 1.0);
+  // The configured deceleration of every axis, never the runtime MaxAccel; along a line the
+  // path deceleration is the largest every moving axis can give, so the stop stays on it.
+  double path = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < kAxes; ++a)
+    if (motion_dir_[a] != 0) path = std::min(path, config_.axes[a].max_accel / std::abs(motion_dir_[a]));
   Vec3 decel;
-  for (int a = 0; a < kAxes; ++a) {
-    double ua = std::abs(motion_dir_[a]);
-    decel[a] = ua < 1e-9 ? config_.params.max_accel : accel * ua;
-  }
+  for (int a = 0; a < kAxes; ++a)
+    decel[a] = motion_dir_[a] == 0 ? config_.axes[a].max_accel : path * std::abs(motion_dir_[a]);
   if (!hw_.stop(decel)) ++hardware_errors_;
 }
 
@@ -275,19 +350,25 @@ void MotionCore::on_probe_latch(Nanos now) noexcept {
     return;
   }
   const double r = config_.params.tip_radius;
-  switch (mode_) {
+  // Braking after a stop, the hit belongs to the motion that was braking.
+  switch (mode_ == Mode::Stopping ? stopped_from_ : mode_) {
     case Mode::Jog:  // a motor hit: the point lies r beyond the ball centre along the motion
+      pending_ = Pending::None;
+      approach_dir_ = motion_dir_;
       measured(latched + r * motion_dir_, motion_dir_, true, now);
       retract_from(latched, motion_dir_, now);
       return;
     case Mode::Move:
-    case Mode::Home: {
+    case Mode::Home:
+    case Mode::Stopping: {
+      pending_ = Pending::None;
       warn(Warning::UnexpectedHit, latched, now);
       Vec3 dir = motion_dir_;
       if (dir.isZero()) {  // homing moves one axis: the overtravel tells the direction
         Vec3 over = ms_.position - latched;
         dir = over.norm() > 1e-6 ? Vec3(over.normalized()) : Vec3(Vec3::UnitZ());
       }
+      approach_dir_ = dir;
       retract_from(latched, dir, now);
       return;
     }
@@ -304,6 +385,7 @@ void MotionCore::on_probe_latch(Nanos now) noexcept {
         return;
       }
       last_hand_hit_ = now;
+      approach_dir_ = *dir;
       measured(latched + r * *dir, *dir, true, now);
       return;
     }
@@ -312,9 +394,20 @@ void MotionCore::on_probe_latch(Nanos now) noexcept {
 }
 
 void MotionCore::retract_from(const Vec3& latched, const Vec3& dir, Nanos now) noexcept {
-  Vec3 target = latched - config_.params.retract_distance * dir;
+  // Once referenced, a retract stays within the soft limits too: it is shortened to end
+  // at the travel's edge (or does not move) rather than leave it.
+  double distance = config_.params.retract_distance;
+  if (referenced_)
+    for (int a = 0; a < kAxes; ++a) {
+      const double d = -dir[a];  // the retract's direction
+      const auto& ax = config_.axes[a];
+      if (d > 0) distance = std::min(distance, std::max(0.0, (ax.travel_max - latched[a]) / d));
+      if (d < 0) distance = std::min(distance, std::max(0.0, (latched[a] - ax.travel_min) / -d));
+    }
+  Vec3 target = latched - distance * dir;
   motion_dir_ = -dir;
-  if (!hw_.move(straight_moves(target, -dir, config_.params.retract_speed), kAllAxes)) ++hardware_errors_;
+  // The retract first brakes the motion that hit: the configured acceleration, like a stop.
+  if (!hw_.move(straight_moves(target, -dir, config_.params.retract_speed, true), moving_axes(-dir))) ++hardware_errors_;
   enter(Mode::Retract, now);
 }
 
@@ -338,8 +431,10 @@ void MotionCore::check_limits(Nanos now) noexcept {
     e.time = now;
     emit(e);
     if ((mode_ == Mode::Jog || mode_ == Mode::Move || mode_ == Mode::Retract) && moving_into_limit(a, side)) {
+      pending_ = Pending::None;
       stop_motion();
-      enter(Mode::Idle, now);
+      stopped_from_ = mode_;
+      enter(Mode::Stopping, now);
     }
   }
 }
@@ -357,10 +452,19 @@ void MotionCore::update_mode(Nanos now) noexcept {
       if (pending_ != Pending::None && ms_.motion_done()) launch_pending(now);
       else if (ms_.motion_done() && ms_.all(st::kInPosition)) enter(Mode::Idle, now);
       break;
+    case Mode::Stopping:
+      if (ms_.motion_done() && ms_.all(st::kInPosition)) {  // every axis at rest
+        if (pending_ != Pending::None) launch_pending(now);
+        else enter(Mode::Idle, now);
+      }
+      break;
     case Mode::Retract:
       if (ms_.motion_done() && ms_.all(st::kInPosition) && !ms_.tip_touched) {
-        enter(Mode::Idle, now);
+        if (pending_ != Pending::None) launch_pending(now);
+        else enter(Mode::Idle, now);
       } else if (in_mode > p.retract_timeout) {
+        if (pending_ != Pending::None) warn(Warning::MoveRefused, ms_.position, now);
+        pending_ = Pending::None;
         warn(Warning::TipNotFree, ms_.position, now);
         stop_motion();
         if (!hw_.set_loops(false)) ++hardware_errors_;
@@ -388,7 +492,8 @@ void MotionCore::update_mode(Nanos now) noexcept {
         case Homing::Result::Failed:
           warn(Warning::HomingFailed, ms_.position, now);
           stop_motion();
-          enter(Mode::Idle, now);
+          stopped_from_ = Mode::Home;
+          enter(Mode::Stopping, now);
           break;
       }
       break;
@@ -411,6 +516,7 @@ void MotionCore::enter(Mode m, Nanos now) noexcept {
 }
 
 void MotionCore::fault(FaultKind f, Nanos now) noexcept {
+  pending_ = Pending::None;
   stop_motion();
   if (!hw_.set_loops(false)) ++hardware_errors_;
   Event e;

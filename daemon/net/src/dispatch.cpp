@@ -55,7 +55,7 @@ bool Server::to_core(Session& s, std::uint32_t slot, core::Command c) {
   c.seq = slot;
   if (config_.log_motion)
     spdlog::info("client {}: {} {:.3f} {:.3f} {:.3f}", s.id(), command_verb(c.kind), c.v.x(), c.v.y(), c.v.z());
-  if (!core_.commands().push(c)) {
+  if (!core_.submit(c)) {
     reply(s, slot, format_err(ErrorCode::QueueFull, "the motion loop's command queue is full; retry"));
     return false;
   }
@@ -67,7 +67,10 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
   std::visit(
       Overloaded{
           [&](const protocol::StartMv& c) { to_core(s, slot, {CommandKind::StartMv, 0, 0, vec(c.percent)}); },
-          [&](const protocol::StopMv&) { to_core(s, slot, {CommandKind::StopMv}); },
+          [&](const protocol::StopMv&) {  // its own lane: never behind queued commands
+            core_.request_stop();
+            reply(s, slot, format_ok("StopMv"));
+          },
           [&](const protocol::ForcePt&) { to_core(s, slot, {CommandKind::ForcePt}); },
           [&](const protocol::GoTo& c) { to_core(s, slot, {CommandKind::GoTo, 0, 0, vec(c.target), c.speed.value_or(0)}); },
           [&](const protocol::Home&) { to_core(s, slot, {CommandKind::Home}); },
@@ -88,9 +91,8 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Status&) { reply(s, slot, format_ok("Status", status_line())); },
           [&](const protocol::Stats&) { reply(s, slot, format_ok("Stats", stats_line())); },
           [&](const protocol::Get& c) {
-            const auto& snap = core_.snapshot();
             auto value = [&](const ParamSpec& p) {
-              return p.core_id ? fixed(core::param_value(snap.params, *p.core_id)) : fixed(config_.report_hz);
+              return p.core_id ? fixed(core::param_value(core_.params(), *p.core_id)) : fixed(config_.report_hz);
             };
             if (c.name.empty()) {
               std::string all;
@@ -122,15 +124,11 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
               return;
             }
             spdlog::info("client {} sets {} to {}", s.id(), p->name, *v);
-            if (p->core_id) {
-              core::Command cc{CommandKind::SetParam};
-              cc.param = *p->core_id;
-              cc.value = *v;
-              to_core(s, slot, cc);
-            } else {
+            if (p->core_id)
+              core_.set_param(*p->core_id, *v);  // the parameter lane: no command-ring slot
+            else
               config_.report_hz = *v;
-              reply(s, slot, format_ok("Set"));
-            }
+            reply(s, slot, format_ok("Set"));
           },
           [&](const protocol::Quit&) {
             reply(s, slot, format_ok("Quit"));

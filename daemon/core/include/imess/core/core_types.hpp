@@ -12,10 +12,19 @@ using hal::kAxes;
 using hal::Nanos;
 using hal::Vec3;
 
-enum class Mode : std::uint8_t { Free, Idle, Jog, Move, Retract, Home, Fault };
+// Stopping: braking to rest after a stop (StopMv, a limit switch, a dropped owner); Idle
+// follows only when every axis is at rest.
+enum class Mode : std::uint8_t { Free, Idle, Jog, Move, Retract, Home, Fault, Stopping };
 
 // Why the loop refused a command; net maps each to a protocol error code.
-enum class Refusal : std::uint8_t { None, TipTouched, IntoLimit, Busy, NotSimulated, LoopsClosed, OutOfTravel, Faulted, Hardware };
+// TooSlow: the requested speed is below kMinSpeed (nothing would visibly move).
+enum class Refusal : std::uint8_t { None, TipTouched, IntoLimit, Busy, NotSimulated, LoopsClosed, OutOfTravel, Faulted, Hardware, TooSlow };
+
+// Slowest accepted motion, mm/s: a jog or GoTo slower than this is refused (TooSlow), and an
+// axis whose share of a jog is slower than this does not move at all.
+inline constexpr double kMinSpeed = 0.01;
+// A GoTo moves an axis only when its target differs by at least this much, mm.
+inline constexpr double kNegligibleTravel = 1e-4;
 
 enum class Warning : std::uint8_t {
   TipNotFree,       // retract did not re-seat the probe in time; loops opened
@@ -37,8 +46,8 @@ enum class FaultKind : std::uint8_t {
 struct CoreParams {
   double tip_radius = 2.0;         // mm; 0 = no radius correction (optical probe)
   double speed_level = 1.0;        // multiplier for every speed
-  double max_speed = 100;          // mm/s at StartMv 100 %
-  double max_accel = 1000;         // mm/s²
+  double max_speed = 100;          // mm/s at StartMv 100 % (the path speed stays within the axis limits)
+  double max_accel = 1000;         // mm/s², per axis; only lowers the axes' configured max_accel
   double retract_distance = 0.5;   // mm behind the latched point
   double retract_speed = 10;       // mm/s
   double retract_timeout = 5;      // s to re-seat the tip
@@ -83,16 +92,17 @@ struct CoreConfig {
   bool referenced_at_start = false;  // absolute scales: soft limits valid without Home
 };
 
-enum class CommandKind : std::uint8_t { StartMv, StopMv, ForcePt, GoTo, Home, Free, Reset, HandMv, SetParam };
+// Commands through the ring. Stops and parameter changes have lanes of their own
+// (MotionCore::request_stop, MotionCore::set_param) and never wait behind these.
+enum class CommandKind : std::uint8_t { StartMv, ForcePt, GoTo, Home, Free, Reset, HandMv };
 
 struct Command {
-  CommandKind kind = CommandKind::StopMv;
+  CommandKind kind = CommandKind::ForcePt;
   std::uint32_t client = 0;  // who asked (for the reply)
   std::uint32_t seq = 0;
   Vec3 v = Vec3::Zero();     // StartMv: percent; GoTo: target; HandMv: delta
   double speed = 0;          // GoTo, HandMv: mm/s; 0 = default
-  ParamId param = ParamId::TipRadius;
-  double value = 0;
+  std::uint64_t ticket = 0;  // set by MotionCore::submit: orders commands against stops
 };
 
 enum class EventKind : std::uint8_t { Reply, MeasPt, State, Limit, Warn, Fault, Homed };
@@ -100,7 +110,7 @@ enum class EventKind : std::uint8_t { Reply, MeasPt, State, Limit, Warn, Fault, 
 struct Event {
   EventKind kind = EventKind::Reply;
   std::uint32_t client = 0, seq = 0;  // Reply
-  CommandKind command = CommandKind::StopMv;
+  CommandKind command = CommandKind::ForcePt;
   Refusal refusal = Refusal::None;    // Reply: None = Ok
   Mode mode = Mode::Free;             // State
   Warning warning = Warning::TipNotFree;

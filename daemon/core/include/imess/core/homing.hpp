@@ -22,6 +22,7 @@ class Homing {
 
   void enter(Phase p, Nanos now) noexcept { phase_ = p; phase_start_ = now; }
   bool jog(hal::MotionBackend& hw, double target, double speed) noexcept;
+  void brake(hal::MotionBackend& hw) noexcept;  // every axis, configured deceleration
   Result fail(const char* why) noexcept { failure_ = why; return Result::Failed; }
 
   const CoreConfig* config_ = nullptr;

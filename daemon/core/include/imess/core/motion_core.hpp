@@ -3,6 +3,8 @@
 // writes the hardware, pushes events and publishes a snapshot. cycle() never allocates,
 // locks, logs, throws or blocks; time comes in as an argument (real or virtual).
 #pragma once
+#include <atomic>
+
 #include "imess/core/hand_travel.hpp"
 #include "imess/core/homing.hpp"
 #include "imess/core/queues.hpp"
@@ -21,11 +23,25 @@ class MotionCore {
   // One motion cycle. Measured budget on the simulated card: see bench/ and docs.
   void cycle(Nanos now) noexcept;
 
-  // Crossings. commands(): pushed by exactly one thread (the io thread); events() and
-  // snapshot(): read by exactly one thread.
-  CommandQueue& commands() noexcept { return commands_; }
+  // Crossings. submit(), request_stop(), set_param() and params(): called by exactly one
+  // thread (the io thread); events() and snapshot(): read by exactly one thread.
+  //
+  // submit: queues a command; false when the ring is full (the caller answers QueueFull).
+  bool submit(Command c) noexcept;
+  // The stop lane: the loop reads it first thing every cycle, so a stop never waits behind
+  // queued commands. Every motion brakes to rest with the axes' configured deceleration
+  // (never a client-set value); motion commands submitted before the stop and not yet taken
+  // are answered Ok but not started (the stop supersedes them). A retract in progress
+  // finishes (it only moves away from the part), then the machine stands.
+  void request_stop() noexcept;
+  // The parameter lane: a whole CoreParams published to the loop, which takes the newest
+  // before every command, so a Set followed by a motion command applies to it.
+  void set_param(ParamId id, double value) noexcept;
+  const CoreParams& params() const noexcept { return params_out_; }
   EventQueue& events() noexcept { return events_; }
   const Snapshot& snapshot() noexcept { return snapshot_.read(); }
+  // The configured limits (resolved: never 0), for the io side and tests.
+  const CoreConfig& config() const noexcept { return limits_; }
 
   // For tests and the loop's owner, read on the loop's own thread only.
   Mode mode() const noexcept { return mode_; }
@@ -33,6 +49,8 @@ class MotionCore {
 
  private:
   void handle(const Command& c, Nanos now) noexcept;
+  void take_stop(Nanos now) noexcept;
+  bool superseded(const Command& c) const noexcept;
   Refusal start_jog(const Vec3& percent, Nanos now) noexcept;
   Refusal go_to(const Vec3& target, double speed, Nanos now) noexcept;
   // A new motion while moving brakes to rest first and starts from there (straight paths,
@@ -51,15 +69,30 @@ class MotionCore {
   void measured(const Vec3& point, const Vec3& dir, bool compensated, Nanos now) noexcept;
   void warn(Warning w, const Vec3& where, Nanos now) noexcept;
   void publish(Nanos now) noexcept;
-  // Per-axis speeds and accelerations for a straight path along unit direction u.
-  AxisArray<hal::AxisMove> straight_moves(const Vec3& target, const Vec3& u, double speed) const noexcept;
+  // Per-axis speeds and accelerations for a straight path along unit direction u at the
+  // requested path speed, within max_velocity, every axis' speed limit and the runtime
+  // acceleration (itself within every axis' limit; configured_accel: the axes' configured
+  // values, for moves that begin by braking another). Axes with u = 0 are not in the mask.
+  AxisArray<hal::AxisMove> straight_moves(const Vec3& target, const Vec3& u, double speed,
+                                          bool configured_accel = false) const noexcept;
+  static unsigned moving_axes(const Vec3& u) noexcept;
   bool moving_into_limit(int axis, int side) const noexcept;
-  double effective_speed(double mm_per_s) const noexcept;
+  // May the machine move along u while the tip is deflected? Only away from the approach
+  // of the hit that deflected it.
+  bool away_from_touch(const Vec3& u) const noexcept;
 
   hal::MotionBackend& hw_;
-  CoreConfig config_;
+  CoreConfig config_;   // params: the loop's copy, refreshed from the parameter lane
+  CoreConfig limits_;   // as configured, axis limits resolved; read by any thread
   hal::SimHooks* sim_;
   CommandQueue commands_;
+  TripleBuffer<CoreParams> params_in_;
+  CoreParams params_out_;                    // the io thread's copy (what Get reports)
+  std::uint64_t next_ticket_ = 0;            // io thread only
+  std::atomic<std::uint64_t> stop_ticket_{0};
+  std::uint64_t stop_taken_ = 0;             // loop: the newest stop acted on
+  Mode stopped_from_ = Mode::Idle;           // what was braking in Mode::Stopping
+  Vec3 approach_dir_ = Vec3::Zero();         // direction of the last hit (zero: unknown)
   EventQueue events_;
   TripleBuffer<Snapshot> snapshot_;
 
