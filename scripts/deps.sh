@@ -9,6 +9,11 @@ imess_test_packages=(python3 python3-ezdxf freecad-python3)
 imess_install_deps() {   # imess_install_deps [test]: the build packages, with "test" also the test ones
   local wanted=("${imess_packages[@]}")
   [ "${1:-}" = test ] && wanted+=("${imess_test_packages[@]}")
+  imess_install_packages "${wanted[@]}"
+}
+
+imess_install_packages() {   # imess_install_packages PKG...: apt-get install those not installed
+  local wanted=("$@")
   local missing=()
   for p in "${wanted[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -31,3 +36,7 @@ imess_build() {   # imess_build <build-dir> [targets...]: configure, then build 
     cmake --build "$dir" -j "$(nproc)"
   fi
 }
+
+# Only for scripts/fuzz: clang and its libFuzzer runtime (libclang_rt.fuzzer in libclang-rt-14-dev).
+imess_fuzz_packages=(clang libclang-rt-14-dev)
+imess_install_fuzz_deps() { imess_install_packages "${imess_fuzz_packages[@]}"; }
