@@ -1,7 +1,7 @@
 # Sourced by scripts/run and scripts/test: installs the Debian packages IMESS needs
 # when any is missing (fresh Debian 12 machine), and nothing otherwise.
 imess_packages=(cmake ninja-build g++ pkg-config libboost-dev libeigen3-dev libspdlog-dev
-                nlohmann-json3-dev catch2 libncurses-dev)
+                nlohmann-json3-dev catch2 libncurses-dev ccache)
 # Only for scripts/test: the independent readers the export and FreeCAD plugin tests use
 # (ezdxf for DXF; freecadcmd for STEP, IGES, PLY, ASC and the plugin). Debian's python3 comes with them.
 imess_test_packages=(python3 python3-ezdxf freecad-python3)
@@ -9,6 +9,11 @@ imess_test_packages=(python3 python3-ezdxf freecad-python3)
 imess_install_deps() {   # imess_install_deps [test]: the build packages, with "test" also the test ones
   local wanted=("${imess_packages[@]}")
   [ "${1:-}" = test ] && wanted+=("${imess_test_packages[@]}")
+  imess_install_packages "${wanted[@]}"
+}
+
+imess_install_packages() {   # imess_install_packages PKG...: apt-get install those not installed
+  local wanted=("$@")
   local missing=()
   for p in "${wanted[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -24,10 +29,16 @@ imess_install_deps() {   # imess_install_deps [test]: the build packages, with "
 
 imess_build() {   # imess_build <build-dir> [targets...]: configure, then build (all by default)
   local dir=$1; shift
-  cmake -S "$imess_root" -B "$dir" -G Ninja >/dev/null || return 1
+  # ccache: a rebuild (another build dir, a fresh clone at another path) reuses what compiled.
+  export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$imess_root} CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
+  cmake -S "$imess_root" -B "$dir" -G Ninja -DCMAKE_CXX_COMPILER_LAUNCHER=ccache >/dev/null || return 1
   if [ $# -gt 0 ]; then
     cmake --build "$dir" -j "$(nproc)" --target "$@"
   else
     cmake --build "$dir" -j "$(nproc)"
   fi
 }
+
+# Only for scripts/fuzz: clang and its libFuzzer runtime (libclang_rt.fuzzer in libclang-rt-14-dev).
+imess_fuzz_packages=(clang libclang-rt-14-dev)
+imess_install_fuzz_deps() { imess_install_packages "${imess_fuzz_packages[@]}"; }

@@ -15,17 +15,21 @@ namespace {
 // A port address as a number (888) or a hex string ("0x378").
 std::uint16_t port_address(JsonObject& o, const std::string& key, std::uint16_t def) {
   if (!o.has(key)) return def;
-  try {
-    std::string s = o.text(key, "");
-    std::size_t used = 0;
-    unsigned long v = std::stoul(s, &used, 0);
-    if (used != s.size() || v > 0xFFFF) o.fail(key, "a port address from 0 to 0xFFFF, e.g. 888 or \"0x378\"");
-    return static_cast<std::uint16_t>(v);
-  } catch (const ConfigError&) {
-    return static_cast<std::uint16_t>(o.number(key, def, 0, 0xFFFF));
-  } catch (const std::logic_error&) {
-    o.fail(key, "a port address from 0 to 0xFFFF, e.g. 888 or \"0x378\"");
+  const char* expected = "a port address from 0 to 0xFFFF, e.g. 888 or \"0x378\"";
+  if (!o.is_string(key)) {
+    if (!o.is_number(key)) o.fail(key, expected);
+    return static_cast<std::uint16_t>(o.whole(key, def, 0, 0xFFFF));
   }
+  std::string s = o.text(key, "");
+  std::size_t used = 0;
+  unsigned long v = 0;
+  try {
+    v = std::stoul(s, &used, 0);
+  } catch (const std::logic_error&) {
+    o.fail(key, expected);
+  }
+  if (used != s.size() || s.find('-') != std::string::npos || v > 0xFFFF) o.fail(key, expected);
+  return static_cast<std::uint16_t>(v);
 }
 
 void read_port_io(JsonObject& b, PortBackendConfig& p, bool simulated) {
@@ -40,7 +44,7 @@ void read_port_io(JsonObject& b, PortBackendConfig& p, bool simulated) {
   }
   io.file = o->text("file", io.file);
   io.base = port_address(*o, "base", io.base);
-  io.count = static_cast<int>(o->number("count", io.count, 1, 4096));
+  io.count = static_cast<int>(o->whole("count", io.count, 1, 4096));
   io.device = o->text("device", io.device);
   o->finish();
 }
@@ -110,7 +114,7 @@ void read_stepper(JsonObject& b, DaemonConfig& cfg, bool simulated) {
   s.dir_setup_ns = b.number("dir_setup_us", s.dir_setup_ns / 1000, 0, 1000) * 1000;
   s.dir_hold_ns = b.number("dir_hold_us", s.dir_hold_ns / 1000, 0, 1000) * 1000;
   if (b.has("initial_position")) cfg.ports.initial_position_set = true;
-  s.initial_position = b.vec3("initial_position", s.initial_position);
+  s.initial_position = b.vec3("initial_position", s.initial_position, 1e5);
   if (auto axes = b.object("axes")) {
     for (int a = 0; a < hal::kAxes; ++a) {
       auto ax = axes->object(std::string(1, hal::kAxisNames[a]));
@@ -146,7 +150,7 @@ void read_drive(JsonObject& b, DaemonConfig& cfg, bool simulated) {
   read_port_io(b, cfg.ports, simulated);
   auto map = b.text("port_map", "mrm-b", {"mrm-a", "mrm-b"});
   d = *hal::named_drive_kit_map(map);
-  d.mode = static_cast<int>(b.number("mode", d.mode, 1, 2));
+  d.mode = static_cast<int>(b.whole("mode", d.mode, 1, 2));
   d.sync_port = port_address(b, "sync_port", d.sync_port);
   d.inputs_port = port_address(b, "inputs_port", d.inputs_port);
   d.outputs_port = port_address(b, "outputs_port", d.outputs_port);
@@ -164,7 +168,7 @@ void read_drive(JsonObject& b, DaemonConfig& cfg, bool simulated) {
     }
   }
   if (b.has("initial_position")) cfg.ports.initial_position_set = true;
-  d.initial_position = b.vec3("initial_position", d.initial_position);
+  d.initial_position = b.vec3("initial_position", d.initial_position, 1e5);
   if (auto axes = b.object("axes")) {
     for (int a = 0; a < hal::kAxes; ++a) {
       auto ax = axes->object(std::string(1, hal::kAxisNames[a]));

@@ -1,6 +1,7 @@
 // Command-line parsing for messd.
 #include "cli.hpp"
 
+#include <boost/asio/ip/address.hpp>
 #include <stdexcept>
 #include <string_view>
 
@@ -32,11 +33,18 @@ CliOptions parse_cli(int argc, char** argv) {
     std::string_view a = argv[i];
     auto value = [&](const char* what) -> std::string {
       if (i + 1 >= argc) throw std::invalid_argument(std::string(a) + " needs " + what);
+      if (argv[i + 1][0] == '\0') throw std::invalid_argument(std::string(a) + " needs " + what + ", got an empty value");
       return argv[++i];
     };
     if (a == "--config") o.config = value("a file name");
     else if (a == "--rc") o.rc = value("a file name");
-    else if (a == "--listen") o.listen = value("an address such as 0.0.0.0 or 127.0.0.1");
+    else if (a == "--listen") {
+      auto text = value("an address such as 0.0.0.0 or 127.0.0.1");
+      boost::system::error_code ec;
+      (void)boost::asio::ip::make_address(text, ec);
+      if (ec) throw std::invalid_argument("--listen takes an IPv4 or IPv6 address such as 0.0.0.0, 127.0.0.1 or ::, got '" + text + "'");
+      o.listen = text;
+    }
     else if (a == "--port") {
       auto text = value("a port number");
       auto n = protocol::parse_number(text);

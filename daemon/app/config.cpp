@@ -1,11 +1,14 @@
 // Configuration loading: JSON (strict, documented in docs/configuration.md) and messdrc.
 #include "config.hpp"
 
-#include <fstream>
+#include <boost/asio/ip/address.hpp>
+#include <map>
 #include <sstream>
 
+#include "config_file.hpp"
 #include "imess/protocol/numbers.hpp"
 #include "json_object.hpp"
+#include "json_text.hpp"
 
 namespace imess::app {
 
@@ -64,24 +67,29 @@ sim::Solid read_solid(JsonObject& o) {
   return c;
 }
 
+std::string checked_address(JsonObject& o, const std::string& key, const std::string& def) {
+  std::string text = o.text(key, def);
+  boost::system::error_code ec;
+  (void)boost::asio::ip::make_address(text, ec);
+  if (ec) o.fail(key, "an IPv4 or IPv6 address such as \"0.0.0.0\", \"127.0.0.1\" or \"::\"");
+  return text;
+}
+
 }  // namespace
 
 void load_json_config(const std::string& path, DaemonConfig& cfg) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open the configuration file");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in, nullptr, true, /*ignore_comments=*/true);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw ConfigError(path + ": not valid JSON: " + e.what());
-  }
+  load_config_text(read_config_file(path, "configuration file", "--config"), path, cfg);
+}
+
+void load_config_text(const std::string& text, const std::string& path, DaemonConfig& cfg) {
+  const nlohmann::json j = parse_json_text(text, path);
   JsonObject top(j, path, "");
   top.text("_comment", "");  // free text for people
   if (auto s = top.object("server")) {
-    cfg.server.port = static_cast<std::uint16_t>(s->number("port", cfg.server.port, 0, 65535));
-    cfg.server.listen = s->text("listen", cfg.server.listen);
+    cfg.server.port = static_cast<std::uint16_t>(s->whole("port", cfg.server.port, 0, 65535));
+    cfg.server.listen = checked_address(*s, "listen", cfg.server.listen);
     cfg.server.report_hz = s->number("report_hz", cfg.server.report_hz, 0.1, 100);
-    cfg.server.max_clients = static_cast<std::size_t>(s->number("max_clients", double(cfg.server.max_clients), 1, 10000));
+    cfg.server.max_clients = static_cast<std::size_t>(s->whole("max_clients", static_cast<long long>(cfg.server.max_clients), 1, 10000));
     s->finish();
   }
   if (auto m = top.object("motion")) {
@@ -114,6 +122,9 @@ void load_json_config(const std::string& path, DaemonConfig& cfg) {
       auto dir = ax->text("home_direction", s.home_direction < 0 ? "neg" : "pos", {"neg", "pos"});
       s.home_direction = dir == "neg" ? -1 : 1;
       s.home_position = ax->number("home_position", s.home_direction < 0 ? s.travel_min : s.travel_max, -1e5, 1e5);
+      if (s.home_position < s.travel_min || s.home_position > s.travel_max)
+        ax->fail("home_position", "a coordinate within the travel, from travel_min " + compact(s.travel_min) +
+                                      " to travel_max " + compact(s.travel_max));
       s.max_velocity = ax->number("max_velocity", cfg.core.max_velocity, 0.1, 2000);
       s.max_accel = ax->number("max_accel", cfg.core.params.max_accel, 1, 20000);
       ax->finish();
@@ -134,7 +145,7 @@ void load_json_config(const std::string& path, DaemonConfig& cfg) {
   }
   if (auto s = top.object("sim")) {
     auto& m = cfg.sim.mechanics;
-    m.start = s->vec3("start", m.start);
+    m.start = s->vec3("start", m.start, 1e5);
     cfg.sim.card.absolute_scales = s->boolean("absolute_scales", cfg.sim.card.absolute_scales);
     cfg.sim.card.firmware = s->text("firmware", cfg.sim.card.firmware);
     if (auto pr = s->object("probe")) {
@@ -157,9 +168,15 @@ void load_json_config(const std::string& path, DaemonConfig& cfg) {
 }
 
 std::vector<std::string> load_messdrc(const std::string& path, DaemonConfig& cfg) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open the messdrc file");
+  return load_messdrc_text(read_config_file(path, "messdrc file", "--rc"), path, cfg);
+}
+
+std::vector<std::string> load_messdrc_text(const std::string& text, const std::string& path, DaemonConfig& cfg) {
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+    throw ConfigError(path + ": is empty; a messdrc holds lines such as 'TipRadius 2.0' (SpeedLevel, TipReversed, TipRadius)");
   std::vector<std::string> warnings;
+  std::map<std::string, int> seen;  // setting -> line it was given on
+  std::istringstream in(text);
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
     if (auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
@@ -171,10 +188,16 @@ std::vector<std::string> load_messdrc(const std::string& path, DaemonConfig& cfg
     auto number = [&](double lo, double hi) {
       auto v = protocol::parse_number(value);
       if (!v || *v < lo || *v > hi || !extra.empty())
-        throw ConfigError(at + key + " takes one number from " + nlohmann::json(lo).dump() + " to " +
-                          nlohmann::json(hi).dump() + ", got '" + value + "'");
+        throw ConfigError(at + key + " takes one number from " + compact(lo) + " to " + compact(hi) + ", got '" +
+                          value + "'");
       return *v;
     };
+    const bool known = key == "SpeedLevel" || key == "TipRadius" || key == "TipReversed";
+    if (known) {
+      if (auto [it, fresh] = seen.emplace(key, n); !fresh)
+        throw ConfigError(at + key + " is set again (first on line " + std::to_string(it->second) +
+                          "); give each setting once");
+    }
     if (key == "SpeedLevel") {
       cfg.core.params.speed_level = number(0.01, 2);
       cfg.notes.push_back("messdrc: SpeedLevel " + value);
@@ -187,7 +210,10 @@ std::vector<std::string> load_messdrc(const std::string& path, DaemonConfig& cfg
       cfg.card.tip_reversed = value == "true";
       cfg.notes.push_back("messdrc: TipReversed " + value);
     } else {
-      warnings.push_back(at + "unknown setting '" + key + "' ignored (known: SpeedLevel, TipReversed, TipRadius)");
+      std::string shown = key.substr(0, 40);
+      for (char& c : shown)
+        if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
+      warnings.push_back(at + "unknown setting '" + shown + "' ignored (known: SpeedLevel, TipReversed, TipRadius)");
     }
   }
   return warnings;

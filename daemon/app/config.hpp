@@ -26,12 +26,17 @@ struct DaemonConfig {
   std::vector<std::string> notes;  // what was read from where, for the start-up log
 };
 
-// Reads a JSON configuration file over the defaults; throws ConfigError naming file and key.
+// Reads a JSON configuration file over the defaults; throws ConfigError naming file and key
+// (also for a file that is missing, a directory, unreadable or empty).
 void load_json_config(const std::string& path, DaemonConfig& config);
+// The same for JSON text already in memory; `file` is the name used in messages.
+void load_config_text(const std::string& text, const std::string& file, DaemonConfig& config);
 
 // Reads a 1996 messdrc (SpeedLevel, TipReversed, TipRadius, # comments). Unknown lines are
-// returned as warnings; a bad value throws ConfigError naming file and line.
+// returned as warnings; a bad or repeated value, or an empty file, throws ConfigError
+// naming file and line.
 std::vector<std::string> load_messdrc(const std::string& path, DaemonConfig& config);
+std::vector<std::string> load_messdrc_text(const std::string& text, const std::string& file, DaemonConfig& config);
 
 // Derives what follows from other settings (sim axes from the travel, probe polarity).
 void finish_config(DaemonConfig& config);

@@ -7,13 +7,11 @@
 
 namespace imess::app {
 
-namespace {
 std::string compact(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
-}  // namespace
 
 JsonObject::JsonObject(const nlohmann::json& j, std::string file, std::string path)
     : j_(j), file_(std::move(file)), path_(std::move(path)) {
@@ -37,6 +35,16 @@ double JsonObject::number(const std::string& key, double def, double min, double
   return v.get<double>();
 }
 
+long long JsonObject::whole(const std::string& key, long long def, long long min, long long max) {
+  read_.insert(key);
+  if (!j_.contains(key)) return def;
+  const auto& v = j_.at(key);
+  const double d = v.is_number() ? v.get<double>() : 0;
+  if (!v.is_number() || !std::isfinite(d) || d < double(min) || d > double(max) || d != std::floor(d))
+    fail(key, "a whole number from " + std::to_string(min) + " to " + std::to_string(max));
+  return static_cast<long long>(d);
+}
+
 bool JsonObject::boolean(const std::string& key, bool def) {
   read_.insert(key);
   if (!j_.contains(key)) return def;
@@ -55,15 +63,17 @@ std::string JsonObject::text(const std::string& key, const std::string& def, con
   return s;
 }
 
-hal::Vec3 JsonObject::vec3(const std::string& key, const hal::Vec3& def) {
+hal::Vec3 JsonObject::vec3(const std::string& key, const hal::Vec3& def, double limit) {
   read_.insert(key);
   if (!j_.contains(key)) return def;
   const auto& v = j_.at(key);
-  if (!v.is_array() || v.size() != 3) fail(key, "an array of three numbers [x, y, z]");
+  const std::string expected = "an array of three numbers [x, y, z], each from " + compact(-limit) + " to " + compact(limit);
+  if (!v.is_array() || v.size() != 3) fail(key, expected);
   hal::Vec3 out;
-  for (int i = 0; i < 3; ++i) {
-    if (!v[i].is_number()) fail(key, "an array of three numbers [x, y, z]");
-    out[i] = v[i].get<double>();
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!v[i].is_number()) fail(key, expected);
+    out[static_cast<int>(i)] = v[i].get<double>();
+    if (!std::isfinite(out[static_cast<int>(i)]) || std::abs(out[static_cast<int>(i)]) > limit) fail(key, expected);
   }
   return out;
 }

@@ -17,18 +17,26 @@ class ConfigError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A number as people write it in messages: %g ("0.1", "1000", "1e+06").
+std::string compact(double v);
+
 class JsonObject {
  public:
   JsonObject(const nlohmann::json& j, std::string file, std::string path);
 
   double number(const std::string& key, double def, double min, double max);
+  // A whole number (1066 or 1066.0) from min to max.
+  long long whole(const std::string& key, long long def, long long min, long long max);
   bool boolean(const std::string& key, bool def);
   std::string text(const std::string& key, const std::string& def, const std::vector<std::string>& allowed = {});
-  hal::Vec3 vec3(const std::string& key, const hal::Vec3& def);
+  // Three numbers [x, y, z], each from -limit to limit.
+  hal::Vec3 vec3(const std::string& key, const hal::Vec3& def, double limit = 1e6);
   std::optional<JsonObject> object(const std::string& key);
   // Array of objects (may be absent: nullopt).
   std::optional<std::vector<JsonObject>> objects(const std::string& key);
   bool has(const std::string& key) const { return j_.contains(key); }
+  bool is_string(const std::string& key) const { return has(key) && j_.at(key).is_string(); }
+  bool is_number(const std::string& key) const { return has(key) && j_.at(key).is_number(); }
   // Throws for keys present but never read.
   void finish() const;
   [[noreturn]] void fail(const std::string& key, const std::string& expected) const;

@@ -43,9 +43,10 @@ app::DaemonConfig configure(const app::CliOptions& cli) {
   app::finish_config(cfg);
   return cfg;
 }
-}  // namespace
 
-int main(int argc, char** argv) {
+// The daemon's life; main() around it turns any exception that escapes into a message and
+// exit status 2, so no input can end messd in an abort.
+int run(int argc, char** argv) {
   auto logger = spdlog::stderr_color_mt("messd");
   spdlog::set_default_logger(logger);
   spdlog::set_pattern("%H:%M:%S.%e messd %^%l%$: %v");
@@ -53,7 +54,7 @@ int main(int argc, char** argv) {
   app::CliOptions cli;
   try {
     cli = app::parse_cli(argc, argv);
-  } catch (const std::invalid_argument& e) {
+  } catch (const std::exception& e) {
     std::cerr << "messd: " << e.what() << "\n" << app::usage_text();
     return 2;
   }
@@ -69,7 +70,7 @@ int main(int argc, char** argv) {
   app::DaemonConfig cfg;
   try {
     cfg = configure(cli);
-  } catch (const app::ConfigError& e) {
+  } catch (const std::exception& e) {  // ConfigError, and anything a reader did not foresee
     spdlog::error("{}", e.what());
     return 2;
   }
@@ -129,4 +130,17 @@ int main(int argc, char** argv) {
   machine->stop_base_thread();
   spdlog::info("motion stopped, loops open; bye");
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "messd: stopped by an unexpected error: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "messd: stopped by an unexpected error of unknown type\n");
+  }
+  return 2;
 }

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "daemon_process.hpp"
 
@@ -42,7 +43,7 @@ TEST_CASE("a wrong value stops start-up saying what is expected") {
   auto f = temp_file("bad2.json", R"({"server": {"port": "http"}})");
   auto r = run_messd("--config " + f);
   CHECK(r.status == 2);
-  CHECK(r.output.find("'server.port' must be a number from 0 to 65535") != std::string::npos);
+  CHECK(r.output.find("'server.port' must be a whole number from 0 to 65535") != std::string::npos);
   auto g = temp_file("bad3.json", R"({"motion": )");
   r = run_messd("--config " + g);
   CHECK(r.status == 2);
@@ -78,4 +79,40 @@ TEST_CASE("command-line errors say what is accepted") {
   r = run_messd("--frobnicate");
   CHECK(r.status == 2);
   CHECK(r.output.find("usage: messd") != std::string::npos);
+}
+
+TEST_CASE("unusable configuration files stop start-up with exit 2 and a message, never an abort") {
+  struct Case {
+    std::string args, message;
+  };
+  auto dir = std::filesystem::temp_directory_path().string();
+  std::vector<Case> cases{
+      {"--config " + temp_file("huge.json", R"({"motion":{"max_speed":1e400}})"),
+       "key 'motion.max_speed' must be a number from 0.1 to 1000, got \"1e400\""},
+      {"--config " + dir, "is a directory, not a configuration file"},
+      {"--config " + dir + "/imess-no-such-file.json", "cannot open the configuration file"},
+      {"--config " + temp_file("empty.json", "  \n"), "is empty; a configuration is a JSON object"},
+      {"--config " + temp_file("dup.json", R"({"axes":{"X":{"travel_min":0,"travel_min":1}}})"),
+       "key 'axes.X.travel_min' appears twice in the same object"},
+      {"--config " + temp_file("home.json", R"({"axes":{"X":{"home_position":5000}}})"),
+       "key 'axes.X.home_position' must be a coordinate within the travel, from travel_min 0 to travel_max 1000"},
+      {"--rc " + dir, "is a directory, not a messdrc file"},
+      {"--rc " + temp_file("rc-dup", "TipRadius 1\nTipRadius 2\n"), ":2: TipRadius is set again (first on line 1)"},
+      {"--rc " + temp_file("rc-huge", "TipRadius 1e400\n"), ":1: TipRadius takes one number from 0 to 50"},
+      {"--listen nowhere", "--listen takes an IPv4 or IPv6 address"},
+      {"--port 1e400", "--port takes a whole number from 0 to 65535"},
+  };
+  for (const auto& c : cases) {
+    INFO(c.args);
+    auto r = run_messd(c.args);
+    CHECK(r.status == 2);
+    CHECK(r.output.find(c.message) != std::string::npos);
+  }
+}
+
+TEST_CASE("a messdrc value too small to represent is zero") {
+  auto rc = temp_file("messdrc-tiny", "TipRadius 1e-400\n");
+  DaemonProcess messd({"--rc", rc});
+  LineClient c(messd.port());
+  CHECK(c.request("Get TipRadius") == std::optional<std::string>("Ok Get TipRadius 0.000"));
 }

@@ -72,3 +72,37 @@ TEST_CASE("replies come in the order of the requests, whoever answers them") {
   CHECK(replies == std::vector<std::string>{"Ok StartMv", "Ok Status", "Ok Get", "Err 100", "Ok StopMv", "Ok Hello",
                                             "Ok ForcePt", "Ok Stats"});
 }
+
+TEST_CASE("hostile telnet bytes never silence a session or merge two lines") {
+  DaemonProcess messd;
+  LineClient c(messd.port());
+  REQUIRE(c.next());  // CurrCor on connect
+  // IAC SB with no IAC SE: abandoned after 64 bytes, the line is refused, the session goes on.
+  c.send_raw(std::string("\xff\xfa\x18", 3) + std::string(100, 'x') + "\n");
+  CHECK(c.until_prefix("Err 104 ", 2.0));
+  CHECK(c.request("Get SpeedLevel") == std::optional<std::string>("Ok Get SpeedLevel 1.000"));
+  // IAC SB cut by an LF: that line is refused, the next one is read on its own.
+  c.send_raw(std::string("\xff\xfa\x18", 3) + "\n");
+  CHECK(c.until_prefix("Err 104 ", 2.0));
+  // IAC LF: two lines, not 'StatusHello'.
+  c.send_raw("Status\xff\nHello\n");
+  CHECK(c.until_prefix("Err 104 ", 2.0));
+  CHECK(c.until_prefix("Ok Hello IMESS", 2.0));
+  // NUL and a lone CR inside a line: Err 104, as promised for control bytes.
+  CHECK(c.request(std::string("Sta\0tus", 7))->rfind("Err 104 ", 0) == 0);
+  CHECK(c.request("Sta\rtus")->rfind("Err 104 ", 0) == 0);
+  // Telnet's CR NUL ends a line.
+  c.send_raw(std::string("Get TipRadius\r\0", 15));
+  CHECK(c.until_prefix("Ok Get TipRadius", 2.0) == std::optional<std::string>("Ok Get TipRadius 2.000"));
+}
+
+TEST_CASE("a number that underflows is zero, one that overflows is refused") {
+  DaemonProcess messd;
+  LineClient c(messd.port());
+  CHECK(c.request("Set TipRadius 1e-400") == std::optional<std::string>("Ok Set"));
+  CHECK(c.request("Get TipRadius") == std::optional<std::string>("Ok Get TipRadius 0.000"));
+  CHECK(c.request("Set TipRadius 1e400")->rfind("Err 105 TipRadius takes a number from 0 to 50", 0) == 0);
+  CHECK(c.request("Get TipRadius") == std::optional<std::string>("Ok Get TipRadius 0.000"));
+  CHECK(c.request("GoTo 1e400 0 0")->rfind("Err 102 ", 0) == 0);
+  CHECK(c.request("StartMv 1e-400 0 0") == std::optional<std::string>("Ok StartMv"));
+}

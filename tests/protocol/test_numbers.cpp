@@ -31,3 +31,24 @@ TEST_CASE("append_mm prints three decimals like the 1996 daemon") {
   append_mm(s, -1.5);
   CHECK(s == "-1.500");
 }
+
+TEST_CASE("a number too small to represent reads as zero, one too large is refused") {
+  CHECK(parse_number("1e-400") == 0.0);
+  CHECK(parse_number("-1e-400") == 0.0);
+  CHECK(parse_number("+0.00001e-320") == 0.0);
+  CHECK(parse_number("123.456e-99999999999999") == 0.0);
+  CHECK(parse_number("0.0000000000000000001e-310") == 0.0);
+  CHECK_FALSE(parse_number("1e400"));
+  CHECK_FALSE(parse_number("-1e400"));
+  CHECK_FALSE(parse_number("0.001e312"));
+  CHECK_FALSE(parse_number("12345678901234567890e300"));
+  CHECK_FALSE(parse_number("1e99999999999999"));
+  CHECK_FALSE(parse_number("1e-400x"));
+  CHECK(parse_number("1e-300") == 1e-300);  // small but representable: kept as it is
+}
+
+TEST_CASE("a leading plus takes one plain number, never a second sign") {
+  CHECK_FALSE(parse_number("+"));
+  CHECK_FALSE(parse_number("+-1"));
+  CHECK_FALSE(parse_number("++1"));
+}

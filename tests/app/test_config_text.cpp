@@ -1,0 +1,97 @@
+// Configuration text -> DaemonConfig without starting anything: ranges, overflow, duplicate
+// keys at any depth, travel checks, messdrc; every error names file and key.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "config.hpp"
+#include "json_object.hpp"
+
+using namespace imess::app;
+
+namespace {
+// The ConfigError message for `text`, or "" when it loads.
+std::string json_error(const std::string& text) {
+  DaemonConfig cfg;
+  try {
+    load_config_text(text, "t.json", cfg);
+    finish_config(cfg);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+std::string rc_error(const std::string& text) {
+  DaemonConfig cfg;
+  try {
+    load_messdrc_text(text, "rc", cfg);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+}  // namespace
+
+TEST_CASE("numbers too large for a double are refused with the key and its range") {
+  CHECK(json_error(R"({"motion":{"max_speed":1e400}})") ==
+        "t.json: key 'motion.max_speed' must be a number from 0.1 to 1000, got \"1e400\"");
+  CHECK(contains(json_error(R"({"motion":{"tip_radius":-1e999}})"), "key 'motion.tip_radius' must be a number from 0 to 50"));
+  CHECK(contains(json_error(R"({"sim":{"scene":[{"type":"sphere","diameter":2e308}]}})"),
+                 "key 'sim.scene[0].diameter' must be a number from 0.01 to 10000"));
+  CHECK(contains(json_error(R"({"sim":{"start":[0, 1e400, 0]}})"), "key 'sim.start' must be an array of three numbers"));
+  CHECK(contains(json_error(R"({"server":{"port":1e400}})"), "key 'server.port' must be a whole number from 0 to 65535"));
+  CHECK(contains(json_error(R"({"server":{"max_clients":2.5}})"), "must be a whole number from 1 to 10000"));
+}
+
+TEST_CASE("a number too small to represent is zero where zero is allowed") {
+  DaemonConfig cfg;
+  load_config_text(R"({"motion":{"tip_radius":1e-400}})", "t.json", cfg);
+  CHECK(cfg.core.params.tip_radius == 0.0);
+}
+
+TEST_CASE("duplicate keys are refused at any depth, naming the key") {
+  CHECK(json_error(R"({"motion":{}, "motion":{}})") == "t.json: key 'motion' appears twice in the same object; give each key once");
+  CHECK(contains(json_error(R"({"axes":{"Z":{"travel_max":600, "travel_max":500}}})"), "key 'axes.Z.travel_max' appears twice"));
+  CHECK(contains(json_error(R"({"sim":{"scene":[{"type":"plane"},{"type":"box","size":[1,1,1],"size":[2,2,2]}]}})"),
+                 "key 'sim.scene[1].size' appears twice"));
+  CHECK(json_error(R"({"a":{"x":1},"b":{"x":1}})").find("appears twice") == std::string::npos);  // same name, other objects
+}
+
+TEST_CASE("empty text, bad JSON and absurd nesting are refused") {
+  CHECK(contains(json_error(""), "t.json: is empty"));
+  CHECK(contains(json_error(" \n\t"), "t.json: is empty"));
+  CHECK(contains(json_error("{"), "t.json: not valid JSON"));
+  CHECK(contains(json_error("[]"), "'the top level' must be a JSON object"));
+  CHECK(contains(json_error("{\"_comment\":" + std::string(100, '[') + std::string(100, ']') + "}"), "deeper than 32 levels"));
+}
+
+TEST_CASE("home_position lies within the travel") {
+  CHECK(contains(json_error(R"({"axes":{"X":{"home_position":5000}}})"),
+                 "key 'axes.X.home_position' must be a coordinate within the travel, from travel_min 0 to travel_max 1000, got 5000"));
+  CHECK(contains(json_error(R"({"axes":{"Y":{"travel_min":-10,"travel_max":10,"home_position":-10.5}}})"), "axes.Y.home_position"));
+  CHECK(json_error(R"({"axes":{"Y":{"travel_min":-10,"travel_max":10,"home_position":10}}})").empty());
+  CHECK(json_error(R"({"axes":{"Z":{"travel_min":-10,"travel_max":10}}})").empty());  // default: the travel end
+}
+
+TEST_CASE("addresses and port numbers are checked where they are read") {
+  CHECK(contains(json_error(R"({"server":{"listen":"localhost:80"}})"), "key 'server.listen' must be an IPv4 or IPv6 address"));
+  CHECK(json_error(R"({"server":{"listen":"::1","port":1066.0}})").empty());
+  CHECK(contains(json_error(R"({"backend":{"type":"sim-parport","parport_base":"0x1FFFF"}})"), "a port address from 0 to 0xFFFF"));
+  CHECK(contains(json_error(R"({"backend":{"type":"sim-parport","parport_base":"-1"}})"), "a port address from 0 to 0xFFFF"));
+  CHECK(contains(json_error(R"({"backend":{"type":"sim-parport","parport_base":true}})"), "a port address from 0 to 0xFFFF"));
+  CHECK(json_error(R"({"backend":{"type":"sim-parport","parport_base":"0x378"}})").empty());
+}
+
+TEST_CASE("messdrc text: values, underflow, repeats, empty files and bad values") {
+  DaemonConfig cfg;
+  auto warnings = load_messdrc_text("# stylus\nTipRadius 1e-400\nSpeedLevel 0.5\nColour red\n", "rc", cfg);
+  CHECK(cfg.core.params.tip_radius == 0.0);
+  CHECK(cfg.core.params.speed_level == 0.5);
+  REQUIRE(warnings.size() == 1);
+  CHECK(contains(warnings[0], "rc:4: unknown setting 'Colour' ignored"));
+  CHECK(rc_error("TipRadius 1e400\n") == "rc:1: TipRadius takes one number from 0 to 50, got '1e400'");
+  CHECK(rc_error("SpeedLevel 1\n\nSpeedLevel 1\n") == "rc:3: SpeedLevel is set again (first on line 1); give each setting once");
+  CHECK(contains(rc_error(""), "rc: is empty"));
+  CHECK(contains(rc_error("TipReversed yes\n"), "rc:1: TipReversed takes true or false"));
+}
