@@ -1,7 +1,8 @@
 # Sourced by scripts/run and scripts/test: installs the Debian packages IMESS needs
 # when any is missing (fresh Debian 12 machine), and nothing otherwise.
+# (telnet: the README's tour talks to messd with it.)
 imess_packages=(cmake ninja-build g++ pkg-config libboost-dev libeigen3-dev libspdlog-dev
-                nlohmann-json3-dev catch2 libncurses-dev ccache)
+                nlohmann-json3-dev catch2 libncurses-dev ccache telnet)
 # Only for scripts/test: the independent readers the export and FreeCAD plugin tests use
 # (ezdxf for DXF; freecadcmd for STEP, IGES, PLY, ASC and the plugin). Debian's python3 comes with them.
 imess_test_packages=(python3 python3-ezdxf freecad-python3)
