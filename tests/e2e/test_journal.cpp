@@ -2,9 +2,12 @@
 // Replay of exactly the live lines, numbering across restarts, rotation, the per-request cap.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
+#include "child_process.hpp"
 #include "daemon_process.hpp"
 #include "imess/protocol/messages.hpp"
 
@@ -151,4 +154,52 @@ TEST_CASE("Replay sends at most 1000 hits per request; the client asks again") {
   auto [rest, ok2] = replay(c, 1001);
   CHECK(ok2 == "Ok Replay 3 1003");
   CHECK(rest == std::vector<std::string>(hits.begin() + 1000, hits.end()));
+}
+
+TEST_CASE("a hand hit is journaled with its push direction and the tip radius") {
+  DaemonProcess messd;
+  LineClient c(messd.port());
+  REQUIRE(c.request("GoTo 430 330 90") == std::optional<std::string>("Ok GoTo"));
+  REQUIRE(c.until_prefix("State idle", 5.0));
+  REQUIRE(c.request("Free") == std::optional<std::string>("Ok Free"));
+  REQUIRE(c.request("HandMv 3 4 -9 10") == std::optional<std::string>("Ok HandMv"));
+  auto line = c.until_prefix("Hit ", 5.0);
+  REQUIRE(line);
+  auto h = std::get<p::HitMsg>(p::parse_message(*line));
+  CHECK(h.id == 0);
+  CHECK(h.radius == 2.0);
+  const double n = std::sqrt(106.0);
+  CHECK(h.dir.x == Approx(3 / n).margin(1e-3));
+  CHECK(h.dir.y == Approx(4 / n).margin(1e-3));
+  CHECK(h.dir.z == Approx(-9 / n).margin(1e-3));
+  CHECK(c.next()->rfind("MeasPt ", 0) == 0);
+}
+
+TEST_CASE("messcap --append against messd fetches the hits measured while it was not running") {
+  TempDir dir;
+  const std::string xyz = dir.file("part.xyz");
+  DaemonProcess messd;
+  const std::string where = "127.0.0.1:" + std::to_string(messd.port());
+  LineClient c(messd.port());
+  {
+    ChildProcess cap({client_binary("messcap"), where, "-n", "2", "-o", xyz});
+    for (auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+         cap.err().find("connected to") == std::string::npos;) {
+      REQUIRE(std::chrono::steady_clock::now() < until);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    force_points(c, 2);
+    REQUIRE(cap.wait() == 0);
+  }
+  auto missed = force_points(c, 3);  // nobody capturing
+  auto r = run_program({client_binary("messcap"), where, "-n", "3", "-o", xyz, "--append"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  std::ifstream in(xyz);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  REQUIRE(lines.size() == 5);
+  for (int i = 0; i < 5; ++i) CHECK(lines[i].substr(lines[i].rfind('#')) == "# hit " + std::to_string(i + 1));
+  CHECK_THAT(r.err, Catch::Contains("continuing after hit 2"));
 }
