@@ -46,7 +46,7 @@ TEST_CASE("a gap holds later hits back and asks for a Replay from the first miss
   CHECK(s.next() == std::optional<std::uint64_t>(6));
 }
 
-TEST_CASE("--append and reconnects replay from the next number; a capped Replay is continued") {
+TEST_CASE("after --append or a reconnect the Replay starts at the next number - a capped Replay is continued") {
   HitSequencer s(10);
   s.on_connected();
   CHECK(s.take_replay_request() == std::optional<std::uint64_t>(11));

@@ -59,7 +59,7 @@ std::string temp_dir(const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("every point comes as Hit, then the unchanged MeasPt; Replay gives the same Hit lines") {
+TEST_CASE("every point comes as Hit, then the unchanged MeasPt - Replay gives the same Hit lines") {
   DaemonProcess messd;
   LineClient c(messd.port());
   REQUIRE(c.request("StartMv 0 0 -20") == std::optional<std::string>("Ok StartMv"));
@@ -123,7 +123,7 @@ TEST_CASE("the numbering continues after a restart, also after kill -9") {
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("rotated-away hits are Err 209 naming the oldest kept; a big Replay is capped at 1000") {
+TEST_CASE("rotated-away hits are Err 209 naming the oldest kept - a big Replay is capped at 1000") {
   auto dir = temp_dir("journal-rotate");
   std::filesystem::create_directories(dir);
   const std::string config = dir + "/small-journal.json";
@@ -144,7 +144,7 @@ TEST_CASE("rotated-away hits are Err 209 naming the oldest kept; a big Replay is
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("Replay sends at most 1000 hits per request; the client asks again") {
+TEST_CASE("Replay sends at most 1000 hits per request - the client asks again") {
   DaemonProcess messd;
   LineClient c(messd.port());
   auto hits = force_points(c, 1003);
