@@ -129,7 +129,9 @@ TEST_CASE("chaos: SIGKILL at random moments while measuring loses no hit and dup
     messd = std::make_unique<DaemonProcess>(with_port);
   }
 
-  // The newest hit journaled, as messd says; then wait for messcap to hold it.
+  // The newest hit journaled, as messd says (after the driver's last commands have run);
+  // then wait for messcap to hold it.
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
   std::uint64_t newest = 0;
   {
     LineClient c(messd->port());
