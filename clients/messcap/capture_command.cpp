@@ -113,7 +113,10 @@ int run_capture(int argc, const char* const argv[]) {
     } else if (auto* ok = std::get_if<protocol::OkMsg>(&message); ok && ok->verb == "Replay") {
       auto count = ok->args.size() == 2 ? protocol::parse_sequence_number(ok->args[0]) : std::nullopt;
       auto newest = ok->args.size() == 2 ? protocol::parse_sequence_number(ok->args[1]) : std::nullopt;
-      if (count && newest) take_all(sequencer.on_replay_ok(*count, *newest));
+      if (count && newest) {
+        if (*count > 0) std::cerr << "messcap: Replay gave " << *count << " journaled hits (up to " << *newest << ")\n";
+        take_all(sequencer.on_replay_ok(*count, *newest));
+      }
     } else if (auto* err = std::get_if<protocol::ErrMsg>(&message)) {
       // messcap sends only Hello (never refused) and Replay: an Err answers a Replay.
       auto oldest = protocol::parse_sequence_number(std::string_view(err->text).substr(err->text.rfind(' ') + 1));

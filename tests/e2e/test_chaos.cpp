@@ -150,7 +150,13 @@ TEST_CASE("chaos: SIGKILL at random moments while measuring loses no hit and dup
   auto journaled = journal_points(journal);
   auto captured = capture_points(capture);
   const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
-  WARN("chaos: " << kKills << " kills, " << journaled.size() << " hits, " << seconds << " s");
+  // How many hits messcap had to fetch with Replay (measured while it was reconnecting).
+  std::size_t replayed = 0;
+  std::istringstream err(cap.err());
+  for (std::string l; std::getline(err, l);)
+    if (l.rfind("messcap: Replay gave ", 0) == 0) replayed += std::stoul(l.substr(21));
+  WARN("chaos: " << kKills << " kills, " << journaled.size() << " hits (" << replayed << " of them sent again by Replay), "
+                 << seconds << " s");
   REQUIRE(journaled.size() >= 30);
   CHECK(journaled.back().seq == newest);
   for (std::size_t i = 0; i < journaled.size(); ++i) REQUIRE(journaled[i].seq == i + 1);  // gap-free from 1
