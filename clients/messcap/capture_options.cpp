@@ -79,6 +79,8 @@ CaptureOptions parse_capture_options(int argc, const char* const argv[]) {
       append = true;
     } else if (a == "--force") {
       force = true;
+    } else if (a == "--reconnect") {
+      o.reconnect = true;
     } else if (parse_output_option(o.out, i, argc, argv)) {
       continue;
     } else if (auto n = option_value("-n", "--count", i, argc, argv)) {
@@ -89,7 +91,7 @@ CaptureOptions parse_capture_options(int argc, const char* const argv[]) {
       o.out.output = std::string(*f);
     } else if (a.size() > 1 && a.front() == '-') {
       throw UsageError("unknown option '" + std::string(a) +
-                       "'; accepted: -n N, -o FILE, --append, --force, --frame NAME, --frames FILE, "
+                       "'; accepted: -n N, -o FILE, --append, --force, --reconnect, --frame NAME, --frames FILE, "
                        "--fit KIND, --outer, --help");
     } else {
       client::take_host_argument(a, o.endpoint, have_host);
@@ -103,14 +105,15 @@ std::string capture_usage() {
   std::string formats;
   for (const auto& f : exchange::export_formats())
     formats += "                   " + std::string(f.extension) + "  " + std::string(f.description) + "\n";
-  return "usage: messcap [HOST[:PORT]] [-n N] [-o FILE] [--append | --force]\n"
+  return "usage: messcap [HOST[:PORT]] [-n N] [-o FILE] [--append | --force] [--reconnect]\n"
          "               [--frame NAME --frames FILE] [--fit KIND] [--outer]\n"
          "       messcap fit KIND [FILE | -]\n"
          "       messcap convert IN OUT [--fit KIND] [--frame NAME --frames FILE]\n"
          "               [--decimals D] [--force] [--outer]\n"
-         "Captures measured points (MeasPt) from messd: prints each as it arrives\n"
-         "('point 1: x y z') and writes it to FILE at once (flushed to disk per point,\n"
-         "so Ctrl-C, a closed connection or a crash never lose a point).\n"
+         "Captures measured points (Hit; MeasPt from a messd without a journal) from messd:\n"
+         "prints each as it arrives ('point 1: x y z') and writes it to FILE at once\n"
+         "(flushed to disk per point, so Ctrl-C, a closed connection or a crash never lose\n"
+         "a point). .xyz/.asc files keep each point's journal number ('# hit 17').\n"
          "HOST defaults to localhost, PORT to 1066.\n"
          "\n"
          "  -n, --count N    stop after N points; without -n capture until Ctrl-C\n"
@@ -119,7 +122,10 @@ std::string capture_usage() {
          formats +
          "                   .csv/.xyz/.asc grow by one line per point; the others are\n"
          "                   rewritten whole (temporary file + rename) per point\n"
-         "  --append         continue an existing .csv/.xyz/.asc (default: refuse to touch it)\n"
+         "  --append         continue an existing .csv/.xyz/.asc (default: refuse to touch it);\n"
+         "                   .xyz/.asc: first fetch (Replay) every hit after the file's last\n"
+         "  --reconnect      when messd goes away, wait for it and fetch what was missed\n"
+         "                   (without: exit status 4 when messd goes away)\n"
          "  --force          replace an existing FILE\n"
          "  --frame NAME --frames FILE\n"
          "                   write (and print) the points in frame NAME of the frame\n"
@@ -136,10 +142,10 @@ std::string capture_usage() {
          "  its extension (--decimals D: 0..12, default 6).\n"
          "\n"
          "Exit status: 0 all requested points captured (or, without -n, stopped by\n"
-         "Ctrl-C or by messd closing the connection), fit/convert done; 1 messd\n"
-         "unreachable, a file error or a failed fit (the message says which points and\n"
-         "why); 2 bad arguments; 3 stopped (Ctrl-C, connection closed) before N points\n"
-         "arrived - the points that did arrive are in FILE.\n";
+         "Ctrl-C), fit/convert done; 1 messd unreachable, a file error or a failed fit\n"
+         "(the message says which points and why); 2 bad arguments; 3 stopped by Ctrl-C\n"
+         "before N points arrived; 4 messd went away (without --reconnect) - the points\n"
+         "that did arrive are in FILE.\n";
 }
 
 }  // namespace imess::messcap

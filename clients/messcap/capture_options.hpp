@@ -25,6 +25,7 @@ struct CaptureOptions {
   client::Endpoint endpoint;
   std::optional<int> count;  // -n N; none = open-ended
   OutputOptions out;
+  bool reconnect = false;  // --reconnect: wait for messd to come back, fetch what was missed
   bool help = false;
 };
 

@@ -2,6 +2,8 @@
 // (temporary file, fdatasync, rename) for the others.
 #include "point_file.hpp"
 
+#include "hit_numbers.hpp"
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -89,9 +91,11 @@ void PointFile::append_text(const std::string& text) {
 
 void PointFile::rewrite() { write_file_atomically(path_, format_->write(data_)); }
 
-void PointFile::append(const Eigen::Vector3d& p) {
+void PointFile::append(const Eigen::Vector3d& p, std::optional<std::uint64_t> hit) {
   if (format_->appendable()) {
-    append_text(format_->point_line(p, data_.decimals));
+    std::string line = format_->point_line(p, data_.decimals);
+    if (hit && keeps_hit_numbers(path_)) line.insert(line.size() - 1, hit_comment(*hit));
+    append_text(line);
   } else {
     data_.points.push_back(p);
     rewrite();

@@ -3,6 +3,8 @@
 // others are rewritten whole into FILE.tmp, synced and renamed over FILE, so FILE is always a
 // complete, valid document holding every point so far.
 #pragma once
+#include <cstdint>
+#include <optional>
 #include <string>
 
 #include "imess/exchange/export_data.hpp"
@@ -26,8 +28,9 @@ class PointFile {
   PointFile(const PointFile&) = delete;
   PointFile& operator=(const PointFile&) = delete;
 
-  // Writes one point and forces it to disk. Throws std::runtime_error on a write error.
-  void append(const Eigen::Vector3d& p);
+  // Writes one point and forces it to disk; `hit` (its journal number) goes into the formats
+  // that keep it (.xyz, .asc: hit_numbers.hpp). Throws std::runtime_error on a write error.
+  void append(const Eigen::Vector3d& p, std::optional<std::uint64_t> hit = std::nullopt);
   // Adds the fitted feature to the formats that hold one (.json, .dmi) and rewrites them.
   void set_fit(const exchange::FitReport& fit);
 

@@ -14,7 +14,7 @@ using Json = nlohmann::ordered_json;
 namespace p = protocol;
 
 constexpr const char* kTypeNames[] = {"CurrCor", "MeasPt", "State", "Limit", "Warn", "Fault",
-                                      "Homed",   "Ok",     "Err",   "Data",  "Other"};
+                                      "Homed",   "Ok",     "Err",   "Data",  "Other", "Hit"};
 static_assert(std::size(kTypeNames) == std::variant_size_v<p::Message>,
               "one name per protocol::Message alternative");
 
@@ -43,6 +43,17 @@ void add_fields(Json& j, const p::Message& message) {
         } else if constexpr (std::is_same_v<T, p::DataMsg>) {
           j["verb"] = m.verb;
           j["text"] = m.text;
+        } else if constexpr (std::is_same_v<T, p::HitMsg>) {
+          j["seq"] = m.seq;
+          j["id"] = m.id;
+          j["x"] = m.p.x;
+          j["y"] = m.p.y;
+          j["z"] = m.p.z;
+          j["i"] = m.dir.x;
+          j["j"] = m.dir.y;
+          j["k"] = m.dir.z;
+          j["r"] = m.radius;
+          j["time"] = m.time;
         }
       },
       message);

@@ -10,12 +10,14 @@
 namespace imess::app {
 
 const char* usage_text() {
-  return "usage: messd [--config FILE] [--rc FILE] [--port N] [--listen ADDR] [--home] [--no-rt]\n"
-         "             [-dc] [-dm] [-dt] [-p] [-r] [-v] [-h]\n"
+  return "usage: messd [--config FILE] [--rc FILE] [--port N] [--listen ADDR] [--journal DIR] [--home]\n"
+         "             [--no-rt] [-dc] [-dm] [-dt] [-p] [-r] [-v] [-h]\n"
          "  --config FILE  JSON configuration (default: the built-in simulated CMM)\n"
          "  --rc FILE      1996 messdrc (SpeedLevel, TipReversed, TipRadius); default ./messdrc if present\n"
          "  --port N       TCP port (default 1066; 0 = any free port, printed at start)\n"
          "  --listen ADDR  address to listen on (default 0.0.0.0, all interfaces)\n"
+         "  --journal DIR  the hit journal (default: $STATE_DIRECTORY/journal under systemd, else\n"
+         "                 ./messd-journal); created if missing, must be writable\n"
          "  --home         run the reference search at start\n"
          "  --no-rt        do not ask for SCHED_FIFO and mlockall\n"
          "  -dc            echo all socket traffic\n"
@@ -38,6 +40,7 @@ CliOptions parse_cli(int argc, char** argv) {
     };
     if (a == "--config") o.config = value("a file name");
     else if (a == "--rc") o.rc = value("a file name");
+    else if (a == "--journal") o.journal = value("a directory for the hit journal");
     else if (a == "--listen") {
       auto text = value("an address such as 0.0.0.0 or 127.0.0.1");
       boost::system::error_code ec;

@@ -3,6 +3,8 @@
 
 #include <boost/asio/ip/address.hpp>
 #include <map>
+#include <cstdlib>
+#include <fstream>
 #include <sstream>
 
 #include "config_file.hpp"
@@ -143,6 +145,14 @@ void load_config_text(const std::string& text, const std::string& path, DaemonCo
     }
     b->finish();
   }
+  if (auto jn = top.object("journal")) {  // the hit journal
+    cfg.journal.dir = jn->text("dir", cfg.journal.dir);
+    cfg.journal.fsync_interval = std::chrono::milliseconds(
+        static_cast<long>(jn->number("fsync_ms", double(cfg.journal.fsync_interval.count()), 0, 10000)));
+    cfg.journal.max_bytes = static_cast<std::uint64_t>(jn->number("max_bytes", double(cfg.journal.max_bytes), 4096, 1 << 30));
+    cfg.journal.files = static_cast<std::size_t>(jn->number("files", double(cfg.journal.files), 1, 10000));
+    jn->finish();
+  }
   if (auto s = top.object("sim")) {
     auto& m = cfg.sim.mechanics;
     m.start = s->vec3("start", m.start, 1e5);
@@ -217,6 +227,14 @@ std::vector<std::string> load_messdrc_text(const std::string& text, const std::s
     }
   }
   return warnings;
+}
+
+std::string default_journal_dir() {
+  if (const char* state = std::getenv("STATE_DIRECTORY"); state && *state) {
+    std::string first(state);
+    return first.substr(0, first.find(':')) + "/journal";  // systemd lists several as a:b
+  }
+  return "messd-journal";
 }
 
 void finish_config(DaemonConfig& cfg) {

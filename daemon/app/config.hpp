@@ -7,6 +7,7 @@
 #include "backend_config.hpp"
 #include "imess/core/core_types.hpp"
 #include "imess/hal/servo_card_driver.hpp"
+#include "imess/journal/journal_config.hpp"
 #include "imess/net/server.hpp"
 #include "imess/sim/simulated_cmm.hpp"
 
@@ -22,6 +23,7 @@ struct DaemonConfig {
   hal::ServoCardConfig card;
   PortBackendConfig ports;  // parport / drive-kit backends (backend_config.hpp)
   sim::SimulatedCmmConfig sim;
+  journal::JournalConfig journal;  // dir empty: default_journal_dir()
   bool sim_probe_nc_set = false;  // sim.probe.normally_closed given explicitly
   std::vector<std::string> notes;  // what was read from where, for the start-up log
 };
@@ -37,6 +39,10 @@ void load_config_text(const std::string& text, const std::string& file, DaemonCo
 // naming file and line.
 std::vector<std::string> load_messdrc(const std::string& path, DaemonConfig& config);
 std::vector<std::string> load_messdrc_text(const std::string& text, const std::string& file, DaemonConfig& config);
+
+// The journal's directory when neither --journal nor the configuration names one:
+// $STATE_DIRECTORY/journal (systemd's StateDirectory=), else ./messd-journal.
+std::string default_journal_dir();
 
 // Derives what follows from other settings (sim axes from the travel, probe polarity).
 void finish_config(DaemonConfig& config);

@@ -12,6 +12,7 @@
 #include "config.hpp"
 #include "imess/core/loop_runner.hpp"
 #include "imess/core/motion_core.hpp"
+#include "imess/journal/journal.hpp"
 #include "imess/net/server.hpp"
 #include "json_object.hpp"
 #include "machine.hpp"
@@ -33,6 +34,8 @@ app::DaemonConfig configure(const app::CliOptions& cli) {
     for (const auto& w : app::load_messdrc(*rc, cfg)) spdlog::warn("{}", w);
   if (cli.port) cfg.server.port = static_cast<std::uint16_t>(*cli.port);
   if (cli.listen) cfg.server.listen = *cli.listen;
+  if (cli.journal) cfg.journal.dir = *cli.journal;
+  if (cfg.journal.dir.empty()) cfg.journal.dir = app::default_journal_dir();
   if (cli.home) cfg.home_on_start = true;
   if (cli.no_realtime) cfg.realtime = false;
   cfg.server.log_traffic = cli.debug_comm;
@@ -78,6 +81,15 @@ int run(int argc, char** argv) {
   spdlog::info("TipRadius {:.3f} mm, SpeedLevel {:.3f}, TipReversed {}", cfg.core.params.tip_radius,
                cfg.core.params.speed_level, cfg.card.tip_reversed ? "true" : "false");
 
+  std::unique_ptr<journal::Journal> hits;  // before the machine: every hit must have a place to go
+  try {
+    hits = std::make_unique<journal::Journal>(cfg.journal);
+  } catch (const journal::JournalError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  for (const auto& n : hits->notes()) spdlog::info("{}", n);
+
   core::MonotonicClock clock;
   std::unique_ptr<app::Machine> machine;
   try {
@@ -100,7 +112,7 @@ int run(int argc, char** argv) {
   if (auto base = machine->start_base_thread(cfg.realtime); !base.empty()) spdlog::info("{}", base);
 
   boost::asio::io_context io;
-  net::Server server(io, cfg.server, core, &runner);
+  net::Server server(io, cfg.server, core, &runner, *hits);
   try {
     server.start();
   } catch (const std::exception& e) {

@@ -21,6 +21,7 @@ constexpr std::array kErrors{
     ErrorInfo{ErrorCode::OutOfTravel, "OutOfTravel", "the target lies outside the configured travel"},
     ErrorInfo{ErrorCode::Faulted, "Faulted", "the machine is in fault state; Reset clears it"},
     ErrorInfo{ErrorCode::TooManyClients, "TooManyClients", "the connection limit is reached; this connection is closed"},
+    ErrorInfo{ErrorCode::NotInJournal, "NotInJournal", "those hits were rotated out of the journal; the text names the oldest seq kept"},
     ErrorInfo{ErrorCode::UnknownParameter, "UnknownParameter", "no parameter of that name; Get lists them"},
     ErrorInfo{ErrorCode::ReadOnlyParameter, "ReadOnlyParameter", "the parameter can be read but not set"},
     ErrorInfo{ErrorCode::Internal, "Internal", "the daemon failed internally; see its log"},

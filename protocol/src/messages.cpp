@@ -39,7 +39,40 @@ bool xyz(const std::vector<std::string_view>& w, Xyz& p) {
   return true;
 }
 
+// "Hit seq id x y z i j k r t": exactly 11 words, whole numbers for seq and id.
+bool hit(const std::vector<std::string_view>& w, HitMsg& h) {
+  if (w.size() != 11) return false;
+  auto seq = parse_sequence_number(w[1]), id = parse_sequence_number(w[2]);
+  if (!seq || !id) return false;
+  double v[8];
+  for (int i = 0; i < 8; ++i) {
+    auto n = parse_number(w[3 + i]);
+    if (!n) return false;
+    v[i] = *n;
+  }
+  h = HitMsg{*seq, *id, {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v[6], v[7]};
+  return true;
+}
+
 }  // namespace
+
+std::string format_hit(const HitMsg& h) {
+  std::string s = "Hit " + std::to_string(h.seq) + " " + std::to_string(h.id);
+  for (double v : {h.p.x, h.p.y, h.p.z}) {
+    s.push_back(' ');
+    append_fixed(s, v, 4);
+  }
+  for (double v : {h.dir.x, h.dir.y, h.dir.z}) {
+    s.push_back(' ');
+    append_fixed(s, v, 6);
+  }
+  s.push_back(' ');
+  append_fixed(s, h.radius, 4);
+  s.push_back(' ');
+  append_fixed(s, h.time, 6);
+  s.push_back('\n');
+  return s;
+}
 
 std::string format_xyz(std::string_view verb, const Xyz& p) {
   std::string s(verb);
@@ -78,6 +111,7 @@ Message parse_message(std::string_view line) {
   Xyz p;
   if (verb == "CurrCor" && xyz(w, p)) return CurrCorMsg{p};
   if (verb == "MeasPt" && xyz(w, p)) return MeasPtMsg{p};
+  if (HitMsg h; verb == "Hit" && hit(w, h)) return h;
   if (verb == "State" && w.size() == 2) return StateMsg{std::string(w[1])};
   if (verb == "Limit" && w.size() == 3) return LimitMsg{std::string(w[1]), std::string(w[2])};
   if (verb == "Warn" && w.size() >= 2) return WarnMsg{std::string(w[1]), rest_after(line, 2)};

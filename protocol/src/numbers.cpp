@@ -59,13 +59,23 @@ std::optional<double> parse_number(std::string_view token) {
   return value;
 }
 
-void append_mm(std::string& out, double value) {
-  char buf[48];
-  int n = std::snprintf(buf, sizeof buf, "%.3f", value);
+std::optional<std::uint64_t> parse_sequence_number(std::string_view token) {
+  if (token.empty() || token.size() > 16) return std::nullopt;
+  std::uint64_t value = 0;
+  auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (ec != std::errc{} || end != token.data() + token.size() || value > kMaxSequenceNumber) return std::nullopt;
+  return value;
+}
+
+void append_fixed(std::string& out, double value, int decimals) {
+  char buf[64];
+  int n = std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
   if (n <= 0) return;
   std::string_view text(buf, static_cast<std::size_t>(n < int(sizeof buf) ? n : int(sizeof buf) - 1));
-  if (text == "-0.000") text.remove_prefix(1);
+  if (text.front() == '-' && text.find_first_not_of("-0.") == std::string_view::npos) text.remove_prefix(1);
   out.append(text);
 }
+
+void append_mm(std::string& out, double value) { append_fixed(out, value, 3); }
 
 }  // namespace imess::protocol

@@ -26,6 +26,7 @@ constexpr std::array kVerbs{
     VerbSpec{"Stats", "", "motion-loop period, wake-up latency percentiles, overruns, cycles", false},
     VerbSpec{"HandMv", "dx dy dz [speed]", "simulator only: push the carriage by hand (loops open), mm and mm/s", false},
     VerbSpec{"Quit", "", "close this connection", false},
+    VerbSpec{"Replay", "from-seq", "re-send the journaled hits from this sequence number (Hit lines), at most 1000", false},
 };
 
 bool iequals(std::string_view a, std::string_view b) {
@@ -120,6 +121,14 @@ ParseResult build(const VerbSpec& v, std::size_t index, std::span<const std::str
       return h;
     }
     case 14: return args.empty() ? ParseResult{Quit{}} : ParseResult{arg_count_error(v, args.size())};
+    case 15: {  // Replay
+      if (!count(1, 1)) return arg_count_error(v, args.size());
+      auto seq = parse_sequence_number(args[0]);
+      if (!seq)
+        return ParseError{ErrorCode::BadValue, "Replay takes a hit sequence number, a whole number from 0 to " +
+                                                   std::to_string(kMaxSequenceNumber) + ", got '" + std::string(args[0]) + "'"};
+      return Replay{*seq};
+    }
   }
   return ParseError{ErrorCode::Internal, "verb table and parser disagree"};
 }

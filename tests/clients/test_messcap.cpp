@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <csignal>
+#include <fstream>
 #include <thread>
 
 #include "capture_options.hpp"
@@ -16,6 +17,7 @@ using namespace imess::messcap;
 using imess::test::ChildProcess;
 using imess::test::client_binary;
 using imess::test::FakeDaemon;
+using imess::test::FakeDaemonScript;
 using imess::test::read_file;
 using imess::test::TempDir;
 
@@ -106,7 +108,7 @@ TEST_CASE("messcap: a point split across TCP segments is still one point") {
   CHECK(read_file(xyz) == "1.000 2.000 3.000\n4.000 5.000 6.000\n");
 }
 
-TEST_CASE("messcap without -n: ends when messd closes the connection, every point written") {
+TEST_CASE("messcap without --reconnect: messd going away is exit 4 with a clear message, every point written") {
   TempDir dir;
   auto xyz = dir.file("all.xyz");
   FakeDaemon daemon({0, kSession, {}});
@@ -115,7 +117,8 @@ TEST_CASE("messcap without -n: ends when messd closes the connection, every poin
   daemon.drop_clients();
   auto status = cap.wait();
   REQUIRE(status);
-  CHECK(*status == 0);
+  CHECK(*status == imess::client::kExitLinkLost);
+  CHECK_THAT(cap.err(), Catch::Contains("messd went away") && Catch::Contains("--reconnect"));
   CHECK(read_file(xyz) ==
         "10.250 0.000 0.000\n-1.500 20.000 3.125\n0.000 0.000 -7.000\n99.000 99.000 99.000\n");
   CHECK_THAT(cap.err(), Catch::Contains("4 points written") && Catch::Contains("closed by messd"));
@@ -166,4 +169,80 @@ TEST_CASE("messcap: never overwrites a capture unless told - --append continues 
   CHECK(imess::test::run_program(args({daemon.address().c_str(), "-n", "1", "-o", csv.c_str(), "--force"}))
             .status == 0);
   CHECK(read_file(csv) == "x,y,z\n1.000,1.000,1.000\n");
+}
+
+namespace {
+std::string hit(int seq, double z) {
+  char line[120];
+  std::snprintf(line, sizeof line, "Hit %d 0 430.0000 330.0000 %.4f 0.000000 0.000000 -1.000000 2.0000 %d.000000", seq, z,
+                seq);
+  return line;
+}
+std::string meas(double z) {
+  char line[60];
+  std::snprintf(line, sizeof line, "MeasPt 430.000 330.000 %.3f", z);
+  return line;
+}
+}  // namespace
+
+TEST_CASE("messcap takes Hit lines, keeps their numbers in .xyz, and does not count their MeasPt twice") {
+  TempDir dir;
+  auto xyz = dir.file("hits.xyz");
+  FakeDaemonScript script{0, {"CurrCor 0.000 0.000 0.000", hit(5, 80), meas(80), "State retract", hit(6, 81.25), meas(81.25)},
+                          [](const std::string& line) -> std::vector<std::string> {
+                            if (line == "Replay 9007199254740991") return {"Ok Replay 0 6"};  // the start probe
+                            return {};
+                          }};
+  FakeDaemon daemon(script);
+  auto r = imess::test::run_program(args({daemon.address().c_str(), "-n", "2", "-o", xyz.c_str()}));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(read_file(xyz) == "430.000 330.000 80.000 # hit 5\n430.000 330.000 81.250 # hit 6\n");
+  CHECK(r.out == "point 1: 430.000 330.000 80.000\npoint 2: 430.000 330.000 81.250\n");
+  // messcap fit reads the file back: the numbers are comments.
+  auto fit = imess::test::run_program({client_binary("messcap"), "fit", "line", xyz});
+  CHECK(fit.status == 0);
+}
+
+TEST_CASE("messcap --append continues after the file's last hit, fetching the missed ones with Replay") {
+  TempDir dir;
+  auto xyz = dir.file("more.xyz");
+  { std::ofstream(xyz) << "430.000 330.000 79.000 # hit 4\n430.000 330.000 80.000 # hit 5\n"; }
+  FakeDaemonScript script{0, {"CurrCor 0.000 0.000 0.000"}, [](const std::string& line) -> std::vector<std::string> {
+                            if (line == "Replay 6") return {hit(6, 81), hit(7, 82), "Ok Replay 2 7"};
+                            return {};
+                          }};
+  FakeDaemon daemon(script);
+  auto r = imess::test::run_program(args({daemon.address().c_str(), "-n", "2", "-o", xyz.c_str(), "--append"}));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(read_file(xyz) == "430.000 330.000 79.000 # hit 4\n430.000 330.000 80.000 # hit 5\n"
+                          "430.000 330.000 81.000 # hit 6\n430.000 330.000 82.000 # hit 7\n");
+  CHECK_THAT(r.err, Catch::Contains("continuing after hit 5"));
+}
+
+TEST_CASE("messcap --reconnect catches up after messd comes back: no hit twice, none skipped") {
+  TempDir dir;
+  auto xyz = dir.file("rc.xyz");
+  // Each connection gets hits 1 and 2 again (as a restarted messd would not, but a Replay
+  // overlapping the live stream does); Replay 3 gives 3 and 4, the first reply capped.
+  FakeDaemonScript script{0, {"CurrCor 0.000 0.000 0.000", hit(1, 80), meas(80), hit(2, 81), meas(81)},
+                          [](const std::string& line) -> std::vector<std::string> {
+                            if (line == "Replay 9007199254740991") return {"Ok Replay 0 2"};  // the start probe
+                            if (line == "Replay 3") return {hit(2, 81), hit(3, 82), "Ok Replay 2 4"};
+                            if (line == "Replay 4") return {hit(4, 83), "Ok Replay 1 4"};
+                            return {};
+                          }};
+  FakeDaemon daemon(script);
+  ChildProcess cap(args({daemon.address().c_str(), "-n", "4", "-o", xyz.c_str(), "--reconnect"}));
+  REQUIRE(cap.wait_for_output("point 2:"));
+  daemon.drop_clients();
+  auto status = cap.wait(std::chrono::seconds(10));
+  INFO(cap.err());
+  REQUIRE(status);
+  CHECK(*status == 0);
+  CHECK(read_file(xyz) == "430.000 330.000 80.000 # hit 1\n430.000 330.000 81.000 # hit 2\n"
+                          "430.000 330.000 82.000 # hit 3\n430.000 330.000 83.000 # hit 4\n");
+  CHECK_THAT(cap.err(), Catch::Contains("reconnect"));
+  CHECK(daemon.accepted() == 2);
 }

@@ -116,3 +116,11 @@ TEST_CASE("a messdrc value too small to represent is zero") {
   LineClient c(messd.port());
   CHECK(c.request("Get TipRadius") == std::optional<std::string>("Ok Get TipRadius 0.000"));
 }
+
+TEST_CASE("a journal directory that cannot be created stops start-up with exit 2 and one message") {
+  auto file = temp_file("not-a-dir", "x");
+  auto r = run_messd("--journal " + file + "/journal");
+  CHECK(r.status == 2);
+  CHECK(r.output.find("cannot create the journal directory '" + file + "/journal'") != std::string::npos);
+  CHECK(r.output.find("--journal DIR") != std::string::npos);
+}

@@ -45,3 +45,26 @@ TEST_CASE("every error code has a name and a meaning") {
     CHECK(&error_info(e.code) == &e);
   }
 }
+
+TEST_CASE("Hit carries seq, id, point, direction, radius and time, and parses back") {
+  HitMsg h{17, 0, {430, 330, 80}, {0, 0, -1}, 2, 1234.5678901};
+  CHECK(format_hit(h) == "Hit 17 0 430.0000 330.0000 80.0000 0.000000 0.000000 -1.000000 2.0000 1234.567890\n");
+  auto m = parse_message(format_hit(h));
+  REQUIRE(std::holds_alternative<HitMsg>(m));
+  auto back = std::get<HitMsg>(m);
+  CHECK(back.seq == 17);
+  CHECK(back.p == Xyz{430, 330, 80});
+  CHECK(back.dir == Xyz{0, 0, -1});
+  CHECK(back.radius == 2);
+  CHECK(back.time == Approx(1234.56789).margin(1e-6));
+  // A ForcePt point: no direction, no radius; negative zeros print unsigned.
+  HitMsg forced{18, 0, {-0.00001, 1.23456, 0}, {-0.0, 0, 0}, 0, 2};
+  CHECK(format_hit(forced) == "Hit 18 0 0.0000 1.2346 0.0000 0.000000 0.000000 0.000000 0.0000 2.000000\n");
+  // Large sequence numbers stay exact.
+  CHECK(std::get<HitMsg>(parse_message("Hit 9007199254740991 5 1 2 3 0 0 1 2 0.5")).seq == 9007199254740991ULL);
+  CHECK(std::get<HitMsg>(parse_message("Hit 9007199254740991 5 1 2 3 0 0 1 2 0.5")).id == 5);
+  // Anything malformed is a line to ignore, never a half-read hit.
+  CHECK(std::holds_alternative<OtherMsg>(parse_message("Hit 1 0 1 2 3 0 0 1 2")));
+  CHECK(std::holds_alternative<OtherMsg>(parse_message("Hit -1 0 1 2 3 0 0 1 2 0.5")));
+  CHECK(std::holds_alternative<OtherMsg>(parse_message("Hit 1 0 1 2 x 0 0 1 2 0.5")));
+}

@@ -52,3 +52,15 @@ TEST_CASE("a leading plus takes one plain number, never a second sign") {
   CHECK_FALSE(parse_number("+-1"));
   CHECK_FALSE(parse_number("++1"));
 }
+
+TEST_CASE("append_fixed prints the asked decimals and never a negative zero") {
+  std::string s;
+  append_fixed(s, -0.00004, 4);
+  CHECK(s == "0.0000");
+  s.clear();
+  append_fixed(s, -1.5, 6);
+  CHECK(s == "-1.500000");
+  CHECK(parse_sequence_number("0") == std::optional<std::uint64_t>(0));
+  CHECK_FALSE(parse_sequence_number("+1"));
+  CHECK_FALSE(parse_sequence_number(""));
+}

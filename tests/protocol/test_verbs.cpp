@@ -1,6 +1,7 @@
 // Command parsing: every verb, case-insensitivity, and a clear Err for every bad input.
 #include <catch2/catch.hpp>
 
+#include "imess/protocol/numbers.hpp"
 #include "imess/protocol/verbs.hpp"
 
 using namespace imess::protocol;
@@ -42,6 +43,7 @@ TEST_CASE("every verb in the table parses from its own name and reports that nam
     std::string line(v.name);
     if (v.args.rfind("vx", 0) == 0 || v.args.rfind("x ", 0) == 0 || v.args.rfind("dx", 0) == 0) line += " 1 2 3";
     else if (v.args == "name value") line += " TipRadius 2";
+    else if (v.args == "from-seq") line += " 17";
     auto r = parse_command(line);
     INFO(line);
     REQUIRE(std::holds_alternative<Command>(r));
@@ -86,4 +88,22 @@ TEST_CASE("blank lines are recognised so callers can skip them") {
 TEST_CASE("help lines name usage and meaning") {
   auto line = help_line(verb_table()[0]);
   CHECK(line.rfind("Help StartMv vx vy vz - ", 0) == 0);
+}
+
+TEST_CASE("Replay takes one whole sequence number") {
+  auto r = parse_command("replay 17");
+  REQUIRE(std::holds_alternative<Command>(r));
+  CHECK(std::get<Replay>(std::get<Command>(r)).from == 17);
+  CHECK(std::get<Replay>(std::get<Command>(parse_command("Replay 0"))).from == 0);
+  CHECK(std::get<Replay>(std::get<Command>(parse_command("Replay 9007199254740991"))).from == kMaxSequenceNumber);
+  for (const char* bad : {"Replay -1", "Replay 1.5", "Replay x", "Replay 9007199254740992", "Replay 1e3"}) {
+    INFO(bad);
+    auto e = parse_command(bad);
+    REQUIRE(std::holds_alternative<ParseError>(e));
+    CHECK(std::get<ParseError>(e).code == ErrorCode::BadValue);
+    CHECK(std::get<ParseError>(e).text.find("whole number from 0") != std::string::npos);
+  }
+  auto none = parse_command("Replay");
+  REQUIRE(std::holds_alternative<ParseError>(none));
+  CHECK(std::get<ParseError>(none).code == ErrorCode::BadArguments);
 }

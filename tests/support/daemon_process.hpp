@@ -1,4 +1,5 @@
-// DaemonProcess: starts build/bin/messd on a free port as a child process and stops it;
+// DaemonProcess: starts build/bin/messd on a free port as a child process (with its own fresh
+// journal directory unless the test passes --journal) and stops it;
 // LineClient: a plain TCP client for tests — send lines, wait for lines with timeouts.
 #pragma once
 #include <arpa/inet.h>
@@ -11,8 +12,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -24,6 +28,13 @@ namespace imess::test {
 class DaemonProcess {
  public:
   explicit DaemonProcess(std::vector<std::string> args = {}) {
+    // Parallel tests never share a journal: each daemon gets a new one, removed afterwards.
+    if (std::find(args.begin(), args.end(), "--journal") == args.end()) {
+      std::string dir = (std::filesystem::temp_directory_path() / "imess-test-journal-XXXXXX").string();
+      if (!mkdtemp(dir.data())) throw std::runtime_error("mkdtemp failed");
+      own_journal_ = dir;
+      args.insert(args.begin(), {"--journal", dir});
+    }
     int out[2];
     if (pipe(out) != 0) throw std::runtime_error("pipe failed");
     pid_ = fork();
@@ -52,16 +63,23 @@ class DaemonProcess {
     if (s.rfind("messd: OK", 0) != 0 || colon == std::string::npos) throw std::runtime_error("unexpected: " + s);
     port_ = std::stoi(s.substr(colon + 1));
   }
-  ~DaemonProcess() { stop(); }
+  ~DaemonProcess() {
+    stop();
+    if (!own_journal_.empty()) {
+      std::error_code ec;
+      std::filesystem::remove_all(own_journal_, ec);
+    }
+  }
   DaemonProcess(const DaemonProcess&) = delete;
   DaemonProcess& operator=(const DaemonProcess&) = delete;
 
   int port() const { return port_; }
   bool running() const { return pid_ > 0 && waitpid(pid_, nullptr, WNOHANG) == 0; }
-  // Stops with SIGTERM; returns the exit status.
-  int stop() {
+  const std::string& journal_dir() const { return own_journal_; }  // empty when the test gave --journal
+  // Stops with SIGTERM (SIGKILL: as a crash would); returns the exit status.
+  int stop(int signal = SIGTERM) {
     if (pid_ <= 0) return status_;
-    kill(pid_, SIGTERM);
+    kill(pid_, signal);
     int st = 0;
     waitpid(pid_, &st, 0);
     pid_ = -1;
@@ -75,6 +93,7 @@ class DaemonProcess {
   pid_t pid_ = -1;
   FILE* out_ = nullptr;
   int port_ = 0, status_ = -1;
+  std::string own_journal_;
 };
 
 class LineClient {

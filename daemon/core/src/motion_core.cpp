@@ -550,6 +550,7 @@ void MotionCore::measured(const Vec3& point, const Vec3& dir, bool compensated, 
   e.p = point;
   e.dir = dir;
   e.compensated = compensated;
+  e.radius = compensated ? config_.params.tip_radius : 0.0;
   e.time = now;
   emit(e);
 }

@@ -80,7 +80,7 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Hello& c) {
             if (!c.client.empty()) spdlog::info("client {} is '{}'", s.id(), c.client);
             const bool sim = core_.snapshot().simulated;
-            reply(s, slot, format_ok("Hello", "IMESS 1 messd " + config_.version + " Caps jog goto home probe hand stats" +
+            reply(s, slot, format_ok("Hello", "IMESS 1 messd " + config_.version + " Caps jog goto home probe hand stats journal" +
                                            (sim ? " sim" : "")));
           },
           [&](const protocol::Help&) {
@@ -130,6 +130,7 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
               config_.report_hz = *v;
             reply(s, slot, format_ok("Set"));
           },
+          [&](const protocol::Replay& c) { on_replay(s, slot, c.from); },
           [&](const protocol::Quit&) {
             reply(s, slot, format_ok("Quit"));
             s.close_after_flush();

@@ -27,7 +27,7 @@ void Server::pump_events() {
       }
       case EventKind::MeasPt: {
         ++points_;
-        broadcast(protocol::format_meas_pt({e.p.x(), e.p.y(), e.p.z()}));
+        send_hit(e);  // journal, then Hit, then the 1996 MeasPt
         if (config_.log_motion)
           spdlog::info("point {}: {:.4f} {:.4f} {:.4f} {} dir {:.4f} {:.4f} {:.4f}", points_, e.p.x(), e.p.y(), e.p.z(),
                        e.compensated ? "compensated" : "as is (ForcePt)", e.dir.x(), e.dir.y(), e.dir.z());

@@ -10,11 +10,13 @@ namespace imess::net {
 namespace asio = boost::asio;
 using asio::ip::tcp;
 
-Server::Server(asio::io_context& io, ServerConfig config, core::MotionCore& core, core::LoopRunner* runner)
+Server::Server(asio::io_context& io, ServerConfig config, core::MotionCore& core, core::LoopRunner* runner,
+               journal::Journal& journal)
     : io_(io),
       config_(std::move(config)),
       core_(core),
       runner_(runner),
+      journal_(journal),
       acceptor_(io),
       event_timer_(io),
       report_timer_(io),

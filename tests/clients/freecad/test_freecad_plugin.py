@@ -90,8 +90,10 @@ class Operator(threading.Thread):
 
 def start_messd():
     config = os.path.join(SOURCE_DIR, "tests", "e2e", "fast-cmm.json")
+    journal = tempfile.mkdtemp(prefix="imess-freecad-journal-")  # never the shared default
     proc = subprocess.Popen([os.path.join(BIN_DIR, "messd"), "--port", "0", "--listen", "127.0.0.1", "--no-rt",
-                             "--config", config], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+                             "--config", config, "--journal", journal],
+                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
     first = proc.stdout.readline()  # "messd: OK, listening on 127.0.0.1:PORT"
     if not first.startswith("messd: OK"):
         proc.kill()

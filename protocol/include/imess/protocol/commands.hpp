@@ -1,5 +1,6 @@
 // Typed client -> daemon commands. The parser (verbs.hpp) produces them; the daemon acts on them.
 #pragma once
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <variant>
@@ -28,8 +29,10 @@ struct Get { std::string name; };                           // empty name: list 
 struct Stats {};
 struct HandMv { Xyz delta; std::optional<double> speed; };  // simulator: push the carriage by hand
 struct Quit {};
+struct Replay { std::uint64_t from = 0; };                  // re-send journaled hits from this seq
+inline constexpr std::uint64_t kMaxReplayHits = 1000;       // per Replay request; the client asks again
 
 using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo, Home, Free,
-                             Reset, Set, Get, Stats, HandMv, Quit>;
+                             Reset, Set, Get, Stats, HandMv, Quit, Replay>;
 
 }  // namespace imess::protocol

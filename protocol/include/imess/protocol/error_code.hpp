@@ -24,6 +24,7 @@ enum class ErrorCode : int {
   OutOfTravel = 206,      // target outside the configured travel
   Faulted = 207,          // machine in fault state; clear with Reset
   TooManyClients = 208,   // the connection limit is reached; the connection is closed
+  NotInJournal = 212,     // Replay of hits rotated out of the journal; the text names the oldest kept
   // 3xx: parameters
   UnknownParameter = 300, // Get/Set of a name that does not exist
   ReadOnlyParameter = 301,

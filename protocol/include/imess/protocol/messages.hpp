@@ -1,7 +1,8 @@
 // Daemon -> client lines. Replies start with `Ok` or `Err`; every other verb is an unsolicited
-// event (CurrCor, MeasPt, State, Limit, Warn, Fault, Homed). Formatting for the daemon,
+// event (CurrCor, Hit, MeasPt, State, Limit, Warn, Fault, Homed). Formatting for the daemon,
 // parsing for the clients.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -12,6 +13,18 @@
 
 namespace imess::protocol {
 
+// A journaled hit: `Hit seq id x y z i j k r t`. The ball centre was p - radius * dir; a ForcePt
+// point has dir 0 0 0 and radius 0. time: seconds on the daemon's monotonic clock.
+struct HitMsg {
+  std::uint64_t seq = 0;  // the journal's sequence number (gap-free, survives restarts)
+  std::uint64_t id = 0;   // the command that took it; 0 = none (hand hits, and until command ids exist)
+  Xyz p;                  // surface point, mm
+  Xyz dir;                // unit approach direction
+  double radius = 0;      // tip radius applied, mm
+  double time = 0;        // trigger time, s
+  friend bool operator==(const HitMsg&, const HitMsg&) = default;
+};
+
 // ---- formatting (daemon side); every line ends in "\n" ----
 std::string format_xyz(std::string_view verb, const Xyz& p);  // "CurrCor 1.000 2.000 3.000\n"
 inline std::string format_curr_cor(const Xyz& p) { return format_xyz("CurrCor", p); }
@@ -19,6 +32,9 @@ inline std::string format_meas_pt(const Xyz& p) { return format_xyz("MeasPt", p)
 std::string format_ok(std::string_view verb, std::string_view data = {});
 std::string format_err(ErrorCode code, std::string_view text);
 std::string format_event(std::string_view verb, std::string_view text);  // "State idle\n", "Warn TipNotFree ...\n"
+// "Hit 17 0 430.0000 330.0000 80.0000 0.000000 0.000000 -1.000000 2.0000 1234.567890\n":
+// point and radius with 4 decimals (0.1 um), direction with 6, time with 6 (1 us).
+std::string format_hit(const HitMsg& hit);
 
 // ---- parsing (client side) ----
 struct CurrCorMsg { Xyz p; };
@@ -34,7 +50,7 @@ struct DataMsg { std::string verb; std::string text; };     // data lines before
 struct OtherMsg { std::string line; };                       // anything else: ignore it
 
 using Message = std::variant<CurrCorMsg, MeasPtMsg, StateMsg, LimitMsg, WarnMsg, FaultMsg, HomedMsg,
-                             OkMsg, ErrMsg, DataMsg, OtherMsg>;
+                             OkMsg, ErrMsg, DataMsg, OtherMsg, HitMsg>;
 
 Message parse_message(std::string_view line);
 

@@ -13,5 +13,6 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;     // messd unreachable, file or I/O error
 inline constexpr int kExitUsage = 2;       // bad arguments
 inline constexpr int kExitIncomplete = 3;  // messcap: stopped before N points arrived
+inline constexpr int kExitLinkLost = 4;    // messcap: messd went away (without --reconnect)
 
 }  // namespace imess::client

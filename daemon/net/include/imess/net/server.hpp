@@ -9,6 +9,7 @@
 
 #include "imess/core/loop_runner.hpp"
 #include "imess/core/motion_core.hpp"
+#include "imess/journal/journal.hpp"
 #include "imess/net/session.hpp"
 #include "imess/protocol/commands.hpp"
 
@@ -30,8 +31,10 @@ struct ServerConfig {
 
 class Server {
  public:
-  // runner may be null (no timing statistics: Stats then reports zeros).
-  Server(boost::asio::io_context& io, ServerConfig config, core::MotionCore& core, core::LoopRunner* runner);
+  // runner may be null (no timing statistics: Stats then reports zeros). Every measured point
+  // is appended to `journal` before any client is sent it.
+  Server(boost::asio::io_context& io, ServerConfig config, core::MotionCore& core, core::LoopRunner* runner,
+         journal::Journal& journal);
   // Binds and starts accepting; throws std::runtime_error naming the address on failure.
   void start();
   void stop();
@@ -51,6 +54,9 @@ class Server {
   bool to_core(Session& s, std::uint32_t slot, core::Command c);
   std::string status_line();
   std::string stats_line();
+  // hits.cpp, replay.cpp
+  void send_hit(const core::Event& e);
+  void on_replay(Session& s, std::uint32_t slot, std::uint64_t from);
   // events.cpp
   void pump_events();
   void report_position();
@@ -60,6 +66,7 @@ class Server {
   ServerConfig config_;
   core::MotionCore& core_;
   core::LoopRunner* runner_;
+  journal::Journal& journal_;
   boost::asio::ip::tcp::acceptor acceptor_;
   boost::asio::steady_timer event_timer_, report_timer_, log_timer_;
   std::map<std::uint32_t, std::shared_ptr<Session>> sessions_;

@@ -1,0 +1,25 @@
+// A measured point leaves the daemon: numbered and written to the journal first, then
+// `Hit` and the 1996 `MeasPt` to every client. A client can never hold a hit the journal lacks.
+#include <spdlog/spdlog.h>
+
+#include "imess/net/server.hpp"
+#include "imess/protocol/messages.hpp"
+
+namespace imess::net {
+
+void Server::send_hit(const core::Event& e) {
+  protocol::HitMsg hit{0, 0, {e.p.x(), e.p.y(), e.p.z()}, {e.dir.x(), e.dir.y(), e.dir.z()}, e.radius,
+                       hal::seconds(e.time)};
+  std::string line;
+  try {
+    line = journal_.append(hit);
+  } catch (const journal::JournalError& err) {
+    // The point is still sent (losing it would be worse); only Replay cannot give it again.
+    spdlog::error("{}; the hit is sent to the clients anyway, but Replay cannot give it again", err.what());
+    line = protocol::format_hit(hit);
+  }
+  broadcast(line);
+  broadcast(protocol::format_meas_pt(hit.p));
+}
+
+}  // namespace imess::net
