@@ -25,6 +25,8 @@ class JsonObject {
   bool boolean(const std::string& key, bool def);
   std::string text(const std::string& key, const std::string& def, const std::vector<std::string>& allowed = {});
   hal::Vec3 vec3(const std::string& key, const hal::Vec3& def);
+  // Array of strings (may be absent: nullopt); `expected` describes an entry for the error.
+  std::optional<std::vector<std::string>> texts(const std::string& key, const std::string& expected);
   std::optional<JsonObject> object(const std::string& key);
   // Array of objects (may be absent: nullopt).
   std::optional<std::vector<JsonObject>> objects(const std::string& key);

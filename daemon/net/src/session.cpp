@@ -1,6 +1,11 @@
 // Session I/O on the io thread: async read loop, one async write at a time.
 #include "imess/net/session.hpp"
 
+#include <linux/sockios.h>
+#include <sys/ioctl.h>
+
+#include <algorithm>
+
 namespace imess::net {
 
 namespace asio = boost::asio;
@@ -15,6 +20,7 @@ Session::Session(asio::ip::tcp::socket socket, std::uint32_t id, std::size_t max
   boost::system::error_code ec;
   auto ep = socket_.remote_endpoint(ec);
   peer_ = ec ? "unknown" : ep.address().to_string() + ":" + std::to_string(ep.port());
+  if (!ec) address_ = ep.address();
   socket_.set_option(asio::ip::tcp::no_delay(true), ec);
 }
 
@@ -24,6 +30,11 @@ void Session::read() {
   socket_.async_read_some(asio::buffer(buffer_), [self = shared_from_this()](boost::system::error_code ec, std::size_t n) {
     if (ec) {
       self->close();
+      return;
+    }
+    self->last_received_ = Clock::now();
+    if (self->discard_input_) {
+      self->read();
       return;
     }
     self->framer_.feed(std::string_view(self->buffer_.data(), n), [&](const protocol::FramedLine& line) {
@@ -82,6 +93,28 @@ void Session::close_after_flush() {
     return;
   }
   close_when_flushed_ = true;
+}
+
+void Session::drop(std::string line) {
+  if (!open_ || discard_input_) return;
+  discard_input_ = true;
+  replies_.clear();  // unanswered requests are void: the line below is the last word
+  send(std::move(line));
+  close_after_flush();
+}
+
+Session::Clock::duration Session::output_stalled_for(Clock::time_point now) {
+  // The kernel takes megabytes into a socket's send buffer, so a client that stopped reading
+  // shows as bytes the peer never acknowledged (SIOCOUTQ), not as an unfinished write.
+  int unacked = 0;
+  if (open_ && ::ioctl(socket_.native_handle(), SIOCOUTQ, &unacked) != 0) unacked = 0;
+  const std::size_t pending = queued_bytes_ + static_cast<std::size_t>(std::max(unacked, 0));
+  if (pending == 0 || pending < last_pending_)
+    stall_start_.reset();  // drained, or draining: the client reads
+  else if (!stall_start_)
+    stall_start_ = now;
+  last_pending_ = pending;
+  return stall_start_ ? now - *stall_start_ : Clock::duration::zero();
 }
 
 void Session::close() {

@@ -28,8 +28,15 @@ struct Get { std::string name; };                           // empty name: list 
 struct Stats {};
 struct HandMv { Xyz delta; std::optional<double> speed; };  // simulator: push the carriage by hand
 struct Quit {};
+// control of the machine (docs/protocol.md, "Control")
+struct Take { bool force = false; };                        // force: stop the machine, take over
+struct Release {};                                          // stop the machine, give up control
+struct Watch { int ms = 0; };                               // dead-man interval; 0 = off
+
+inline constexpr int kWatchMinMs = 50;     // below this, io jitter alone would stop the machine
+inline constexpr int kWatchMaxMs = 60000;
 
 using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo, Home, Free,
-                             Reset, Set, Get, Stats, HandMv, Quit>;
+                             Reset, Set, Get, Stats, HandMv, Quit, Take, Release, Watch>;
 
 }  // namespace imess::protocol
