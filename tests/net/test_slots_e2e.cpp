@@ -109,3 +109,19 @@ TEST_CASE("a silent client holding control is dropped with Err 211 and the machi
   REQUIRE(s);
   CHECK(status_field(*s, "Clients") == "1");
 }
+
+TEST_CASE("max_clients above the descriptor limit is lowered at start with one warning") {
+  TempConfig config(R"({ "server": { "max_clients": 1000 } })");
+  // A hard limit of 200 descriptors: room for 200 - 64 clients; messd is stopped after 1.5 s.
+  std::string cmd = "sh -c 'ulimit -n 200 && exec timeout -s TERM 1.5 " + std::string(IMESS_BIN_DIR) +
+                    "/messd --config " + config.path() + " --port 0 --listen 127.0.0.1 --no-rt' 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  REQUIRE(p);
+  std::string out;
+  char buf[512];
+  while (fgets(buf, sizeof buf, p)) out += buf;
+  pclose(p);
+  INFO(out);
+  CHECK(out.find("max_clients lowered from 1000 to 136") != std::string::npos);
+  CHECK(out.find("messd: OK") != std::string::npos);
+}
