@@ -26,3 +26,15 @@ TEST_CASE("LogLimiter: classes are limited independently") {
   CHECK_FALSE(limiter.admit("accept", t0 + 1ms));
   CHECK(limiter.admit("connect", t0 + 1ms));  // another class still speaks
 }
+
+TEST_CASE("LogLimiter: a flood that stops is still counted once its second is over") {
+  LogLimiter limiter(2);
+  auto t0 = LogLimiter::Clock::time_point{} + 9s;
+  for (int i = 0; i < 50; ++i) limiter.admit("refused", t0 + std::chrono::milliseconds(i));
+  CHECK(limiter.take_expired(t0 + 500ms).empty());  // the window is still open
+  auto expired = limiter.take_expired(t0 + 1s);
+  REQUIRE(expired.size() == 1);
+  CHECK(expired[0].first == "refused");
+  CHECK(expired[0].second == 48);
+  CHECK(limiter.take_expired(t0 + 2s).empty());  // reported once
+}

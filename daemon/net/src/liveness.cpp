@@ -38,6 +38,8 @@ void Server::check_watch() {
 
 void Server::check_clients() {
   const auto now = Clock::now();
+  for (const auto& [name, count] : log_limiter_.take_expired(now))
+    spdlog::warn("... suppressed {} similar '{}' lines", count, name);
   const auto& rules = config_.control;
   auto sessions = sessions_;  // drops erase from sessions_
   for (auto& [id, s] : sessions) {
@@ -45,17 +47,15 @@ void Server::check_clients() {
     // Output that does not drain: the client stopped reading (or was stopped, SIGSTOP, and
     // its receive buffer is full). No line would reach it any more: log and close.
     if (s->output_stalled_for(now) > seconds(rules.write_stall_s)) {
-      log_limited(spdlog::level::warn, "drop-stalled",
-                  "client " + std::to_string(id) + " (" + s->peer() + ") has not read for " +
-                      std::to_string(static_cast<int>(rules.write_stall_s)) + " s: connection closed");
-      s->close();
+      s->close("dropped: its output has not drained for " + fmt::format("{:g}", rules.write_stall_s) +
+               " s (not reading)");
       continue;
     }
     // Silence is normal for a monitor on an idle machine; it is not for a client that holds
     // control or asked for the dead-man (it promised keep-alives).
     const bool must_speak = control_.owns(id) || s->info().watch_ms > 0;
     if (must_speak && !s->dropping() && now - s->last_received() > seconds(rules.idle_drop_s))
-      drop(*s, "nothing received for " + std::to_string(static_cast<int>(rules.idle_drop_s)) + " s while " +
+      drop(*s, "nothing received for " + fmt::format("{:g}", rules.idle_drop_s) + " s while " +
                    (control_.owns(id) ? "holding control" : "Watch is on") +
                    "; connection closed (a blank line now and then keeps it open)");
   }

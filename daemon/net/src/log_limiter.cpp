@@ -21,4 +21,14 @@ std::optional<std::uint64_t> LogLimiter::admit(std::string_view message_class, C
   return held;
 }
 
+std::vector<std::pair<std::string, std::uint64_t>> LogLimiter::take_expired(Clock::time_point now) {
+  std::vector<std::pair<std::string, std::uint64_t>> out;
+  for (auto& [name, w] : windows_)
+    if (w.suppressed > 0 && now - w.start >= std::chrono::seconds(1)) {
+      out.emplace_back(name, w.suppressed);
+      w.suppressed = 0;
+    }
+  return out;
+}
+
 }  // namespace imess::net

@@ -106,7 +106,9 @@ void Server::admit(tcp::socket socket) {
   auto remote = socket.remote_endpoint(ec);
   if (ec) return;  // already gone
   const auto& rules = config_.control;
-  const auto address = remote.address();
+  auto address = remote.address();
+  if (address.is_v6() && address.to_v6().is_v4_mapped())  // a dual-stack "::" listener: show and match as IPv4
+    address = asio::ip::make_address_v4(asio::ip::v4_mapped, address.to_v6());
   const bool may_control = rules.hosts.contains(address);
   const std::string host = address.to_string();
   if (!may_control && !rules.observe_hosts.contains(address)) {
@@ -142,7 +144,7 @@ void Server::admit(tcp::socket socket) {
 }
 
 void Server::closed(Session& s) {
-  log_limited(spdlog::level::info, "disconnect", "client " + std::to_string(s.id()) + " (" + s.peer() + ") disconnected");
+  log_limited(spdlog::level::info, "disconnect", "client " + std::to_string(s.id()) + " (" + s.peer() + ") " + s.close_reason());
   auto keep = sessions_[s.id()];  // s lives until this handler returns
   sessions_.erase(s.id());
   lose_control(s, "disconnected");

@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace imess::net {
 
@@ -18,6 +20,10 @@ class LogLimiter {
   // nullopt: drop this line. A number: log it, after reporting that many suppressed lines
   // of the class (0: none were suppressed).
   std::optional<std::uint64_t> admit(std::string_view message_class, Clock::time_point now);
+
+  // Classes whose window has ended with lines held back, and how many (then forgotten):
+  // called periodically, so a flood that stops is still counted in the log.
+  std::vector<std::pair<std::string, std::uint64_t>> take_expired(Clock::time_point now);
 
  private:
   struct Window {

@@ -44,9 +44,10 @@ class Session : public std::enable_shared_from_this<Session> {
   void close_after_flush();     // Quit: finish writing, then close
   // Drop: ignore further input, send `line` (an Err line saying why), close once it is out.
   void drop(std::string line);
-  void close();
+  void close(std::string reason = "disconnected");
 
   std::uint32_t id() const { return id_; }
+  const std::string& close_reason() const { return close_reason_; }  // for the log
   const std::string& peer() const { return peer_; }        // "address:port"
   const boost::asio::ip::address& address() const { return address_; }
   std::string host() const { return address_.to_string(); }
@@ -62,6 +63,8 @@ class Session : public std::enable_shared_from_this<Session> {
  private:
   void read();
   void write();
+  bool backlogged() const;  // too many unanswered requests or too much output: stop reading for now
+  void resume_reading();
 
   boost::asio::ip::tcp::socket socket_;
   std::uint32_t id_;
@@ -74,8 +77,8 @@ class Session : public std::enable_shared_from_this<Session> {
   std::deque<std::pair<std::uint32_t, std::string>> replies_;  // empty text: not answered yet
   std::uint32_t next_slot_ = 1;
   std::size_t queued_bytes_ = 0;
-  bool writing_ = false, open_ = true, close_when_flushed_ = false, discard_input_ = false;
-  std::string peer_;
+  bool writing_ = false, open_ = true, close_when_flushed_ = false, discard_input_ = false, read_paused_ = false;
+  std::string peer_, close_reason_;
   boost::asio::ip::address address_;
   Clock::time_point last_received_ = Clock::now();
   std::optional<Clock::time_point> stall_start_;
