@@ -95,3 +95,19 @@ TEST_CASE("a host in neither list is refused at connect with a line saying why")
   LineClient watcher(messd.port(), "127.0.0.2", 0);
   CHECK(starts_with(watcher.until_prefix("CurrCor", 3.0), "CurrCor"));
 }
+
+TEST_CASE("Release and Quit stop the machine and free control") {
+  DaemonProcess messd;
+  LineClient watcher(messd.port());
+  LineClient a(messd.port());
+  REQUIRE(a.request("StartMv 20 0 0") == std::optional<std::string>("Ok StartMv"));
+  REQUIRE(watcher.until_prefix("State jog", 2.0));
+  CHECK(a.request("Release") == std::optional<std::string>("Ok Release"));
+  CHECK(watcher.until_prefix("Control none", 2.0));
+  CHECK(watcher.until_prefix("State idle", 2.0));
+  REQUIRE(a.request("StartMv 0 20 0") == std::optional<std::string>("Ok StartMv"));
+  REQUIRE(watcher.until_prefix("State jog", 2.0));
+  CHECK(a.request("Quit") == std::optional<std::string>("Ok Quit"));
+  CHECK(watcher.until_prefix("Control none", 2.0));
+  CHECK(watcher.until_prefix("State idle", 2.0));
+}
