@@ -49,7 +49,9 @@ std::string first_word(std::string_view line) {
 std::vector<std::string> JogPanel::act(JogAction action, Clock::time_point now) {
   if (quit_) return {};
   bool confirm_home = action == JogAction::Home && home_armed_until_ && now <= *home_armed_until_;
+  bool confirm_take = action == JogAction::TakeOver && take_armed_until_ && now <= *take_armed_until_;
   home_armed_until_.reset();
+  take_armed_until_.reset();
 
   if (action == JogAction::Quit) {
     quit_ = true;
@@ -94,6 +96,14 @@ std::vector<std::string> JogPanel::act(JogAction action, Clock::time_point now) 
       }
       motion_.reset();
       return send("Home");
+    case JogAction::TakeOver:
+      if (!confirm_take) {
+        take_armed_until_ = now + kHomeConfirmWindow;
+        note("press t again within 3 s to take control over: messd stops the machine first");
+        return {};
+      }
+      motion_.reset();
+      return send("Take force");
     default: return {};
   }
 }

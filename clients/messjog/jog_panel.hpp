@@ -81,7 +81,7 @@ class JogPanel {
   int points_ = 0;
   std::deque<std::string> pending_;  // verbs sent and not yet answered (Ok/Err come in order)
   std::deque<std::string> notes_;
-  std::optional<Clock::time_point> home_armed_until_;
+  std::optional<Clock::time_point> home_armed_until_, take_armed_until_;
   bool quit_ = false;
 };
 

@@ -251,6 +251,7 @@ TEST_CASE("Key map: letters, digits and space") {
   CHECK(action_for_key('o') == JogAction::TowardMark);
   CHECK(action_for_key('p') == JogAction::AwayFromMark);
   CHECK(action_for_key('h') == JogAction::Home);
+  CHECK(action_for_key('t') == JogAction::TakeOver);
   CHECK(action_for_key('q') == JogAction::Quit);
   CHECK(action_for_key(3) == JogAction::Quit);  // Ctrl-C in raw mode
   CHECK(action_for_key('x') == JogAction::None);
@@ -299,4 +300,14 @@ TEST_CASE("JogPanel: keep-alives are fast only while something moves or waits fo
   CHECK(p.keepalive_interval() == kKeepAliveMoving);
   p.on_line("State free");
   CHECK(p.keepalive_interval() == kKeepAliveIdle);
+}
+
+TEST_CASE("JogPanel: t t takes control over (Take force), a single t only asks for confirmation") {
+  auto p = connected_panel();
+  auto t0 = JogPanel::Clock::now();
+  CHECK(p.act(JogAction::TakeOver, t0).empty());
+  CHECK(noted(p, "press t again"));
+  CHECK(p.act(JogAction::TakeOver, t0 + std::chrono::seconds(1)) == Lines{"Take force"});
+  CHECK(p.act(JogAction::TakeOver, t0 + std::chrono::seconds(2)).empty());  // armed again, not sent
+  CHECK(p.act(JogAction::TakeOver, t0 + std::chrono::seconds(6)).empty());  // too late: asks again
 }
