@@ -93,3 +93,12 @@ TEST_CASE("control_event: names owner and host, or none, and never exceeds 79 ch
   CHECK(status_value(std::nullopt) == "none");
   CHECK(status_value(Controller{1, "messjog", "::1"}) == "messjog@::1");
 }
+
+TEST_CASE("control_taken_warning: names who took over, within 79 characters") {
+  CHECK(control_taken_warning(Controller{2, "operator", "127.0.0.1"}) ==
+        "Warn ControlTaken operator 127.0.0.1 took over; machine stopped\n");
+  Controller longest{9, controller_name(9, std::string(200, 'n')), "ffff:ffff:ffff:ffff:ffff:ffff:255.255.255.255"};
+  auto line = control_taken_warning(longest);
+  CHECK(line.size() - 1 <= kMaxEventLine);
+  CHECK(line.find("ffff:ffff:ffff:ffff:ffff:ffff:255.255.255.255") != std::string::npos);  // the host stays whole
+}

@@ -60,16 +60,29 @@ std::string controller_name(std::uint32_t session, const std::string& hello_name
   return hello_name.substr(0, kMaxControlName);
 }
 
+namespace {
+// "<name> <host>" in at most `room` characters: a long (scoped IPv6) host shortens the name
+// first (to one letter at least), then the host.
+std::string name_and_host(std::string name, std::string host, std::size_t room) {
+  if (name.size() + 1 + host.size() > room) {
+    name = name.substr(0, std::max<std::size_t>(1, room - 1 - std::min(host.size(), room - 2)));
+    host = host.substr(0, room - 1 - name.size());
+  }
+  return name + " " + host;
+}
+}  // namespace
+
 std::string control_event(const std::optional<Controller>& owner) {
   if (!owner) return "Control none\n";
-  std::string name = owner->name, host = owner->host;
-  const std::size_t fixed = std::string("Control  ").size();
-  const std::size_t room = kMaxEventLine - fixed;
-  if (name.size() + host.size() > room) {  // a scoped IPv6 host: shorten the name first, then the host
-    name = name.substr(0, std::max<std::size_t>(1, room - std::min(host.size(), room - 1)));
-    host = host.substr(0, room - name.size());
-  }
-  return "Control " + name + " " + host + "\n";
+  const std::string verb = "Control ";
+  return verb + name_and_host(owner->name, owner->host, kMaxEventLine - verb.size()) + "\n";
+}
+
+std::string control_taken_warning(const Controller& by) {
+  const std::string head = "Warn ControlTaken ", tail = " took over; machine stopped";
+  std::string who = name_and_host(by.name, by.host, kMaxEventLine - head.size());
+  if (head.size() + who.size() + tail.size() > kMaxEventLine) return head + who + "\n";  // the names matter more
+  return head + who + tail + "\n";
 }
 
 std::string describe(const Controller& c) {

@@ -32,8 +32,8 @@ void Server::check_watch() {
   if (!was_moving) return;
   log_limited(spdlog::level::warn, "watch",
               "client " + std::to_string(s.id()) + " silent for " + std::to_string(info.watch_ms) + " ms (Watch): machine stopped");
-  send(s, protocol::format_event("Warn", "WatchExpired nothing from this client for " + std::to_string(info.watch_ms) +
-                                             " ms; the machine was stopped"));
+  send(s, protocol::format_event("Warn", "WatchExpired silent for " + std::to_string(info.watch_ms) +
+                                             " ms: the machine was stopped"));
 }
 
 void Server::check_clients() {

@@ -74,8 +74,7 @@ void Server::take(Session& s, std::uint32_t slot, const protocol::Take& t) {
       stop_machine();
       const auto& was = *control_.previous();
       if (auto it = sessions_.find(was.session); it != sessions_.end())
-        send(*it->second, protocol::format_event("Warn", "ControlTaken " + control_.owner()->name + " " +
-                                                             control_.owner()->host + " took over; machine stopped"));
+        send(*it->second, control_taken_warning(*control_.owner()));
       log_limited(spdlog::level::warn, "control-force", describe(*control_.owner()) + " took control over from " + describe(was));
       announce_control();
       reply(s, slot, format_ok("Take"));

@@ -59,6 +59,9 @@ inline constexpr std::size_t kMaxControlName = 24;
 std::string controller_name(std::uint32_t session, const std::string& hello_name);
 // "Control <name> <host>\n" or "Control none\n", never longer than kMaxEventLine.
 std::string control_event(const std::optional<Controller>& owner);
+// To the client that lost control to Take force: "Warn ControlTaken <name> <host> took over;
+// machine stopped\n" (the tail left out when a long host needs the room), at most 79 characters.
+std::string control_taken_warning(const Controller& by);
 // For people: "messjog at 127.0.0.1 (client 3)".
 std::string describe(const Controller& c);
 // The Status value: "<name>@<host>" or "none".
