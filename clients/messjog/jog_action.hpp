@@ -12,6 +12,7 @@ enum class JogAction {
   Mark,                                         // remember the current position (client side)
   TowardMark, AwayFromMark,                     // oblique move on the line mark <-> current
   Home,                                         // needs a second press to confirm
+  TakeOver,                                     // Take force: needs a second press to confirm
   Quit,
 };
 

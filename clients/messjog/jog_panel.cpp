@@ -49,7 +49,9 @@ std::string first_word(std::string_view line) {
 std::vector<std::string> JogPanel::act(JogAction action, Clock::time_point now) {
   if (quit_) return {};
   bool confirm_home = action == JogAction::Home && home_armed_until_ && now <= *home_armed_until_;
+  bool confirm_take = action == JogAction::TakeOver && take_armed_until_ && now <= *take_armed_until_;
   home_armed_until_.reset();
+  take_armed_until_.reset();
 
   if (action == JogAction::Quit) {
     quit_ = true;
@@ -94,6 +96,14 @@ std::vector<std::string> JogPanel::act(JogAction action, Clock::time_point now) 
       }
       motion_.reset();
       return send("Home");
+    case JogAction::TakeOver:
+      if (!confirm_take) {
+        take_armed_until_ = now + kHomeConfirmWindow;
+        note("press t again within 3 s to take control over: messd stops the machine first");
+        return {};
+      }
+      motion_.reset();
+      return send("Take force");
     default: return {};
   }
 }
@@ -152,11 +162,15 @@ void JogPanel::note(std::string text) {
   while (notes_.size() > kMaxNotes) notes_.pop_front();
 }
 
-void JogPanel::reply_received(bool ok, std::string_view text) {
+void JogPanel::reply_received(bool ok, std::string_view text, int code) {
   std::string verb = pending_.empty() ? std::string("?") : pending_.front();
   if (!pending_.empty()) pending_.pop_front();
   if (ok) return;
   note(verb + " refused: " + std::string(text));
+  if (code == static_cast<int>(protocol::ErrorCode::NotInControl))
+    note("another client controls the machine: Space (stop) still works from here");
+  else if (code == static_cast<int>(protocol::ErrorCode::HostNotAllowed))
+    note("this host may only watch and stop the machine (messd's control.hosts)");
   bool another_start_pending = false;
   for (const auto& v : pending_) another_start_pending |= v == "StartMv";
   if (verb == "StartMv" && !another_start_pending) motion_.reset();
@@ -180,6 +194,7 @@ void JogPanel::on_line(std::string_view line) {
         } else if constexpr (std::is_same_v<T, protocol::LimitMsg>) {
           note("limit switch " + m.axis + " " + m.side);
         } else if constexpr (std::is_same_v<T, protocol::WarnMsg>) {
+          if (m.name == "ControlTaken" || m.name == "WatchExpired") motion_.reset();  // messd stopped the machine
           note("Warn " + m.name + ": " + m.text);
         } else if constexpr (std::is_same_v<T, protocol::FaultMsg>) {
           motion_.reset();
@@ -193,11 +208,15 @@ void JogPanel::on_line(std::string_view line) {
             note(who);
           }
           if (m.verb == "Status")  // "Ok Status State idle Pos ...": the state until a State event
-            for (std::size_t i = 0; i + 1 < m.args.size(); ++i)
+            for (std::size_t i = 0; i + 1 < m.args.size(); ++i) {
               if (m.args[i] == "State") machine_state_ = m.args[i + 1];
-          reply_received(true, line);
+              if (m.args[i] == "Control") controller_ = m.args[i + 1];
+            }
+          reply_received(true, line, 0);
         } else if constexpr (std::is_same_v<T, protocol::ErrMsg>) {
-          reply_received(false, line);
+          reply_received(false, line, m.code);
+        } else if constexpr (std::is_same_v<T, protocol::OtherMsg>) {
+          if (m.line.rfind("Control ", 0) == 0) controller_ = m.line.substr(8);  // "messjog 127.0.0.1" or "none"
         }
         // data lines and anything unknown: ignored, as every 1996 receiver did
       },
@@ -210,7 +229,9 @@ std::vector<std::string> JogPanel::on_connected(std::string_view where) {
   motion_.reset();
   machine_state_ = "?";
   note("connected to " + std::string(where));
+  controller_ = "?";
   auto lines = send("Hello messjog");
+  lines.push_back(send("Watch " + std::to_string(kWatchMs)).front());  // messd stops the machine if messjog dies or hangs
   lines.push_back(send("Status").front());  // messd pushes State only on changes
   return lines;
 }
@@ -218,9 +239,17 @@ std::vector<std::string> JogPanel::on_connected(std::string_view where) {
 void JogPanel::on_disconnected(std::string_view reason) {
   if (connected_) note("connection lost (" + std::string(reason) + "): reconnecting");
   connected_ = false;
+  controller_ = "?";
   pending_.clear();
   motion_.reset();
   machine_state_ = "?";
+}
+
+std::chrono::milliseconds JogPanel::keepalive_interval() const {
+  const bool machine_moves = machine_state_ == "jog" || machine_state_ == "move" || machine_state_ == "retract" ||
+                             machine_state_ == "home";
+  if (motion_ || machine_moves || !pending_.empty()) return kKeepAliveMoving;
+  return kKeepAliveIdle;
 }
 
 std::string JogPanel::motion_text() const {

@@ -65,6 +65,8 @@ void JogScreen::draw(const JogSession& session) {
   put(1, 6, state, panel.connected() ? A_BOLD : A_REVERSE);
   put(1, 48, "machine: ");
   put(1, 57, panel.machine_state(), panel.machine_state() == "fault" ? A_REVERSE : A_BOLD);
+  put(2, 48, "control: ");
+  put(2, 57, panel.controller());
 
   put(3, 0, "                            X           Y           Z");
   put(4, 0, "Current position   " + coordinates(panel.current(), "          -"),

@@ -17,7 +17,8 @@ void JogSession::adopt(client::Connection connection) {
 
 void JogSession::connected() { send(panel_.on_connected(link_.endpoint().to_string())); }
 
-void JogSession::send(const std::vector<std::string>& lines) {
+void JogSession::send(const std::vector<std::string>& lines, Clock::time_point now) {
+  if (!lines.empty()) last_sent_ = now;
   for (const auto& line : lines) {
     if (link_.send_line(line)) continue;
     panel_.on_disconnected(link_.last_error());
@@ -25,7 +26,12 @@ void JogSession::send(const std::vector<std::string>& lines) {
   }
 }
 
-void JogSession::act(JogAction action, Clock::time_point now) { send(panel_.act(action, now)); }
+void JogSession::act(JogAction action, Clock::time_point now) { send(panel_.act(action, now), now); }
+
+void JogSession::keep_alive(Clock::time_point now) {
+  if (!link_.connected() || now - last_sent_ < panel_.keepalive_interval()) return;
+  send({""}, now);  // a blank line: no reply, but messd's dead-man (Watch) counts it
+}
 
 void JogSession::service(Clock::time_point now) {
   if (auto* c = link_.connection()) {
@@ -36,6 +42,7 @@ void JogSession::service(Clock::time_point now) {
     }
   }
   if (link_.maintain(now)) connected();
+  keep_alive(now);
 }
 
 void JogSession::pump(std::chrono::milliseconds timeout) {
@@ -57,7 +64,10 @@ void JogSession::finish() {
 int JogSession::fd() const { return link_.fd(); }
 
 std::chrono::milliseconds JogSession::max_wait(Clock::time_point now) const {
-  if (link_.connected()) return std::chrono::milliseconds{1000};
+  if (link_.connected()) {
+    auto until_keepalive = std::chrono::duration_cast<std::chrono::milliseconds>(last_sent_ + panel_.keepalive_interval() - now);
+    return std::clamp(until_keepalive, std::chrono::milliseconds{0}, std::chrono::milliseconds{1000});
+  }
   return link_.until_next_attempt(now);
 }
 

@@ -39,10 +39,12 @@ class JogSession {
 
  private:
   void connected();
-  void send(const std::vector<std::string>& lines);
+  void send(const std::vector<std::string>& lines, Clock::time_point now = Clock::now());
+  void keep_alive(Clock::time_point now);  // a blank line when the dead-man needs one
 
   client::Reconnector link_;
   JogPanel panel_;
+  Clock::time_point last_sent_{};
 };
 
 }  // namespace imess::messjog

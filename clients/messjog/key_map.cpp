@@ -24,6 +24,7 @@ JogAction action_for_key(int key) {
     case 'o': case 'O': return JogAction::TowardMark;
     case 'p': case 'P': return JogAction::AwayFromMark;
     case 'h': case 'H': return JogAction::Home;
+    case 't': case 'T': return JogAction::TakeOver;
     case 'q': case 'Q': case 3 /* Ctrl-C in raw mode */: return JogAction::Quit;
     default: return JogAction::None;
   }
@@ -34,7 +35,7 @@ const std::vector<std::string_view>& key_help() {
       "Left/a  -X    Right/d  +X    Down/s  -Y    Up/w  +Y    PgDn/f  -Z    PgUp/r  +Z",
       "1 2 3   speed 2 / 20 / 100 %          Space  stop (or press the same key again)",
       "m  measure here (ForcePt)    k  mark here    o  toward mark    p  away from mark",
-      "h h  home (press twice)      q  quit (stops a running jog first)",
+      "h h  home (press twice)      t t  take control over (press twice)    q  quit",
       "A jog runs until stopped or another direction key: terminals report no key release.",
   };
   return lines;

@@ -77,6 +77,27 @@ std::string checked_address(JsonObject& o, const std::string& key, const std::st
   return text;
 }
 
+// "control": who may connect, control and force a take-over; slots and liveness limits.
+void read_control(JsonObject& c, const std::string& path, net::ControlConfig& out) {
+  auto hosts = [&](const std::string& key, net::HostList& list) {
+    auto texts = c.texts(key, "an address with an optional prefix length such as \"127.0.0.0/8\" or \"::1/128\"");
+    if (!texts) return;
+    try {
+      list = net::HostList::parse(*texts);
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError(path + ": key '" + c.where(key) + "': " + e.what());
+    }
+  };
+  hosts("hosts", out.hosts);
+  hosts("observe_hosts", out.observe_hosts);
+  hosts("force_hosts", out.force_hosts);
+  out.reserved_slots = static_cast<std::size_t>(c.number("reserved_slots", double(out.reserved_slots), 0, 10000));
+  out.idle_drop_s = c.number("idle_drop_s", out.idle_drop_s, 1, 86400);
+  out.write_stall_s = c.number("write_stall_s", out.write_stall_s, 0.5, 3600);
+  out.max_in_flight = static_cast<std::uint32_t>(c.number("max_in_flight", out.max_in_flight, 1, 200));
+  c.finish();
+}
+
 }  // namespace
 
 void load_json_config(const std::string& path, DaemonConfig& cfg) {
@@ -94,6 +115,7 @@ void load_config_text(const std::string& text, const std::string& path, DaemonCo
     cfg.server.max_clients = static_cast<std::size_t>(s->whole("max_clients", static_cast<long long>(cfg.server.max_clients), 1, 10000));
     s->finish();
   }
+  if (auto c = top.object("control")) read_control(*c, path, cfg.server.control);
   if (auto m = top.object("motion")) {
     auto& p = cfg.core.params;
     cfg.period_us = m->number("period_us", cfg.period_us, 100, 100000);

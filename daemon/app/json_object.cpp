@@ -78,6 +78,19 @@ hal::Vec3 JsonObject::vec3(const std::string& key, const hal::Vec3& def, double 
   return out;
 }
 
+std::optional<std::vector<std::string>> JsonObject::texts(const std::string& key, const std::string& expected) {
+  read_.insert(key);
+  if (!j_.contains(key)) return std::nullopt;
+  const auto& v = j_.at(key);
+  if (!v.is_array()) fail(key, "an array of strings, each " + expected);
+  std::vector<std::string> out;
+  for (const auto& e : v) {
+    if (!e.is_string()) fail(key, "an array of strings, each " + expected);
+    out.push_back(e.get<std::string>());
+  }
+  return out;
+}
+
 std::optional<JsonObject> JsonObject::object(const std::string& key) {
   read_.insert(key);
   if (!j_.contains(key)) return std::nullopt;

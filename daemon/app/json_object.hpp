@@ -31,6 +31,8 @@ class JsonObject {
   std::string text(const std::string& key, const std::string& def, const std::vector<std::string>& allowed = {});
   // Three numbers [x, y, z], each from -limit to limit.
   hal::Vec3 vec3(const std::string& key, const hal::Vec3& def, double limit = 1e6);
+  // Array of strings (may be absent: nullopt); `expected` describes an entry for the error.
+  std::optional<std::vector<std::string>> texts(const std::string& key, const std::string& expected);
   std::optional<JsonObject> object(const std::string& key);
   // Array of objects (may be absent: nullopt).
   std::optional<std::vector<JsonObject>> objects(const std::string& key);

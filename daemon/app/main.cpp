@@ -4,12 +4,14 @@
 #include <spdlog/spdlog.h>
 
 #include <boost/asio.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 
 #include "cli.hpp"
 #include "config.hpp"
+#include "fd_limit.hpp"
 #include "imess/core/loop_runner.hpp"
 #include "imess/core/motion_core.hpp"
 #include "imess/journal/journal.hpp"
@@ -110,6 +112,18 @@ int run(int argc, char** argv) {
     spdlog::info("{}", rt);
 
   if (auto base = machine->start_base_thread(cfg.realtime); !base.empty()) spdlog::info("{}", base);
+
+  if (auto fds = app::fit_fd_limit(cfg.server.max_clients); !fds.message.empty()) {
+    if (fds.lowered)
+      spdlog::warn("{}", fds.message);
+    else
+      spdlog::info("{}", fds.message);
+    cfg.server.max_clients = fds.max_clients;
+  }
+  const auto& rules = cfg.server.control;
+  spdlog::info("control from {}; observe from {}; forced take-over from {}; {} of {} slots kept for control hosts",
+               rules.hosts.to_string(), rules.observe_hosts.to_string(), rules.force_hosts.to_string(),
+               std::min(rules.reserved_slots, cfg.server.max_clients - 1), cfg.server.max_clients);
 
   boost::asio::io_context io;
   net::Server server(io, cfg.server, core, &runner, *hits);

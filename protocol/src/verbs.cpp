@@ -27,6 +27,9 @@ constexpr std::array kVerbs{
     VerbSpec{"HandMv", "dx dy dz [speed]", "simulator only: push the carriage by hand (loops open), mm and mm/s", false},
     VerbSpec{"Quit", "", "close this connection", false},
     VerbSpec{"Replay", "from-seq", "re-send the journaled hits from this sequence number (Hit lines), at most 1000", false},
+    VerbSpec{"Take", "[force]", "take control of the machine; force (configured hosts only) stops it and takes over", false},
+    VerbSpec{"Release", "", "stop the machine and give up control", false},
+    VerbSpec{"Watch", "ms", "dead-man: stop the machine when this controlling client is silent for ms (50-60000; 0 = off)", false},
 };
 
 bool iequals(std::string_view a, std::string_view b) {
@@ -128,6 +131,21 @@ ParseResult build(const VerbSpec& v, std::size_t index, std::span<const std::str
         return ParseError{ErrorCode::BadValue, "Replay takes a hit sequence number, a whole number from 0 to " +
                                                    std::to_string(kMaxSequenceNumber) + ", got '" + std::string(args[0]) + "'"};
       return Replay{*seq};
+    }
+    case 16:  // Take
+      if (!count(0, 1)) return arg_count_error(v, args.size());
+      if (args.empty()) return Take{false};
+      if (iequals(args[0], "force")) return Take{true};
+      return ParseError{ErrorCode::BadValue, "Take takes nothing or the word 'force', got '" +
+                                                 std::string(args[0].substr(0, 16)) + "'; usage: " + usage(v)};
+    case 17: return args.empty() ? ParseResult{Release{}} : ParseResult{arg_count_error(v, args.size())};
+    case 18: {  // Watch
+      if (!count(1, 1)) return arg_count_error(v, args.size());
+      if (auto e = numbers(v, args, n)) return *e;
+      if (n[0] != 0 && (n[0] < kWatchMinMs || n[0] > kWatchMaxMs || n[0] != static_cast<int>(n[0])))
+        return ParseError{ErrorCode::BadValue, "Watch takes whole milliseconds from " + std::to_string(kWatchMinMs) +
+                                                   " to " + std::to_string(kWatchMaxMs) + ", or 0 to switch it off"};
+      return Watch{static_cast<int>(n[0])};
     }
   }
   return ParseError{ErrorCode::Internal, "verb table and parser disagree"};

@@ -25,12 +25,13 @@ bool noted(const JogPanel& p, const std::string& part) {
 
 }  // namespace
 
-TEST_CASE("JogPanel: greets with Hello and asks for the Status on connect") {
+TEST_CASE("JogPanel: greets with Hello, arms the dead-man with Watch and asks for the Status on connect") {
   JogPanel p;
-  CHECK(p.on_connected("localhost:1066") == Lines{"Hello messjog", "Status"});
+  CHECK(p.on_connected("localhost:1066") == Lines{"Hello messjog", "Watch 500", "Status"});
   CHECK(p.connected());
   CHECK(p.machine_state() == "?");
   p.on_line("Ok Hello IMESS 1");
+  p.on_line("Ok Watch");
   p.on_line("Ok Status State free Pos 1.000 2.000 3.000 Loops open");
   CHECK(p.machine_state() == "free");
   p.on_line("State idle");
@@ -166,6 +167,7 @@ TEST_CASE("JogPanel: messd's lines update positions, state and messages") {
 TEST_CASE("JogPanel: an Err to StartMv ends the jog and names the refused command") {
   JogPanel p = connected_panel();
   p.on_line("Ok Hello IMESS 1");
+  p.on_line("Ok Watch");
   p.on_line("Ok Status State idle");
   p.act(JogAction::XPlus);
   REQUIRE(p.moving());
@@ -177,6 +179,7 @@ TEST_CASE("JogPanel: an Err to StartMv ends the jog and names the refused comman
 TEST_CASE("JogPanel: a State other than jog ends the jog, but not before StartMv is answered") {
   JogPanel p = connected_panel();
   p.on_line("Ok Hello IMESS 1");
+  p.on_line("Ok Watch");
   p.on_line("Ok Status State idle");
   p.act(JogAction::XPlus);
   p.on_line("State idle");  // sent before messd saw our StartMv
@@ -227,7 +230,7 @@ TEST_CASE("JogPanel: while disconnected keys send nothing - the mark survives a 
   CHECK(p.act(JogAction::XPlus).empty());
   CHECK(p.act(JogAction::Measure).empty());
   CHECK(noted(p, "connection lost (closed by messd)"));
-  CHECK(p.on_connected("127.0.0.1:1066") == Lines{"Hello messjog", "Status"});
+  CHECK(p.on_connected("127.0.0.1:1066") == Lines{"Hello messjog", "Watch 500", "Status"});
   CHECK(p.mark() == Xyz{3, 4, 0});
 }
 
@@ -248,7 +251,63 @@ TEST_CASE("Key map: letters, digits and space") {
   CHECK(action_for_key('o') == JogAction::TowardMark);
   CHECK(action_for_key('p') == JogAction::AwayFromMark);
   CHECK(action_for_key('h') == JogAction::Home);
+  CHECK(action_for_key('t') == JogAction::TakeOver);
   CHECK(action_for_key('q') == JogAction::Quit);
   CHECK(action_for_key(3) == JogAction::Quit);  // Ctrl-C in raw mode
   CHECK(action_for_key('x') == JogAction::None);
+}
+
+TEST_CASE("JogPanel: shows who controls the machine and explains NotInControl") {
+  auto p = connected_panel();
+  p.on_line("Ok Hello IMESS 1");
+  p.on_line("Ok Watch");
+  p.on_line("Ok Status State idle Pos 0.000 0.000 0.000 Clients 2 Control telnet@10.0.0.7");
+  CHECK(p.controller() == "telnet@10.0.0.7");
+  CHECK(p.act(JogAction::XPlus) == Lines{"StartMv 20.000 0.000 0.000"});
+  p.on_line("Err 209 the machine is controlled by telnet at 10.0.0.7 (client 4); StopMv is open to all");
+  CHECK_FALSE(p.moving());
+  CHECK(noted(p, "telnet at 10.0.0.7"));
+  CHECK(noted(p, "Space (stop) still works"));
+  p.on_line("Control none");
+  CHECK(p.controller() == "none");
+  p.on_line("Control messjog 127.0.0.1");
+  CHECK(p.controller() == "messjog 127.0.0.1");
+}
+
+TEST_CASE("JogPanel: a forced take-over or the dead-man ends the jog shown") {
+  auto p = connected_panel();
+  p.on_line("Ok Hello IMESS 1");
+  p.on_line("Ok Watch");
+  p.on_line("Ok Status State idle");
+  p.act(JogAction::YPlus);
+  p.on_line("State jog");
+  p.on_line("Ok StartMv");
+  REQUIRE(p.moving());
+  CHECK(p.keepalive_interval() == kKeepAliveMoving);
+  p.on_line("Warn ControlTaken operator 127.0.0.1 took over; machine stopped");
+  CHECK_FALSE(p.moving());
+  CHECK(noted(p, "ControlTaken"));
+}
+
+TEST_CASE("JogPanel: keep-alives are fast only while something moves or waits for an answer") {
+  auto p = connected_panel();
+  CHECK(p.keepalive_interval() == kKeepAliveMoving);  // Hello, Watch, Status unanswered
+  p.on_line("Ok Hello IMESS 1");
+  p.on_line("Ok Watch");
+  p.on_line("Ok Status State idle");
+  CHECK(p.keepalive_interval() == kKeepAliveIdle);
+  p.on_line("State move");  // another move (GoTo from this panel's owner, or Home)
+  CHECK(p.keepalive_interval() == kKeepAliveMoving);
+  p.on_line("State free");
+  CHECK(p.keepalive_interval() == kKeepAliveIdle);
+}
+
+TEST_CASE("JogPanel: t t takes control over (Take force), a single t only asks for confirmation") {
+  auto p = connected_panel();
+  auto t0 = JogPanel::Clock::now();
+  CHECK(p.act(JogAction::TakeOver, t0).empty());
+  CHECK(noted(p, "press t again"));
+  CHECK(p.act(JogAction::TakeOver, t0 + std::chrono::seconds(1)) == Lines{"Take force"});
+  CHECK(p.act(JogAction::TakeOver, t0 + std::chrono::seconds(2)).empty());  // armed again, not sent
+  CHECK(p.act(JogAction::TakeOver, t0 + std::chrono::seconds(6)).empty());  // too late: asks again
 }

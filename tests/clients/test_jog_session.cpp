@@ -22,10 +22,24 @@ FakeDaemonScript messd_like(std::uint16_t port, std::string position) {
   return {port, {"CurrCor " + position},
           [](const std::string& line) -> std::vector<std::string> {
             auto verb = line.substr(0, line.find(' '));
+            if (verb.empty()) return {};  // a keep-alive: messd does not answer blank lines
             if (verb == "Hello") return {"Ok Hello IMESS 1 fake"};
             if (verb == "Status") return {"Ok Status State idle Pos 0.000 0.000 0.000"};
             return {"Ok " + verb};
           }};
+}
+
+std::vector<std::string> commands(const FakeDaemon& d) {  // without the blank keep-alives
+  std::vector<std::string> out;
+  for (const auto& l : d.received())
+    if (!l.empty()) out.push_back(l);
+  return out;
+}
+
+std::size_t keepalives(const FakeDaemon& d) {
+  std::size_t n = 0;
+  for (const auto& l : d.received()) n += l.empty();
+  return n;
 }
 
 template <class Pred>
@@ -57,7 +71,7 @@ TEST_CASE("JogSession: keys reach messd as exact command lines") {
   session.act(JogAction::Speed2);
   session.act(JogAction::TowardMark);
   REQUIRE(daemon.wait_for_line("StartMv -12.000 -16.000 0.000"));
-  CHECK(daemon.received() == std::vector<std::string>{"Hello messjog", "Status", "StartMv 20.000 0.000 0.000",
+  CHECK(commands(daemon) == std::vector<std::string>{"Hello messjog", "Watch 500", "Status", "StartMv 20.000 0.000 0.000",
                                                       "StartMv 100.000 0.000 0.000", "StopMv", "ForcePt",
                                                       "StartMv -12.000 -16.000 0.000"});
 }
@@ -102,4 +116,20 @@ TEST_CASE("JogSession: q while jogging sends StopMv, and finish() delivers it wi
   REQUIRE(daemon.wait_for_gone(1));
   CHECK(daemon.received().back() == "StopMv");
   CHECK(daemon.resets() == 0);
+}
+
+TEST_CASE("JogSession: blank keep-alives go out while a jog runs, not while the panel is idle") {
+  FakeDaemon daemon(messd_like(0, "0.000 0.000 0.000"));
+  JogSession session(Endpoint{"127.0.0.1", daemon.port()}, Reconnector::Options{50ms, 500ms});
+  session.adopt(Connection::open(Endpoint{"127.0.0.1", daemon.port()}));
+  REQUIRE(daemon.wait_for_line("Watch 500"));
+  REQUIRE(pump_until(session, [&] { return session.panel().machine_state() == "idle"; }));
+  auto idle_start = keepalives(daemon);
+  auto until = std::chrono::steady_clock::now() + 600ms;
+  while (std::chrono::steady_clock::now() < until) session.pump(20ms);
+  CHECK(keepalives(daemon) == idle_start);  // idle: one every 30 s at most
+  session.act(JogAction::XPlus);
+  until = std::chrono::steady_clock::now() + 600ms;
+  while (std::chrono::steady_clock::now() < until) session.pump(20ms);
+  CHECK(keepalives(daemon) - idle_start >= 4);  // every 100 ms, well inside Watch 500
 }

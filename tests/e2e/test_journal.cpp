@@ -20,7 +20,7 @@ namespace {
 std::vector<std::string> force_points(LineClient& c, int n) {
   std::vector<std::string> hits;
   for (int done = 0; done < n;) {
-    int batch = std::min(100, n - done);
+    int batch = std::min(30, n - done);  // within the per-client in-flight cap (32)
     for (int i = 0; i < batch; ++i) c.send("ForcePt");
     int replies = 0;
     REQUIRE(c.until(

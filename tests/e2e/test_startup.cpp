@@ -124,3 +124,19 @@ TEST_CASE("a journal directory that cannot be created stops start-up with exit 2
   CHECK(r.output.find("cannot create the journal directory '" + file + "/journal'") != std::string::npos);
   CHECK(r.output.find("--journal DIR") != std::string::npos);
 }
+
+TEST_CASE("a bad control host list stops start-up naming the key and the accepted form") {
+  auto f = temp_file("bad-control.json", R"({"control": {"hosts": ["127.0.0.0/8", "localhost"]}})");
+  auto r = run_messd("--config " + f);
+  CHECK(r.status == 2);
+  CHECK(r.output.find("'control.hosts'") != std::string::npos);
+  CHECK(r.output.find("'localhost' is not an IPv4 or IPv6 address") != std::string::npos);
+  auto g = temp_file("bad-control2.json", R"({"control": {"observe_hosts": "0.0.0.0/0"}})");
+  r = run_messd("--config " + g);
+  CHECK(r.status == 2);
+  CHECK(r.output.find("'control.observe_hosts' must be an array of strings") != std::string::npos);
+  auto h = temp_file("bad-control3.json", R"({"control": {"reserved": 4}})");
+  r = run_messd("--config " + h);
+  CHECK(r.status == 2);
+  CHECK(r.output.find("unknown key 'control.reserved'") != std::string::npos);
+}

@@ -46,7 +46,7 @@ TEST_CASE("Help lists every command and ends with Ok Help") {
     if (l.rfind("Help ", 0) == 0) help.push_back(l);
     return l == "Ok Help";
   }));
-  CHECK(help.size() == 16);
+  CHECK(help.size() == 19);
   CHECK(help[0].rfind("Help StartMv vx vy vz - ", 0) == 0);
 }
 

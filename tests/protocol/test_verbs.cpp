@@ -44,10 +44,29 @@ TEST_CASE("every verb in the table parses from its own name and reports that nam
     if (v.args.rfind("vx", 0) == 0 || v.args.rfind("x ", 0) == 0 || v.args.rfind("dx", 0) == 0) line += " 1 2 3";
     else if (v.args == "name value") line += " TipRadius 2";
     else if (v.args == "from-seq") line += " 17";
+    else if (v.args == "ms") line += " 250";
     auto r = parse_command(line);
     INFO(line);
     REQUIRE(std::holds_alternative<Command>(r));
     CHECK(verb_name(std::get<Command>(r)) == v.name);
+  }
+}
+
+TEST_CASE("Take, Release and Watch: control verbs and their bounds") {
+  CHECK_FALSE(parsed<Take>("Take").force);
+  CHECK(parsed<Take>("take FORCE").force);
+  CHECK(std::get<ParseError>(parse_command("Take now")).code == ErrorCode::BadValue);
+  CHECK(std::get<ParseError>(parse_command("Take force now")).code == ErrorCode::BadArguments);
+  CHECK(std::holds_alternative<Command>(parse_command("Release")));
+  CHECK(parsed<Watch>("Watch 250").ms == 250);
+  CHECK(parsed<Watch>("Watch 0").ms == 0);
+  CHECK(parsed<Watch>("Watch 50").ms == kWatchMinMs);
+  CHECK(parsed<Watch>("Watch 60000").ms == kWatchMaxMs);
+  for (auto bad : {"Watch 49", "Watch 60001", "Watch -5", "Watch 100.5"}) {
+    INFO(bad);
+    auto e = std::get<ParseError>(parse_command(bad));
+    CHECK(e.code == ErrorCode::BadValue);
+    CHECK(e.text.find("50 to 60000") != std::string::npos);
   }
 }
 

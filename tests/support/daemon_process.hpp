@@ -98,8 +98,18 @@ class DaemonProcess {
 
 class LineClient {
  public:
-  explicit LineClient(int port) {
+  explicit LineClient(int port) : LineClient(port, {}, 0) {}
+  // From a chosen loopback source address (127.0.0.2 …: "another host" on one machine), and
+  // with a small receive buffer when rcvbuf > 0 (a client that stops reading fills up soon).
+  LineClient(int port, const std::string& source, int rcvbuf) {
     fd_ = socket(AF_INET, SOCK_STREAM, 0);
+    if (rcvbuf > 0) setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
+    if (!source.empty()) {
+      sockaddr_in from{};
+      from.sin_family = AF_INET;
+      inet_pton(AF_INET, source.c_str(), &from.sin_addr);
+      if (bind(fd_, reinterpret_cast<sockaddr*>(&from), sizeof from) != 0) throw std::runtime_error("bind failed");
+    }
     sockaddr_in a{};
     a.sin_family = AF_INET;
     a.sin_port = htons(static_cast<uint16_t>(port));
@@ -168,6 +178,17 @@ class LineClient {
   std::optional<std::string> request(const std::string& line, double timeout_s = 5.0) {
     send(line);
     return until([](const std::string& l) { return l.rfind("Ok ", 0) == 0 || l.rfind("Err ", 0) == 0; }, timeout_s);
+  }
+  // Closes with a reset (SO_LINGER 0): what a crashed host or a killed NAT entry looks like.
+  void reset() {
+    linger l{1, 0};
+    setsockopt(fd_, SOL_SOCKET, SO_LINGER, &l, sizeof l);
+    close(fd_);
+    fd_ = -1;
+  }
+  void close_now() {
+    close(fd_);
+    fd_ = -1;
   }
   const std::vector<std::string>& seen() const { return seen_; }
   const std::string& raw() const { return raw_; }

@@ -34,6 +34,7 @@ std::string fixed(double v, int decimals = 3) {
 }  // namespace
 
 void Server::on_line(Session& s, const protocol::FramedLine& line) {
+  if (s.dropping()) return;
   if (config_.log_traffic) spdlog::info("[{}] > {}", s.id(), line.text);
   if (!line.overlong && protocol::is_blank(line.text)) return;  // no command: telnet users press Enter
   const std::uint32_t slot = s.reserve_reply();
@@ -55,22 +56,37 @@ bool Server::to_core(Session& s, std::uint32_t slot, core::Command c) {
   c.seq = slot;
   if (config_.log_motion)
     spdlog::info("client {}: {} {:.3f} {:.3f} {:.3f}", s.id(), command_verb(c.kind), c.v.x(), c.v.y(), c.v.z());
+  // A client that floods gets QueueFull itself; its share of the ring stays bounded, so the
+  // ring never fills up for anyone else.
+  if (s.info().in_flight >= config_.control.max_in_flight) {
+    reply(s, slot, format_err(ErrorCode::QueueFull, std::to_string(config_.control.max_in_flight) +
+                                                        " commands of this client are waiting for the motion loop; "
+                                                        "retry when they are answered"));
+    return false;
+  }
   if (!core_.submit(c)) {
+    log_limited(spdlog::level::warn, "queue-full", "client " + std::to_string(s.id()) + ": the motion loop's command queue is full");
     reply(s, slot, format_err(ErrorCode::QueueFull, "the motion loop's command queue is full; retry"));
     return false;
   }
+  ++s.info().in_flight;
   return true;
+}
+
+// StopMv from anyone, always accepted and answered at once: the stop lane takes no ring
+// slot, so neither a crowd pressing stop nor a full ring can delay or refuse a stop.
+void Server::stop_request(Session& s, std::uint32_t slot) {
+  stop_machine();
+  reply(s, slot, format_ok("StopMv"));
 }
 
 void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command& cmd) {
   using core::CommandKind;
+  if (!allowed(s, cmd, slot)) return;
   std::visit(
       Overloaded{
           [&](const protocol::StartMv& c) { to_core(s, slot, {CommandKind::StartMv, 0, 0, vec(c.percent)}); },
-          [&](const protocol::StopMv&) {  // its own lane: never behind queued commands
-            core_.request_stop();
-            reply(s, slot, format_ok("StopMv"));
-          },
+          [&](const protocol::StopMv&) { stop_request(s, slot); },
           [&](const protocol::ForcePt&) { to_core(s, slot, {CommandKind::ForcePt}); },
           [&](const protocol::GoTo& c) { to_core(s, slot, {CommandKind::GoTo, 0, 0, vec(c.target), c.speed.value_or(0)}); },
           [&](const protocol::Home&) { to_core(s, slot, {CommandKind::Home}); },
@@ -78,7 +94,11 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Reset&) { to_core(s, slot, {CommandKind::Reset}); },
           [&](const protocol::HandMv& c) { to_core(s, slot, {CommandKind::HandMv, 0, 0, vec(c.delta), c.speed.value_or(0)}); },
           [&](const protocol::Hello& c) {
-            if (!c.client.empty()) spdlog::info("client {} is '{}'", s.id(), c.client);
+            if (!c.client.empty()) {
+              log_limited(spdlog::level::info, "hello", "client " + std::to_string(s.id()) + " is '" + c.client + "'");
+              s.info().name = c.client;
+              control_.rename(s.id(), controller_name(s.id(), c.client));
+            }
             const bool sim = core_.snapshot().simulated;
             reply(s, slot, format_ok("Hello", "IMESS 1 messd " + config_.version + " Caps jog goto home probe hand stats journal" +
                                            (sim ? " sim" : "")));
@@ -123,7 +143,7 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
               reply(s, slot, format_err(ErrorCode::BadValue, error));
               return;
             }
-            spdlog::info("client {} sets {} to {}", s.id(), p->name, *v);
+            spdlog::debug("client {} sets {} to {}", s.id(), p->name, *v);  // debug: a flood must not fill the disk
             if (p->core_id)
               core_.set_param(*p->core_id, *v);  // the parameter lane: no command-ring slot
             else
@@ -134,6 +154,13 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Quit&) {
             reply(s, slot, format_ok("Quit"));
             s.close_after_flush();
+          },
+          [&](const protocol::Take& c) { take(s, slot, c); },
+          [&](const protocol::Release&) { release(s, slot); },
+          [&](const protocol::Watch& c) {
+            s.info().watch_ms = c.ms;
+            s.info().watch_fired_for = {};
+            reply(s, slot, format_ok("Watch"));
           },
       },
       cmd);
@@ -157,6 +184,7 @@ std::string Server::status_line() {
   line += std::string(" Referenced ") + (snap.referenced ? "yes" : "no");
   line += " TipRadius " + fixed(snap.params.tip_radius) + " SpeedLevel " + fixed(snap.params.speed_level);
   line += " Clients " + std::to_string(sessions_.size());
+  line += " Control " + status_value(control_.owner());  // appended last: the 1996-era prefix stays as it was
   return line;
 }
 

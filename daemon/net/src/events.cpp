@@ -11,12 +11,14 @@ namespace imess::net {
 using core::EventKind;
 
 void Server::pump_events() {
+  check_watch();
   core::Event e;
   while (core_.events().pop(e)) {
     switch (e.kind) {
       case EventKind::Reply: {
         auto it = sessions_.find(e.client);
-        if (it == sessions_.end()) break;  // the client left before the answer
+        if (it == sessions_.end()) break;  // the client left before the answer (or 0: stop_machine)
+        if (it->second->info().in_flight > 0) --it->second->info().in_flight;
         if (e.refusal == core::Refusal::None) {
           reply(*it->second, e.seq, protocol::format_ok(command_verb(e.command)));
         } else {

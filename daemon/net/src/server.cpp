@@ -20,7 +20,9 @@ Server::Server(asio::io_context& io, ServerConfig config, core::MotionCore& core
       acceptor_(io),
       event_timer_(io),
       report_timer_(io),
-      log_timer_(io) {}
+      log_timer_(io),
+      clients_timer_(io),
+      accept_timer_(io) {}
 
 void Server::start() {
   boost::system::error_code ec;
@@ -41,6 +43,7 @@ void Server::start() {
   last_curr_cor_ = protocol::format_curr_cor({snap.position.x(), snap.position.y(), snap.position.z()});
   accept();
   schedule(event_timer_, std::chrono::microseconds(1000), &Server::pump_events);
+  schedule(clients_timer_, std::chrono::microseconds(250000), &Server::check_clients);
   schedule(report_timer_, std::chrono::microseconds(static_cast<long>(1e6 / config_.report_hz)), &Server::report_position);
   if (config_.log_status || config_.log_timing) schedule(log_timer_, std::chrono::seconds(5), &Server::log_periodic);
 }
@@ -52,6 +55,8 @@ void Server::stop() {
   event_timer_.cancel();
   report_timer_.cancel();
   log_timer_.cancel();
+  clients_timer_.cancel();
+  accept_timer_.cancel();
   auto sessions = sessions_;
   for (auto& [id, s] : sessions) s->close();
 }
@@ -71,32 +76,87 @@ void Server::accept() {
   acceptor_.async_accept([this](boost::system::error_code ec, tcp::socket socket) {
     if (!running_) return;
     if (!ec) {
-      if (sessions_.size() >= config_.max_clients) {
-        std::string line = protocol::format_err(protocol::ErrorCode::TooManyClients,
-                                                "connection limit of " + std::to_string(config_.max_clients) + " clients reached");
-        boost::system::error_code wec;
-        asio::write(socket, asio::buffer(line), wec);
-        spdlog::warn("refused a connection: {} clients already connected", sessions_.size());
-      } else {
-        auto id = next_id_++;
-        auto session = std::make_shared<Session>(
-            std::move(socket), id, config_.max_queue_bytes,
-            [this](Session& s, const protocol::FramedLine& l) { on_line(s, l); },
-            [this](Session& s) {
-              spdlog::info("client {} ({}) disconnected", s.id(), s.peer());
-              sessions_.erase(s.id());
-            });
-        sessions_[id] = session;
-        spdlog::info("client {} connected from {}", id, session->peer());
-        session->start();
-        const auto& snap = core_.snapshot();
-        send(*session, protocol::format_curr_cor({snap.position.x(), snap.position.y(), snap.position.z()}));
-      }
-    } else {
-      spdlog::warn("accept failed: {}", ec.message());
+      admit(std::move(socket));
+      accept();
+      return;
     }
-    accept();
+    // Out of descriptors or memory: accepting again at once would spin on the same error
+    // (100 % of a core, a log line each time), so pause; the backlog keeps the callers waiting.
+    const bool exhausted = ec == asio::error::no_descriptors || ec.value() == ENFILE ||
+                           ec == asio::error::no_buffer_space || ec == asio::error::no_memory;
+    log_limited(spdlog::level::warn, "accept", "accept failed: " + ec.message() + (exhausted ? "; pausing 100 ms" : ""));
+    if (!exhausted) {
+      accept();
+      return;
+    }
+    accept_timer_.expires_after(std::chrono::milliseconds(100));
+    accept_timer_.async_wait([this](boost::system::error_code tec) {
+      if (!tec && running_) accept();
+    });
   });
+}
+
+void Server::refuse(tcp::socket& socket, std::string line) {
+  boost::system::error_code ec;
+  socket.non_blocking(true, ec);  // one line into an empty socket buffer; never wait for it
+  asio::write(socket, asio::buffer(line), ec);
+  socket.close(ec);
+}
+
+void Server::admit(tcp::socket socket) {
+  boost::system::error_code ec;
+  auto remote = socket.remote_endpoint(ec);
+  if (ec) return;  // already gone
+  const auto& rules = config_.control;
+  auto address = remote.address();
+  if (address.is_v6() && address.to_v6().is_v4_mapped())  // a dual-stack "::" listener: show and match as IPv4
+    address = asio::ip::make_address_v4(asio::ip::v4_mapped, address.to_v6());
+  const bool may_control = rules.hosts.contains(address);
+  const std::string host = address.to_string();
+  if (!may_control && !rules.observe_hosts.contains(address)) {
+    log_limited(spdlog::level::warn, "refused-host", "refused a connection from " + host + ": not in control.hosts or control.observe_hosts");
+    refuse(socket, protocol::format_err(protocol::ErrorCode::HostNotAllowed,
+                                        "host " + host + " may not connect: it is in neither control.hosts nor "
+                                        "control.observe_hosts of the daemon's configuration"));
+    return;
+  }
+  // Observers may fill only max_clients - reserved_slots, so they never lock out a controller.
+  const std::size_t reserved = std::min(rules.reserved_slots, config_.max_clients - 1);
+  const std::size_t limit = may_control ? config_.max_clients : config_.max_clients - reserved;
+  if (sessions_.size() >= limit) {
+    log_limited(spdlog::level::warn, "refused-full",
+                "refused a connection from " + host + ": " + std::to_string(sessions_.size()) + " clients connected");
+    refuse(socket, protocol::format_err(protocol::ErrorCode::TooManyClients,
+                                        "connection limit of " + std::to_string(limit) + " clients reached" +
+                                            (may_control ? "" : " for hosts that may only observe")));
+    return;
+  }
+  auto id = next_id_++;
+  auto session = std::make_shared<Session>(
+      std::move(socket), id, config_.max_queue_bytes, [this](Session& s, const protocol::FramedLine& l) { on_line(s, l); },
+      [this](Session& s) { closed(s); });
+  session->info().may_control = may_control;
+  session->info().may_force = may_control && rules.force_hosts.contains(address);
+  sessions_[id] = session;
+  log_limited(spdlog::level::info, "connect",
+              "client " + std::to_string(id) + " connected from " + session->peer() + (may_control ? "" : " (observer host)"));
+  session->start();
+  const auto& snap = core_.snapshot();
+  send(*session, protocol::format_curr_cor({snap.position.x(), snap.position.y(), snap.position.z()}));
+}
+
+void Server::closed(Session& s) {
+  log_limited(spdlog::level::info, "disconnect", "client " + std::to_string(s.id()) + " (" + s.peer() + ") " + s.close_reason());
+  auto keep = sessions_[s.id()];  // s lives until this handler returns
+  sessions_.erase(s.id());
+  lose_control(s, "disconnected");
+}
+
+void Server::log_limited(spdlog::level::level_enum level, std::string_view message_class, const std::string& text) {
+  auto held = log_limiter_.admit(message_class, LogLimiter::Clock::now());
+  if (!held) return;
+  if (*held > 0) spdlog::log(level, "... suppressed {} similar '{}' lines", *held, message_class);
+  spdlog::log(level, "{}", text);
 }
 
 void Server::send(Session& s, std::string line) {

@@ -1,9 +1,20 @@
 // Session I/O on the io thread: async read loop, one async write at a time.
 #include "imess/net/session.hpp"
 
+#include <linux/sockios.h>
+#include <sys/ioctl.h>
+
+#include <algorithm>
+#include <vector>
+
 namespace imess::net {
 
 namespace asio = boost::asio;
+
+namespace {
+constexpr std::size_t kMaxGather = 256;        // lines per write
+constexpr std::size_t kMaxOpenRequests = 256;  // requests not yet answered; beyond it, reading pauses
+}  // namespace
 
 Session::Session(asio::ip::tcp::socket socket, std::uint32_t id, std::size_t max_queue_bytes, LineHandler on_line,
                  CloseHandler on_close)
@@ -14,7 +25,12 @@ Session::Session(asio::ip::tcp::socket socket, std::uint32_t id, std::size_t max
       on_close_(std::move(on_close)) {
   boost::system::error_code ec;
   auto ep = socket_.remote_endpoint(ec);
-  peer_ = ec ? "unknown" : ep.address().to_string() + ":" + std::to_string(ep.port());
+  if (!ec) {
+    address_ = ep.address();
+    if (address_.is_v6() && address_.to_v6().is_v4_mapped())  // an IPv4 client of a dual-stack "::" listener
+      address_ = asio::ip::make_address_v4(asio::ip::v4_mapped, address_.to_v6());
+  }
+  peer_ = ec ? "unknown" : address_.to_string() + ":" + std::to_string(ep.port());
   socket_.set_option(asio::ip::tcp::no_delay(true), ec);
 }
 
@@ -26,17 +42,36 @@ void Session::read() {
       self->close();
       return;
     }
+    self->last_received_ = Clock::now();
+    if (self->discard_input_) {
+      self->read();
+      return;
+    }
     self->framer_.feed(std::string_view(self->buffer_.data(), n), [&](const protocol::FramedLine& line) {
       if (self->open_) self->on_line_(*self, line);
     });
-    if (self->open_) self->read();
+    if (!self->open_) return;
+    if (self->backlogged()) {
+      self->read_paused_ = true;  // the client sends faster than it is answered: let TCP hold it back
+      return;
+    }
+    self->read();
   });
+}
+
+bool Session::backlogged() const { return replies_.size() >= kMaxOpenRequests || queued_bytes_ >= max_queue_bytes_ / 4; }
+
+void Session::resume_reading() {
+  if (read_paused_ && open_ && !backlogged()) {
+    read_paused_ = false;
+    read();
+  }
 }
 
 void Session::send(std::string line) {
   if (!open_) return;
   if (queued_bytes_ + line.size() > max_queue_bytes_) {  // not reading: drop it, never block
-    close();
+    close("dropped: more than " + std::to_string(max_queue_bytes_) + " bytes of output waiting (not reading fast enough)");
     return;
   }
   queued_bytes_ += line.size();
@@ -62,16 +97,24 @@ void Session::write() {
   if (queue_.empty()) {
     writing_ = false;
     if (close_when_flushed_ && replies_.empty()) close();
+    resume_reading();
     return;
   }
   writing_ = true;
-  asio::async_write(socket_, asio::buffer(queue_.front()), [self = shared_from_this()](boost::system::error_code ec, std::size_t) {
+  // Everything queued goes out in one gathered write (up to kMaxGather lines): one line per
+  // write let a client that sends fast build up replies faster than they left.
+  std::vector<asio::const_buffer> buffers;
+  for (std::size_t i = 0; i < queue_.size() && i < kMaxGather; ++i) buffers.push_back(asio::buffer(queue_[i]));
+  asio::async_write(socket_, buffers, [self = shared_from_this(), count = buffers.size()](boost::system::error_code ec, std::size_t) {
     if (ec || !self->open_) {
       self->close();
       return;
     }
-    self->queued_bytes_ -= self->queue_.front().size();
-    self->queue_.pop_front();
+    for (std::size_t i = 0; i < count; ++i) {  // lines queued meanwhile stay (deque keeps their storage)
+      self->queued_bytes_ -= self->queue_.front().size();
+      self->queue_.pop_front();
+    }
+    self->resume_reading();
     self->write();
   });
 }
@@ -84,9 +127,32 @@ void Session::close_after_flush() {
   close_when_flushed_ = true;
 }
 
-void Session::close() {
+void Session::drop(std::string line) {
+  if (!open_ || discard_input_) return;
+  discard_input_ = true;
+  replies_.clear();  // unanswered requests are void: the line below is the last word
+  send(std::move(line));
+  close_after_flush();
+}
+
+Session::Clock::duration Session::output_stalled_for(Clock::time_point now) {
+  // The kernel takes megabytes into a socket's send buffer, so a client that stopped reading
+  // shows as bytes the peer never acknowledged (SIOCOUTQ), not as an unfinished write.
+  int unacked = 0;
+  if (open_ && ::ioctl(socket_.native_handle(), SIOCOUTQ, &unacked) != 0) unacked = 0;
+  const std::size_t pending = queued_bytes_ + static_cast<std::size_t>(std::max(unacked, 0));
+  if (pending == 0 || pending < last_pending_)
+    stall_start_.reset();  // drained, or draining: the client reads
+  else if (!stall_start_)
+    stall_start_ = now;
+  last_pending_ = pending;
+  return stall_start_ ? now - *stall_start_ : Clock::duration::zero();
+}
+
+void Session::close(std::string reason) {
   if (!open_) return;
   open_ = false;
+  close_reason_ = std::move(reason);
   boost::system::error_code ec;
   socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ec);
   socket_.close(ec);

@@ -31,8 +31,15 @@ struct HandMv { Xyz delta; std::optional<double> speed; };  // simulator: push t
 struct Quit {};
 struct Replay { std::uint64_t from = 0; };                  // re-send journaled hits from this seq
 inline constexpr std::uint64_t kMaxReplayHits = 1000;       // per Replay request; the client asks again
+// control of the machine (docs/protocol.md, "Control")
+struct Take { bool force = false; };                        // force: stop the machine, take over
+struct Release {};                                          // stop the machine, give up control
+struct Watch { int ms = 0; };                               // dead-man interval; 0 = off
+
+inline constexpr int kWatchMinMs = 50;     // below this, io jitter alone would stop the machine
+inline constexpr int kWatchMaxMs = 60000;
 
 using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo, Home, Free,
-                             Reset, Set, Get, Stats, HandMv, Quit, Replay>;
+                             Reset, Set, Get, Stats, HandMv, Quit, Replay, Take, Release, Watch>;
 
 }  // namespace imess::protocol

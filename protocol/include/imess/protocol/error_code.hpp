@@ -24,6 +24,9 @@ enum class ErrorCode : int {
   OutOfTravel = 206,      // target outside the configured travel
   Faulted = 207,          // machine in fault state; clear with Reset
   TooManyClients = 208,   // the connection limit is reached; the connection is closed
+  NotInControl = 209,     // another client controls the machine (the text names it); StopMv is open to all
+  HostNotAllowed = 210,   // this host may not connect / control / force a take-over (configuration)
+  Dropped = 211,          // the daemon closes this connection: it stopped reading, or fell silent
   NotInJournal = 212,     // Replay of hits rotated out of the journal; the text names the oldest kept
   // 3xx: parameters
   UnknownParameter = 300, // Get/Set of a name that does not exist

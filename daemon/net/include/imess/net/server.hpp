@@ -2,6 +2,7 @@
 // replies or motion-loop commands, and turns motion-loop events into broadcasts.
 #pragma once
 #include <boost/asio.hpp>
+#include <spdlog/spdlog.h>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -10,10 +11,25 @@
 #include "imess/core/loop_runner.hpp"
 #include "imess/core/motion_core.hpp"
 #include "imess/journal/journal.hpp"
+#include "imess/net/control.hpp"
+#include "imess/net/host_list.hpp"
+#include "imess/net/log_limiter.hpp"
 #include "imess/net/session.hpp"
 #include "imess/protocol/commands.hpp"
 
 namespace imess::net {
+
+// Who may connect, control and force a take-over; slots kept for controllers; when a
+// client counts as gone (docs/configuration.md, "control").
+struct ControlConfig {
+  HostList hosts = loopback_hosts();          // may take control
+  HostList observe_hosts = any_host();        // may connect and observe (control hosts may too)
+  HostList force_hosts = loopback_hosts();    // may Take force (must also be in hosts)
+  std::size_t reserved_slots = 4;             // of max_clients, only for hosts in `hosts`
+  double idle_drop_s = 300;                   // silent this long while controlling or watching: dropped
+  double write_stall_s = 10;                  // one write unfinished this long (not reading): dropped
+  std::uint32_t max_in_flight = 32;           // per client, commands waiting in the motion loop's ring
+};
 
 struct ServerConfig {
   std::string listen = "0.0.0.0";
@@ -26,6 +42,7 @@ struct ServerConfig {
   bool log_status = false;        // -dt
   bool log_timing = false;        // -p
   bool beep = true;               // BEL on the console for every point (when it is a terminal)
+  ControlConfig control;
   std::string version = "0.1.0";
 };
 
@@ -44,14 +61,34 @@ class Server {
  private:
   // server.cpp
   void accept();
+  void admit(boost::asio::ip::tcp::socket socket);
+  void refuse(boost::asio::ip::tcp::socket& socket, std::string line);
+  void closed(Session& s);
   void broadcast(const std::string& line);
   void send(Session& s, std::string line);    // an event line for one client
   void reply(Session& s, std::uint32_t slot, std::string lines);  // fills a reply slot
   void schedule(boost::asio::steady_timer& t, std::chrono::microseconds every, void (Server::*fn)());
+  // Logs through the rate limiter: at most 5 lines a second per message class.
+  void log_limited(spdlog::level::level_enum level, std::string_view message_class, const std::string& text);
+  // server_control.cpp
+  bool allowed(Session& s, const protocol::Command& cmd, std::uint32_t slot);
+  void take(Session& s, std::uint32_t slot, const protocol::Take& t);
+  void release(Session& s, std::uint32_t slot);
+  void lose_control(Session& s, std::string_view why);  // release + stop + announce
+  void announce_control();
+  Controller controller(Session& s) const;
+  // Stops whatever moves, for the dead-man, Release, disconnect and take-over. The one
+  // place a stop is made for control reasons (the motion core's stop lane replaces its body).
+  void stop_machine();
+  // liveness.cpp
+  void check_watch();     // every millisecond: the owner's dead-man
+  void check_clients();   // every 250 ms: stalled writers, silent controllers
+  void drop(Session& s, std::string_view why);
   // dispatch.cpp
   void on_line(Session& s, const protocol::FramedLine& line);
   void on_command(Session& s, std::uint32_t slot, const protocol::Command& cmd);
   bool to_core(Session& s, std::uint32_t slot, core::Command c);
+  void stop_request(Session& s, std::uint32_t slot);
   std::string status_line();
   std::string stats_line();
   // hits.cpp, replay.cpp
@@ -68,13 +105,15 @@ class Server {
   core::LoopRunner* runner_;
   journal::Journal& journal_;
   boost::asio::ip::tcp::acceptor acceptor_;
-  boost::asio::steady_timer event_timer_, report_timer_, log_timer_;
+  boost::asio::steady_timer event_timer_, report_timer_, log_timer_, clients_timer_, accept_timer_;
   std::map<std::uint32_t, std::shared_ptr<Session>> sessions_;
   std::uint32_t next_id_ = 1;
   std::uint16_t port_ = 0;
   std::string last_curr_cor_;
   std::uint64_t points_ = 0;
   bool running_ = false;
+  Control control_;
+  LogLimiter log_limiter_;
 };
 
 }  // namespace imess::net

@@ -3,18 +3,31 @@
 #pragma once
 #include <boost/asio.hpp>
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <deque>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "imess/protocol/line_framer.hpp"
 
 namespace imess::net {
 
+// What the server keeps about a client besides its bytes: name, rights, dead-man, load.
+struct ClientInfo {
+  std::string name;              // from Hello; empty: "client<N>"
+  bool may_control = false;      // host in control.hosts
+  bool may_force = false;        // host in control.force_hosts
+  int watch_ms = 0;              // Watch: dead-man interval, 0 = off
+  std::chrono::steady_clock::time_point watch_fired_for{};  // last_received() when the dead-man last fired
+  std::uint32_t in_flight = 0;   // commands in the motion loop's ring, not yet answered
+};
+
 class Session : public std::enable_shared_from_this<Session> {
  public:
+  using Clock = std::chrono::steady_clock;
   using LineHandler = std::function<void(Session&, const protocol::FramedLine&)>;
   using CloseHandler = std::function<void(Session&)>;
 
@@ -29,15 +42,29 @@ class Session : public std::enable_shared_from_this<Session> {
   std::uint32_t reserve_reply();
   void fill_reply(std::uint32_t slot, std::string lines);
   void close_after_flush();     // Quit: finish writing, then close
-  void close();
+  // Drop: ignore further input, send `line` (an Err line saying why), close once it is out.
+  void drop(std::string line);
+  void close(std::string reason = "disconnected");
 
   std::uint32_t id() const { return id_; }
-  const std::string& peer() const { return peer_; }
+  const std::string& close_reason() const { return close_reason_; }  // for the log
+  const std::string& peer() const { return peer_; }        // "address:port"
+  const boost::asio::ip::address& address() const { return address_; }
+  std::string host() const { return address_.to_string(); }
   bool open() const { return open_; }
+  bool dropping() const { return discard_input_; }
+  Clock::time_point last_received() const { return last_received_; }   // any bytes, blank lines too
+  // For the server's periodic sweep: how long output (ours and the kernel's unacknowledged
+  // bytes) has been waiting without any of it draining; zero when nothing waits.
+  Clock::duration output_stalled_for(Clock::time_point now);
+  ClientInfo& info() { return info_; }
+  const ClientInfo& info() const { return info_; }
 
  private:
   void read();
   void write();
+  bool backlogged() const;  // too many unanswered requests or too much output: stop reading for now
+  void resume_reading();
 
   boost::asio::ip::tcp::socket socket_;
   std::uint32_t id_;
@@ -50,8 +77,13 @@ class Session : public std::enable_shared_from_this<Session> {
   std::deque<std::pair<std::uint32_t, std::string>> replies_;  // empty text: not answered yet
   std::uint32_t next_slot_ = 1;
   std::size_t queued_bytes_ = 0;
-  bool writing_ = false, open_ = true, close_when_flushed_ = false;
-  std::string peer_;
+  bool writing_ = false, open_ = true, close_when_flushed_ = false, discard_input_ = false, read_paused_ = false;
+  std::string peer_, close_reason_;
+  boost::asio::ip::address address_;
+  Clock::time_point last_received_ = Clock::now();
+  std::optional<Clock::time_point> stall_start_;
+  std::size_t last_pending_ = 0;
+  ClientInfo info_;
 };
 
 }  // namespace imess::net

@@ -1,0 +1,70 @@
+// Control: which session may move or change the machine — one at a time; everyone else
+// observes (and may always stop). Pure logic, no sockets or clock, so it is tested directly.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "imess/protocol/commands.hpp"
+
+namespace imess::net {
+
+// Who holds (or asks for) control: the session, its Hello name ("client<N>" without one)
+// and its host address.
+struct Controller {
+  std::uint32_t session = 0;
+  std::string name;
+  std::string host;
+  friend bool operator==(const Controller&, const Controller&) = default;
+};
+
+// What a command needs: Open (anyone: Hello, Status, Get, Watch ...), Stop (anyone, never
+// takes control: StopMv), Controlling (moves or changes the machine: takes control when it
+// is free, refused from observers), Own (Take / Release: decided by Control itself).
+enum class CommandNeed { Open, Stop, Controlling, Own };
+CommandNeed command_need(const protocol::Command& cmd);
+
+enum class ControlOutcome {
+  Kept,            // the session already held control
+  Taken,           // control was free and is now the session's
+  TakenOver,       // Take force: the previous owner lost it (stop the machine first)
+  HeldByOther,     // another session holds control: NotInControl
+  HostNotAllowed,  // the session's host is not in control.hosts
+  ForceNotAllowed, // Take force from a host not in control.force_hosts
+};
+
+class Control {
+ public:
+  // A Controlling command from `who`; may_control: its host is in control.hosts.
+  ControlOutcome claim(const Controller& who, bool may_control);
+  // Take [force]; on TakenOver, previous() names who lost control.
+  ControlOutcome take(const Controller& who, bool may_control, bool force, bool may_force);
+  // Release or disconnect: true when the session held control (it is free now).
+  bool release(std::uint32_t session);
+  // Hello after taking control renames the owner.
+  void rename(std::uint32_t session, const std::string& name);
+
+  bool owns(std::uint32_t session) const { return owner_ && owner_->session == session; }
+  const std::optional<Controller>& owner() const { return owner_; }
+  const std::optional<Controller>& previous() const { return previous_; }
+
+ private:
+  std::optional<Controller> owner_, previous_;
+};
+
+inline constexpr std::size_t kMaxEventLine = 79;  // characters, without "\n" (1996: 80 with it)
+inline constexpr std::size_t kMaxControlName = 24;
+
+// "client<N>" or the Hello name, cut to kMaxControlName printable characters.
+std::string controller_name(std::uint32_t session, const std::string& hello_name);
+// "Control <name> <host>\n" or "Control none\n", never longer than kMaxEventLine.
+std::string control_event(const std::optional<Controller>& owner);
+// To the client that lost control to Take force: "Warn ControlTaken <name> <host> took over;
+// machine stopped\n" (the tail left out when a long host needs the room), at most 79 characters.
+std::string control_taken_warning(const Controller& by);
+// For people: "messjog at 127.0.0.1 (client 3)".
+std::string describe(const Controller& c);
+// The Status value: "<name>@<host>" or "none".
+std::string status_value(const std::optional<Controller>& owner);
+
+}  // namespace imess::net

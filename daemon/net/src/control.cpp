@@ -1,0 +1,96 @@
+// The control rules: who may move the machine, implicit take, Take force, release.
+#include "imess/net/control.hpp"
+
+#include <algorithm>
+#include <type_traits>
+
+namespace imess::net {
+
+CommandNeed command_need(const protocol::Command& cmd) {
+  return std::visit(
+      [](const auto& c) {
+        using T = std::decay_t<decltype(c)>;
+        namespace p = protocol;
+        if constexpr (std::is_same_v<T, p::StopMv>) return CommandNeed::Stop;
+        else if constexpr (std::is_same_v<T, p::Take> || std::is_same_v<T, p::Release>) return CommandNeed::Own;
+        else if constexpr (std::is_same_v<T, p::StartMv> || std::is_same_v<T, p::GoTo> || std::is_same_v<T, p::Home> ||
+                           std::is_same_v<T, p::Free> || std::is_same_v<T, p::Reset> || std::is_same_v<T, p::Set> ||
+                           std::is_same_v<T, p::HandMv> || std::is_same_v<T, p::ForcePt>)
+          return CommandNeed::Controlling;  // ForcePt puts a point into everyone's capture
+        else
+          return CommandNeed::Open;  // Hello, Help, Status, Get, Stats, Quit, Watch
+      },
+      cmd);
+}
+
+ControlOutcome Control::claim(const Controller& who, bool may_control) {
+  if (owns(who.session)) return ControlOutcome::Kept;
+  if (!may_control) return ControlOutcome::HostNotAllowed;
+  if (owner_) return ControlOutcome::HeldByOther;
+  owner_ = who;
+  return ControlOutcome::Taken;
+}
+
+ControlOutcome Control::take(const Controller& who, bool may_control, bool force, bool may_force) {
+  if (owns(who.session)) return ControlOutcome::Kept;
+  if (!may_control) return ControlOutcome::HostNotAllowed;
+  if (!owner_) {
+    owner_ = who;
+    return ControlOutcome::Taken;
+  }
+  if (!force) return ControlOutcome::HeldByOther;
+  if (!may_force) return ControlOutcome::ForceNotAllowed;
+  previous_ = owner_;
+  owner_ = who;
+  return ControlOutcome::TakenOver;
+}
+
+bool Control::release(std::uint32_t session) {
+  if (!owns(session)) return false;
+  owner_.reset();
+  return true;
+}
+
+void Control::rename(std::uint32_t session, const std::string& name) {
+  if (owns(session)) owner_->name = name;
+}
+
+std::string controller_name(std::uint32_t session, const std::string& hello_name) {
+  if (hello_name.empty()) return "client" + std::to_string(session);
+  return hello_name.substr(0, kMaxControlName);
+}
+
+namespace {
+// "<name> <host>" in at most `room` characters: a long (scoped IPv6) host shortens the name
+// first (to one letter at least), then the host.
+std::string name_and_host(std::string name, std::string host, std::size_t room) {
+  if (name.size() + 1 + host.size() > room) {
+    name = name.substr(0, std::max<std::size_t>(1, room - 1 - std::min(host.size(), room - 2)));
+    host = host.substr(0, room - 1 - name.size());
+  }
+  return name + " " + host;
+}
+}  // namespace
+
+std::string control_event(const std::optional<Controller>& owner) {
+  if (!owner) return "Control none\n";
+  const std::string verb = "Control ";
+  return verb + name_and_host(owner->name, owner->host, kMaxEventLine - verb.size()) + "\n";
+}
+
+std::string control_taken_warning(const Controller& by) {
+  const std::string head = "Warn ControlTaken ", tail = " took over; machine stopped";
+  std::string who = name_and_host(by.name, by.host, kMaxEventLine - head.size());
+  if (head.size() + who.size() + tail.size() > kMaxEventLine) return head + who + "\n";  // the names matter more
+  return head + who + tail + "\n";
+}
+
+std::string describe(const Controller& c) {
+  return c.name + " at " + c.host + " (client " + std::to_string(c.session) + ")";
+}
+
+std::string status_value(const std::optional<Controller>& owner) {
+  return owner ? owner->name + "@" + owner->host : "none";
+}
+
+}  // namespace imess::net

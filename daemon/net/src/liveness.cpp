@@ -1,0 +1,70 @@
+// Is the client still there? The owner's dead-man (Watch), writers that stopped reading,
+// controllers that fell silent. Rules in docs/protocol.md, "Control" and "Idle clients".
+#include <spdlog/spdlog.h>
+
+#include "imess/net/server.hpp"
+#include "imess/protocol/messages.hpp"
+
+namespace imess::net {
+
+using Clock = Session::Clock;
+
+namespace {
+std::chrono::duration<double> seconds(double s) { return std::chrono::duration<double>(s); }
+
+bool moving(core::Mode m) {
+  return m == core::Mode::Jog || m == core::Mode::Move || m == core::Mode::Retract || m == core::Mode::Home;
+}
+}  // namespace
+
+void Server::check_watch() {
+  const auto& owner = control_.owner();
+  if (!owner) return;
+  auto it = sessions_.find(owner->session);
+  if (it == sessions_.end()) return;
+  Session& s = *it->second;
+  auto& info = s.info();
+  if (info.watch_ms <= 0 || info.watch_fired_for == s.last_received()) return;  // off, or fired for this silence
+  if (Clock::now() - s.last_received() < std::chrono::milliseconds(info.watch_ms)) return;
+  info.watch_fired_for = s.last_received();  // once per silence; the next bytes re-arm it
+  const bool was_moving = moving(core_.snapshot().mode) || info.in_flight > 0;
+  stop_machine();
+  if (!was_moving) return;
+  log_limited(spdlog::level::warn, "watch",
+              "client " + std::to_string(s.id()) + " silent for " + std::to_string(info.watch_ms) + " ms (Watch): machine stopped");
+  send(s, protocol::format_event("Warn", "WatchExpired silent for " + std::to_string(info.watch_ms) +
+                                             " ms: the machine was stopped"));
+}
+
+void Server::check_clients() {
+  const auto now = Clock::now();
+  for (const auto& [name, count] : log_limiter_.take_expired(now))
+    spdlog::warn("... suppressed {} similar '{}' lines", count, name);
+  const auto& rules = config_.control;
+  auto sessions = sessions_;  // drops erase from sessions_
+  for (auto& [id, s] : sessions) {
+    if (!s->open()) continue;
+    // Output that does not drain: the client stopped reading (or was stopped, SIGSTOP, and
+    // its receive buffer is full). No line would reach it any more: log and close.
+    if (s->output_stalled_for(now) > seconds(rules.write_stall_s)) {
+      s->close("dropped: its output has not drained for " + fmt::format("{:g}", rules.write_stall_s) +
+               " s (not reading)");
+      continue;
+    }
+    // Silence is normal for a monitor on an idle machine; it is not for a client that holds
+    // control or asked for the dead-man (it promised keep-alives).
+    const bool must_speak = control_.owns(id) || s->info().watch_ms > 0;
+    if (must_speak && !s->dropping() && now - s->last_received() > seconds(rules.idle_drop_s))
+      drop(*s, "nothing received for " + fmt::format("{:g}", rules.idle_drop_s) + " s while " +
+                   (control_.owns(id) ? "holding control" : "Watch is on") +
+                   "; connection closed (a blank line now and then keeps it open)");
+  }
+}
+
+void Server::drop(Session& s, std::string_view why) {
+  log_limited(spdlog::level::warn, "drop-silent", "client " + std::to_string(s.id()) + " (" + s.peer() + "): " + std::string(why));
+  lose_control(s, "dropped");
+  s.drop(protocol::format_err(protocol::ErrorCode::Dropped, why));
+}
+
+}  // namespace imess::net
