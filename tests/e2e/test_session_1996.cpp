@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <regex>
+#include <thread>
 
 #include "daemon_process.hpp"
 
@@ -89,4 +90,39 @@ TEST_CASE("measuring by hand through the protocol: Free, push onto the top, a co
   char expect_z[32];
   std::snprintf(expect_z, sizeof expect_z, "%.3f", z);
   CHECK(pt->substr(pt->rfind(' ') + 1) == expect_z);
+}
+
+// The 1996 jog panel's own button code: press = `StartMv 0.000 0.000 -20.000`, the probe hits,
+// the button is released (`StopMv`) 0-200 ms after the hit — often during the automatic
+// retract — and pressed again. The retract must finish with the tip free, and the second
+// press must move the machine into a second, identical hit (never a dead machine).
+TEST_CASE("the 1996 panel's press, hit, release within 0-200 ms, press again") {
+  DaemonProcess messd;
+  LineClient c(messd.port());
+  for (int delay_ms : {0, 20, 50, 100, 150, 200}) {
+    INFO("released " << delay_ms << " ms after the hit");
+    c.send_raw("StartMv 0.000 0.000 -20.000\n");
+    auto first = c.until_prefix("MeasPt ", 10.0);
+    REQUIRE(first);
+    CHECK(*first == "MeasPt 430.000 330.000 80.000");
+    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+    c.send_raw("StopMv\n");
+    REQUIRE(c.until_prefix("State idle", 5.0));
+    c.send_raw("StartMv 0.000 0.000 -20.000\n");  // pressed again, toward the part
+    auto again = c.until([](const std::string& l) { return l.rfind("MeasPt ", 0) == 0 || l.rfind("Err ", 0) == 0 ||
+                                                           l.rfind("Warn ", 0) == 0; }, 10.0);
+    REQUIRE(again);
+    CHECK(*again == "MeasPt 430.000 330.000 80.000");
+    c.send_raw("StopMv\n");
+    REQUIRE(c.until_prefix("State idle", 5.0));
+    auto st = c.request("Status");
+    REQUIRE(st);
+    INFO(*st);
+    CHECK(st->find("Tip free") != std::string::npos);
+    auto pos = st->find(" Pos ");
+    REQUIRE(pos != std::string::npos);
+    double x = 0, y = 0, z = 0;
+    REQUIRE(std::sscanf(st->c_str() + pos, " Pos %lf %lf %lf", &x, &y, &z) == 3);
+    CHECK(std::abs(z - 82.5) < 0.006);  // retracted 0.5 mm behind the hit, within the in-position window
+  }
 }

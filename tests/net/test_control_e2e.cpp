@@ -111,3 +111,20 @@ TEST_CASE("Release and Quit stop the machine and free control") {
   CHECK(watcher.until_prefix("Control none", 2.0));
   CHECK(watcher.until_prefix("State idle", 2.0));
 }
+
+TEST_CASE("a Hello after taking control announces the owner under its new name") {
+  DaemonProcess messd;
+  LineClient panel(messd.port()), observer(messd.port());
+  REQUIRE(panel.request("Take") == std::optional<std::string>("Ok Take"));
+  REQUIRE(observer.until_prefix("Control client1 127.0.0.1", 2.0));
+  REQUIRE(starts_with(panel.request("Hello panel"), "Ok Hello"));
+  CHECK(observer.until_prefix("Control panel 127.0.0.1", 2.0));
+}
+
+TEST_CASE("Set with a value that is no number is BadNumber, out of range BadValue") {
+  DaemonProcess messd;
+  LineClient c(messd.port());
+  CHECK(starts_with(c.request("Set TipRadius abc"), "Err 102 "));
+  CHECK(starts_with(c.request("Set TipRadius 99"), "Err 105 "));
+  CHECK(c.request("Set TipRadius 1e-400") == std::optional<std::string>("Ok Set"));
+}

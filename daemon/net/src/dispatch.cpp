@@ -97,7 +97,9 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
             if (!c.client.empty()) {
               log_limited(spdlog::level::info, "hello", "client " + std::to_string(s.id()) + " is '" + c.client + "'");
               s.info().name = c.client;
+              const bool owner = control_.owner() && control_.owner()->session == s.id();
               control_.rename(s.id(), controller_name(s.id(), c.client));
+              if (owner) announce_control();  // everyone sees the owner under its new name
             }
             const bool sim = core_.snapshot().simulated;
             reply(s, slot, format_ok("Hello", "IMESS 1 messd " + config_.version + " Caps jog goto home probe hand stats journal" +
@@ -139,8 +141,8 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
             }
             std::string error;
             auto v = parse_param_value(*p, c.value, error);
-            if (!v) {
-              reply(s, slot, format_err(ErrorCode::BadValue, error));
+            if (!v) {  // not a number at all is BadNumber, a number out of range BadValue
+              reply(s, slot, format_err(protocol::parse_number(c.value) ? ErrorCode::BadValue : ErrorCode::BadNumber, error));
               return;
             }
             spdlog::debug("client {} sets {} to {}", s.id(), p->name, *v);  // debug: a flood must not fill the disk
