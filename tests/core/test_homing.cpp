@@ -50,3 +50,19 @@ TEST_CASE("StopMv aborts homing") {
   REQUIRE(rig.run_until([&] { return rig.mode() == Mode::Idle; }, 1.0));
   CHECK_FALSE(rig.core().snapshot().homed);
 }
+
+TEST_CASE("a failed homing says why: Warn HomingFailed carries the phase's reason") {
+  auto o = relative_scales({430, 330, 100});
+  o.core.homing.phase_timeout = 0.5;  // the Z search needs seconds: this phase must time out
+  CoreRig rig(o);
+  REQUIRE(rig.simple(CommandKind::Home) == imess::core::Refusal::None);
+  REQUIRE(rig.run_until([&] { return rig.mode() != Mode::Home; }, 5.0));
+  auto warns = rig.take(EventKind::Warn);
+  REQUIRE(warns.size() == 1);
+  CHECK(warns[0].warning == imess::core::Warning::HomingFailed);
+  REQUIRE(warns[0].reason != nullptr);
+  CHECK(std::string(warns[0].reason).find("timed out") != std::string::npos);
+  CHECK(rig.mode() == Mode::Stopping);  // brakes with the configured deceleration, then stands
+  REQUIRE(rig.run_until([&] { return rig.mode() == Mode::Idle; }, 2.0));
+  CHECK_FALSE(rig.core().snapshot().homed);
+}

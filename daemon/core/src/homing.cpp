@@ -60,7 +60,7 @@ Homing::Result Homing::step(const hal::MachineState& ms, hal::MotionBackend& hw,
     case Phase::EscapeLimit:
       if (limit_away) return fail("ran into the opposite limit while leaving a limit switch");
       if (done) {
-        jog(hw, pos + dir_ * kFar, h.search_speed);
+        if (!jog(hw, pos + dir_ * kFar, h.search_speed)) return fail("the controller refused a move");
         search_start_ = now;
         enter(Phase::Search, now);
       }
@@ -72,7 +72,7 @@ Homing::Result Homing::step(const hal::MachineState& ms, hal::MotionBackend& hw,
         enter(Phase::SearchStopping, now);
       } else if (limit_here && !reversed_) {  // switch not on this side of us: reverse at the limit
         reversed_ = true;
-        jog(hw, pos - dir_ * kFar, h.search_speed);
+        if (!jog(hw, pos - dir_ * kFar, h.search_speed)) return fail("the controller refused a move");
       } else if (limit_away || (limit_here && reversed_ && done)) {
         return fail("home switch not found between the limits");
       }
@@ -82,10 +82,10 @@ Homing::Result Homing::step(const hal::MachineState& ms, hal::MotionBackend& hw,
       if (!done) return Result::Running;
       if (!backed_off_ && hal::seconds(now - search_start_) < h.min_search_time) {
         backed_off_ = true;  // found too soon: approach again from a distance at full speed
-        jog(hw, pos - dir_ * h.backoff, h.search_speed);
+        if (!jog(hw, pos - dir_ * h.backoff, h.search_speed)) return fail("the controller refused a move");
         enter(Phase::BackOff, now);
       } else {
-        jog(hw, pos - dir_ * kFar, h.index_speed);
+        if (!jog(hw, pos - dir_ * kFar, h.index_speed)) return fail("the controller refused a move");
         prev_index_ = index;
         enter(Phase::LeaveSwitch, now);
       }
@@ -94,7 +94,7 @@ Homing::Result Homing::step(const hal::MachineState& ms, hal::MotionBackend& hw,
     case Phase::BackOff:
       if (limit_away) return fail("ran into the opposite limit while backing off");
       if (done) {
-        jog(hw, pos + dir_ * kFar, h.search_speed);
+        if (!jog(hw, pos + dir_ * kFar, h.search_speed)) return fail("the controller refused a move");
         search_start_ = now;
         reversed_ = false;
         enter(Phase::Search, now);
@@ -112,14 +112,14 @@ Homing::Result Homing::step(const hal::MachineState& ms, hal::MotionBackend& hw,
 
     case Phase::IndexStopping:
       if (done) {  // go back past the index, then creep over it
-        jog(hw, pos + dir_ * 0.1, h.index_speed);
+        if (!jog(hw, pos + dir_ * 0.1, h.index_speed)) return fail("the controller refused a move");
         enter(Phase::CreepBack, now);
       }
       return Result::Running;
 
     case Phase::CreepBack:
       if (done) {
-        jog(hw, pos - dir_ * kFar, h.creep_speed);
+        if (!jog(hw, pos - dir_ * kFar, h.creep_speed)) return fail("the controller refused a move");
         prev_index_ = index;
         have_entry_ = false;
         enter(Phase::Creep, now);

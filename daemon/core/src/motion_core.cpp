@@ -490,7 +490,7 @@ void MotionCore::update_mode(Nanos now) noexcept {
           break;
         }
         case Homing::Result::Failed:
-          warn(Warning::HomingFailed, ms_.position, now);
+          warn(Warning::HomingFailed, ms_.position, now, homing_.failure());
           stop_motion();
           stopped_from_ = Mode::Home;
           enter(Mode::Stopping, now);
@@ -555,10 +555,11 @@ void MotionCore::measured(const Vec3& point, const Vec3& dir, bool compensated, 
   emit(e);
 }
 
-void MotionCore::warn(Warning w, const Vec3& where, Nanos now) noexcept {
+void MotionCore::warn(Warning w, const Vec3& where, Nanos now, const char* reason) noexcept {
   Event e;
   e.kind = EventKind::Warn;
   e.warning = w;
+  e.reason = reason;
   e.p = where;
   e.time = now;
   emit(e);

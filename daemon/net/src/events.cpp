@@ -52,8 +52,9 @@ void Server::pump_events() {
       }
       case EventKind::Warn: {
         auto w = warning_wording(e.warning);
-        broadcast(protocol::format_event("Warn", std::string(w.name) + " " + std::string(w.text)));
-        spdlog::warn("{}: {} (at {:.3f} {:.3f} {:.3f})", w.name, w.text, e.p.x(), e.p.y(), e.p.z());
+        const std::string_view text = e.reason ? std::string_view(e.reason) : w.text;  // the loop's own why, when it says one
+        broadcast(protocol::format_event("Warn", std::string(w.name) + " " + std::string(text)));
+        spdlog::warn("{}: {} (at {:.3f} {:.3f} {:.3f})", w.name, text, e.p.x(), e.p.y(), e.p.z());
         break;
       }
       case EventKind::Fault: {

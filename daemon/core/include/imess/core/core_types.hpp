@@ -119,6 +119,7 @@ struct Event {
   bool compensated = false;           // MeasPt: radius corrected (false: ForcePt)
   Vec3 p = Vec3::Zero();              // MeasPt / Warn position
   Vec3 dir = Vec3::Zero();            // MeasPt: approach direction used
+  const char* reason = nullptr;       // Warn: a static text saying why (HomingFailed), or none
   double radius = 0;                  // MeasPt: tip radius applied (0: ForcePt)
   Nanos time{0};
 };

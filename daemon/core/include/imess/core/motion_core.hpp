@@ -67,7 +67,7 @@ class MotionCore {
   void emit(const Event& e) noexcept;
   void reply(const Command& c, Refusal r) noexcept;
   void measured(const Vec3& point, const Vec3& dir, bool compensated, Nanos now) noexcept;
-  void warn(Warning w, const Vec3& where, Nanos now) noexcept;
+  void warn(Warning w, const Vec3& where, Nanos now, const char* reason = nullptr) noexcept;
   void publish(Nanos now) noexcept;
   // Per-axis speeds and accelerations for a straight path along unit direction u at the
   // requested path speed, within max_velocity, every axis' speed limit and the runtime
