@@ -79,7 +79,7 @@ void MotionCore::start(Nanos now) {
   mode_ = ms_.loops_closed() ? Mode::Idle : Mode::Free;
   mode_since_ = now;
   for (int a = 0; a < kAxes; ++a)
-    started_in_limit_[a] = static_cast<std::int8_t>(ms_.input(a, in::kLimitNeg) ? -1 : ms_.input(a, in::kLimitPos) ? 1 : 0);
+    started_in_limit_[a] = ms_.limit_side(a);
   publish(now);
 }
 
@@ -259,8 +259,7 @@ Refusal MotionCore::start_jog(const Vec3& percent, Nanos now) noexcept {
       target[a] = u[a] > 0 ? config_.axes[a].travel_max : config_.axes[a].travel_min;
     else
       target[a] = ms_.position[a] + sign(u[a]) * kFar;
-    started_in_limit_[a] =
-        static_cast<std::int8_t>(ms_.input(a, in::kLimitNeg) ? -1 : ms_.input(a, in::kLimitPos) ? 1 : 0);
+    started_in_limit_[a] = ms_.limit_side(a);
   }
   if (!ms_.loops_closed() && !hw_.set_loops(true)) return Refusal::Hardware;
   if (!hw_.move(straight_moves(target, u, speed), moving_axes(u))) return Refusal::Hardware;
@@ -299,8 +298,7 @@ Refusal MotionCore::go_to(const Vec3& target, double speed, Nanos now) noexcept 
   Vec3 u = d.normalized();
   if (ms_.tip_touched && !away_from_touch(u)) return Refusal::TipTouched;
   for (int a = 0; a < kAxes; ++a)
-    started_in_limit_[a] =
-        static_cast<std::int8_t>(ms_.input(a, in::kLimitNeg) ? -1 : ms_.input(a, in::kLimitPos) ? 1 : 0);
+    started_in_limit_[a] = ms_.limit_side(a);
   if (!ms_.loops_closed() && !hw_.set_loops(true)) return Refusal::Hardware;
   if (!hw_.move(straight_moves(target, u, v), moving_axes(u))) return Refusal::Hardware;
   motion_dir_ = u;
@@ -419,7 +417,7 @@ bool MotionCore::moving_into_limit(int axis, int side) const noexcept {
 
 void MotionCore::check_limits(Nanos now) noexcept {
   for (int a = 0; a < kAxes; ++a) {
-    int side = ms_.input(a, in::kLimitNeg) ? -1 : ms_.input(a, in::kLimitPos) ? 1 : 0;
+    int side = ms_.limit_side(a);
     if (started_in_limit_[a] != 0 && side != started_in_limit_[a]) started_in_limit_[a] = 0;  // left it
     bool entered = side != 0 && side != started_in_limit_[a];
     if (!entered) continue;
@@ -576,7 +574,7 @@ void MotionCore::publish(Nanos now) noexcept {
   s.homed = homed_;
   s.referenced = referenced_;
   for (int a = 0; a < kAxes; ++a)
-    s.limit[a] = static_cast<std::int8_t>(ms_.input(a, in::kLimitNeg) ? -1 : ms_.input(a, in::kLimitPos) ? 1 : 0);
+    s.limit[a] = ms_.limit_side(a);
   s.status = ms_.status;
   s.inputs = ms_.inputs;
   s.params = config_.params;

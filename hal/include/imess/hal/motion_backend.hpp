@@ -39,6 +39,10 @@ struct MachineState {
   bool all(std::uint32_t bit) const { return (status[0] & status[1] & status[2] & bit) != 0; }
   bool any(std::uint32_t bit) const { return ((status[0] | status[1] | status[2]) & bit) != 0; }
   bool input(int axis, std::uint8_t bit) const { return (inputs[axis] & bit) != 0; }
+  // The limit switch an axis is in: -1 negative, +1 positive, 0 none.
+  std::int8_t limit_side(int axis) const {
+    return static_cast<std::int8_t>(input(axis, input::kLimitNeg) ? -1 : input(axis, input::kLimitPos) ? 1 : 0);
+  }
   bool loops_closed() const { return all(status::kClosedLoop); }
   bool motion_done() const { return all(status::kProfileEnd); }
   bool latch_valid() const { return any(status::kLatchValid); }
