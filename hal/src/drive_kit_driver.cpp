@@ -2,6 +2,8 @@
 // PID + feed-forward with anti-windup, write the DACs (or increments), strobe.
 #include "imess/hal/drive_kit_driver.hpp"
 
+#include "imess/hal/axis_status.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -11,7 +13,6 @@ namespace imess::hal {
 namespace {
 constexpr std::array<std::uint32_t, 4> kSafetyStatus{status::kSafetyInput1, status::kSafetyInput2, status::kSafetyInput3,
                                                      status::kSafetyInput4};
-std::int64_t floor_mod(std::int64_t a, std::int64_t n) { return ((a % n) + n) % n; }
 }  // namespace
 
 std::optional<DriveKitConfig> named_drive_kit_map(std::string_view name) {
@@ -189,8 +190,7 @@ bool DriveKitDriver::read_state(MachineState& out) noexcept {
     if (ax.index_pitch_mm > 0) {
       auto pitch = static_cast<std::int64_t>(std::llround(ax.index_pitch_mm / ax.position_unit_mm));
       auto width = std::max<std::int64_t>(1, std::llround(ax.index_width_mm / ax.position_unit_mm));
-      std::int64_t phase = floor_mod(s.count - s.release_count, pitch);
-      if (phase >= pitch / 2 && phase < pitch / 2 + width) bits |= input::kIndex;
+      if (in_index_window(s.count - s.release_count, pitch, width)) bits |= input::kIndex;
     }
     out.inputs[a] = bits;
 
@@ -200,9 +200,7 @@ bool DriveKitDriver::read_state(MachineState& out) noexcept {
       p.reset(pos);
       s.integral = s.last_error = 0;
     } else {
-      double v = p.velocity();
-      int heading = v > 0 ? 1 : v < 0 ? -1 : (!p.done() ? (p.target() > p.position() ? 1 : -1) : 0);
-      if ((heading < 0 && lim_neg) || (heading > 0 && lim_pos)) p.stop(ax.max_accel);
+      p.brake_into_limits(lim_neg, lim_pos, ax.max_accel);
       p.step(dt);
       double e = p.position() - pos;
       s.max_error = std::max(s.max_error, std::abs(e));
@@ -225,14 +223,10 @@ bool DriveKitDriver::read_state(MachineState& out) noexcept {
   for (int a = 0; a < kAxes; ++a) {
     const auto& ax = config_.axes[a];
     const Axis& s = axes_[a];
-    std::uint32_t st = s.faults | safety_faults_;
-    if (out.inputs[a] & input::kLimitNeg) st |= status::kHardLimitNeg;
-    if (out.inputs[a] & input::kLimitPos) st |= status::kHardLimitPos;
-    if (s.profile.done()) st |= status::kProfileEnd;
-    if (loops_closed_) st |= status::kClosedLoop;
-    if (s.profile.done() && std::abs(s.profile.position() - position(a)) < ax.in_position_mm) st |= status::kInPosition;
-    if (latch_valid_) st |= status::kLatchValid;
-    out.status[a] = st;
+    const bool done = s.profile.done();
+    out.status[a] = status_word({out.input(a, input::kLimitNeg), out.input(a, input::kLimitPos), done, loops_closed_,
+                                 done && std::abs(s.profile.position() - position(a)) < ax.in_position_mm, latch_valid_},
+                                s.faults | safety_faults_);
     out.position[a] = position(a);
   }
   out.tip_touched = contact;

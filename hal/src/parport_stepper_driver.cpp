@@ -2,6 +2,8 @@
 // input capture in integers; the two sides meet only in atomics.
 #include "imess/hal/parport_stepper_driver.hpp"
 
+#include "imess/hal/axis_status.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -10,7 +12,6 @@ namespace imess::hal {
 namespace {
 constexpr unsigned kAllAxes = (1u << kAxes) - 1;
 std::uint32_t ticks(double ns, double base_ns) { return static_cast<std::uint32_t>(std::ceil(ns / base_ns - 1e-9)); }
-std::int64_t floor_mod(std::int64_t a, std::int64_t n) { return ((a % n) + n) % n; }
 }  // namespace
 
 ParportStepperDriver::ParportStepperDriver(PortIo& port, const Clock& clock, ParportStepperConfig config)
@@ -132,11 +133,8 @@ bool ParportStepperDriver::read_state(MachineState& out) noexcept {
     if (lim_neg) in |= input::kLimitNeg;
     if (raw_probe) in |= input::kTip;
     if (home) in |= input::kHome;
-    if (index_pitch_[a] > 0) {
-      std::int64_t phase = floor_mod(count - release_count_[a].load(std::memory_order_relaxed), index_pitch_[a]);
-      std::int64_t start = index_pitch_[a] / 2;
-      if (phase >= start && phase < start + index_width_[a]) in |= input::kIndex;
-    }
+    if (in_index_window(count - release_count_[a].load(std::memory_order_relaxed), index_pitch_[a], index_width_[a]))
+      in |= input::kIndex;
     out.inputs[a] = in;
 
     TrapezoidPlanner& p = profile_[a];
@@ -145,10 +143,7 @@ bool ParportStepperDriver::read_state(MachineState& out) noexcept {
       commanded_[a] = count;
       gen_.command(a, count, 0);
     } else {
-      // Like the card firmware: a profile heading into a closed limit switch brakes.
-      double v = p.velocity();
-      int heading = v > 0 ? 1 : v < 0 ? -1 : (!p.done() ? (p.target() > p.position() ? 1 : -1) : 0);
-      if ((heading < 0 && lim_neg) || (heading > 0 && lim_pos)) p.stop(amax_[a]);
+      p.brake_into_limits(lim_neg, lim_pos, amax_[a]);  // like the card firmware
       p.step(dt);
       std::int64_t target = std::llround(p.position());
       std::uint64_t need = static_cast<std::uint64_t>(target > count ? target - count : count - target);
@@ -158,15 +153,9 @@ bool ParportStepperDriver::read_state(MachineState& out) noexcept {
       commanded_[a] = target;
       gen_.command(a, target, rate);
     }
-    std::uint32_t s = 0;
-    if (halted) s |= status::kStopInput;
-    if (lim_neg) s |= status::kHardLimitNeg;
-    if (lim_pos) s |= status::kHardLimitPos;
-    bool arrived = p.done() && count == commanded_[a];
-    if (arrived) s |= status::kProfileEnd | status::kInPosition;
-    if (loops_closed_ && !halted) s |= status::kClosedLoop;
-    if (latch) s |= status::kLatchValid;
-    out.status[a] = s;
+    const bool arrived = p.done() && count == commanded_[a];
+    out.status[a] = status_word({lim_neg, lim_pos, arrived, loops_closed_ && !halted, arrived, latch},
+                                halted ? status::kStopInput : 0);
     out.position[a] = static_cast<double>(count - zero_[a]) / ax.steps_per_mm;
   }
   out.tip_touched = config_.tip_reversed ? !raw_probe : raw_probe;

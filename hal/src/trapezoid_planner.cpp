@@ -50,4 +50,15 @@ void TrapezoidPlanner::step(double dt) noexcept {
   pos_ += travel;
 }
 
+int TrapezoidPlanner::heading() const noexcept {
+  if (vel_ != 0) return vel_ > 0 ? 1 : -1;
+  if (done_ || target_ == pos_) return 0;
+  return target_ > pos_ ? 1 : -1;
+}
+
+void TrapezoidPlanner::brake_into_limits(bool limit_neg, bool limit_pos, double decel) noexcept {
+  const int h = heading();
+  if ((h < 0 && limit_neg) || (h > 0 && limit_pos)) stop(decel);
+}
+
 }  // namespace imess::hal

@@ -1,6 +1,8 @@
 // The emulated card's firmware (per tick) and its link request handler.
 #include "imess/sim/emulated_card.hpp"
 
+#include "imess/hal/axis_status.hpp"
+
 #include <cmath>
 
 #include "imess/hal/link_codec.hpp"
@@ -61,13 +63,8 @@ void EmulatedCard::tick() noexcept {
       continue;
     }
     // Firmware limit protection: a profile heading into a closed limit switch brakes at amax.
-    if (ax.outputs & hal::card::output::kLimitSwitchesOn) {
-      double v = ax.profile.velocity();
-      bool into = (v < 0 && machine_.limit_neg(a)) || (v > 0 && machine_.limit_pos(a)) ||
-                  (!ax.profile.done() && ax.profile.target() < encoder(a) && machine_.limit_neg(a)) ||
-                  (!ax.profile.done() && ax.profile.target() > encoder(a) && machine_.limit_pos(a));
-      if (into) ax.profile.stop(ax.amax);
-    }
+    if (ax.outputs & hal::card::output::kLimitSwitchesOn)
+      ax.profile.brake_into_limits(machine_.limit_neg(a), machine_.limit_pos(a), ax.amax);
     ax.profile.step(config_.tick);
     double error = ax.profile.position() - (machine_.carriage()[a] - ax.offset);
     if (std::abs(error) > ax.max_following_error) {
@@ -109,15 +106,11 @@ std::uint8_t EmulatedCard::inputs(int a) const noexcept {
 
 std::uint32_t EmulatedCard::status_word(int a) const noexcept {
   const Axis& ax = axes_[a];
-  std::uint32_t s = ax.faults;
-  if (machine_.limit_neg(a)) s |= st::kHardLimitNeg;
-  if (machine_.limit_pos(a)) s |= st::kHardLimitPos;
-  if (ax.profile.done()) s |= st::kProfileEnd;
-  if (ax.closed) s |= st::kClosedLoop;
-  if (ax.profile.done() && std::abs(ax.profile.position() - encoder(a)) < config_.in_position_window)
-    s |= st::kInPosition;
-  if (ax.latch_valid) s |= st::kLatchValid;
-  return s;
+  const bool done = ax.profile.done();
+  return hal::status_word({machine_.limit_neg(a), machine_.limit_pos(a), done, ax.closed,
+                           done && std::abs(ax.profile.position() - encoder(a)) < config_.in_position_window,
+                           ax.latch_valid},
+                          ax.faults);
 }
 
 int EmulatedCard::handle(std::span<const std::uint8_t> request, std::span<std::uint8_t> reply) noexcept {

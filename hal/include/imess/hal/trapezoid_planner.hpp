@@ -13,6 +13,11 @@ class TrapezoidPlanner {
   void start(double target, double vmax, double amax) noexcept;
   // Brakes to rest with the given deceleration.
   void stop(double decel) noexcept;
+  // Where the profile is going: -1, +1, or 0 when it stands at its target.
+  int heading() const noexcept;
+  // Limit protection (the card firmware's and the host planners' alike): a profile heading
+  // into a closed limit switch brakes with decel.
+  void brake_into_limits(bool limit_neg, bool limit_pos, double decel) noexcept;
   void step(double dt) noexcept;
   void shift(double delta) noexcept { pos_ += delta; target_ += delta; }
 
