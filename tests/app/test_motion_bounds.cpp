@@ -130,6 +130,10 @@ class BoundsWatch {
       const auto& ax = cfg_.core.axes[a];
       if (homing_ && referenced_homing_) {
         const double settle = 0.05 + resolution(a);  // the loops catching the axis where it stood
+        if (since_hands_ < 50) {  // a homing begun while a hand push still moved the carriage
+          homing_lo_[a] = std::min(homing_lo_[a], p[a]);
+          homing_hi_[a] = std::max(homing_hi_[a], p[a]);
+        }
         if (p[a] < homing_lo_[a] - settle || p[a] > homing_hi_[a] + settle)
           fail(std::string("homing took axis ") + hal::kAxisNames[a] + " to " + std::to_string(p[a]) +
                ", beyond its switches (allowed " + std::to_string(homing_lo_[a]) + " .. " +

@@ -20,7 +20,19 @@ class Homing {
  private:
   enum class Phase { Start, EscapeLimit, Search, SearchStopping, BackOff, LeaveSwitch, IndexStopping, CreepBack, Creep, CreepStopping };
 
+  struct Sense;
+
   void enter(Phase p, Nanos now) noexcept { phase_ = p; phase_start_ = now; }
+  // One step per phase (homing.cpp); each returns Running, Done or a failure.
+  Result start_axis(const hal::MachineState& ms, hal::MotionBackend& hw, Nanos now) noexcept;
+  Result search(const Sense& s, hal::MotionBackend& hw, Nanos now) noexcept;
+  Result after_search(const Sense& s, hal::MotionBackend& hw, Nanos now) noexcept;
+  Result leave_switch(const Sense& s, hal::MotionBackend& hw, Nanos now) noexcept;
+  Result creep(const Sense& s, hal::MotionBackend& hw, Nanos now) noexcept;
+  Result set_home(const Sense& s, hal::MotionBackend& hw, Nanos now) noexcept;
+  // Starts a move of the homed axis and enters the next phase; a refused move fails homing.
+  Result go(hal::MotionBackend& hw, double target, double speed, Phase next, Nanos now) noexcept;
+  Result search_from(hal::MotionBackend& hw, double pos, Nanos now) noexcept;
   bool jog(hal::MotionBackend& hw, double target, double speed) noexcept;
   void brake(hal::MotionBackend& hw) noexcept;  // every axis, configured deceleration
   Result fail(const char* why) noexcept { failure_ = why; return Result::Failed; }
