@@ -96,12 +96,12 @@ TEST_CASE("hostile telnet bytes never silence a session or merge two lines") {
   CHECK(c.until_prefix("Ok Get TipRadius", 2.0) == std::optional<std::string>("Ok Get TipRadius 2.000"));
 }
 
-TEST_CASE("a number that underflows is zero, one that overflows is refused") {
+TEST_CASE("a number that underflows is zero, one that overflows is not a number (Err 102)") {
   DaemonProcess messd;
   LineClient c(messd.port());
   CHECK(c.request("Set TipRadius 1e-400") == std::optional<std::string>("Ok Set"));
   CHECK(c.request("Get TipRadius") == std::optional<std::string>("Ok Get TipRadius 0.000"));
-  CHECK(c.request("Set TipRadius 1e400")->rfind("Err 105 TipRadius takes a number from 0 to 50", 0) == 0);
+  CHECK(c.request("Set TipRadius 1e400")->rfind("Err 102 TipRadius takes a number from 0 to 50", 0) == 0);
   CHECK(c.request("Get TipRadius") == std::optional<std::string>("Ok Get TipRadius 0.000"));
   CHECK(c.request("GoTo 1e400 0 0")->rfind("Err 102 ", 0) == 0);
   CHECK(c.request("StartMv 1e-400 0 0") == std::optional<std::string>("Ok StartMv"));
