@@ -106,3 +106,20 @@ TEST_CASE("a number that underflows is zero, one that overflows is not a number 
   CHECK(c.request("GoTo 1e400 0 0")->rfind("Err 102 ", 0) == 0);
   CHECK(c.request("StartMv 1e-400 0 0") == std::optional<std::string>("Ok StartMv"));
 }
+
+TEST_CASE("read-only parameters: Get reads them, Set answers Err 301, Get alone lists them") {
+  DaemonProcess messd;
+  LineClient c(messd.port());
+  CHECK(c.request("Get Period") == std::optional<std::string>("Ok Get Period 1000"));
+  CHECK(c.request("Get axes") == std::optional<std::string>("Ok Get Axes 3"));
+  CHECK(c.request("Get Backend") == std::optional<std::string>("Ok Get Backend sim-servo-card"));
+  CHECK(c.request("Set Period 500") ==
+        std::optional<std::string>("Err 301 Period can be read but not set: the motion loop's period, from the "
+                                   "configuration's motion.period_us; Get reads it"));
+  CHECK(c.request("Set Backend x")->rfind("Err 301 Backend can be read but not set", 0) == 0);
+  auto all = c.request("Get");
+  REQUIRE(all);
+  CHECK(all->rfind("Ok Get TipRadius 2.000 ", 0) == 0);
+  CHECK(all->find(" ReportHz 10.000 Period 1000 Axes 3 Backend sim-servo-card") != std::string::npos);
+  CHECK(c.request("Get Period")->rfind("Ok Get Period 1000", 0) == 0);  // a refused Set changed nothing
+}
