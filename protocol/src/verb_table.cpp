@@ -72,6 +72,8 @@ const std::array kVerbs{
                                        "Watch takes whole milliseconds from {min} to {max}, or 0 to switch it off")))),
              "dead-man: stop the machine when this controlling client is silent for ms (50-60000; 0 = off)", false,
              command_index<Watch>(), [](const Args& a) -> Command { return Watch{static_cast<int>(a.number(0))}; }},
+    VerbSpec{"Version", args(), "the daemon's version", false,
+             command_index<Version>(), [](const Args&) -> Command { return Version{}; }},
 };
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "daemon_process.hpp"
+#include "imess/protocol/verbs.hpp"
 
 using namespace imess::test;
 
@@ -46,7 +47,7 @@ TEST_CASE("Help lists every command and ends with Ok Help") {
     if (l.rfind("Help ", 0) == 0) help.push_back(l);
     return l == "Ok Help";
   }));
-  CHECK(help.size() == 19);
+  CHECK(help.size() == imess::protocol::verb_table().size());  // one line per declared verb
   CHECK(help[0].rfind("Help StartMv vx vy vz - ", 0) == 0);
 }
 
@@ -122,4 +123,14 @@ TEST_CASE("read-only parameters: Get reads them, Set answers Err 301, Get alone 
   CHECK(all->rfind("Ok Get TipRadius 2.000 ", 0) == 0);
   CHECK(all->find(" ReportHz 10.000 Period 1000 Axes 3 Backend sim-servo-card") != std::string::npos);
   CHECK(c.request("Get Period")->rfind("Ok Get Period 1000", 0) == 0);  // a refused Set changed nothing
+}
+
+TEST_CASE("Version answers the daemon's version, as Hello does, to anyone") {
+  DaemonProcess messd;
+  LineClient owner(messd.port()), observer(messd.port());
+  REQUIRE(owner.request("Take") == std::optional<std::string>("Ok Take"));
+  auto version = observer.request("Version");
+  REQUIRE(version);
+  CHECK(version->rfind("Ok Version ", 0) == 0);
+  CHECK(observer.request("Hello")->find("messd " + version->substr(11) + " Caps") != std::string::npos);
 }

@@ -203,3 +203,8 @@ TEST_CASE("the grammar carries axis words for verbs like MoveTo 7 X10 C90 F20") 
   CHECK(std::get<ParseError>(parse("MoveTo 7 Xten")).code == ErrorCode::BadNumber);
   CHECK(std::get<ParseError>(parse("MoveTo 7")).code == ErrorCode::BadArguments);   // at least one word
 }
+
+TEST_CASE("Version takes no arguments") {
+  parsed<Version>("version");
+  CHECK(failed("Version 2").text == "Version takes no arguments, got 1; usage: Version");
+}

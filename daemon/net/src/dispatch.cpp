@@ -161,6 +161,7 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
             s.info().watch_fired_for = {};
             reply(s, slot, format_ok("Watch"));
           },
+          [&](const protocol::Version&) { reply(s, slot, format_ok("Version", config_.version)); },
       },
       cmd);
 }
