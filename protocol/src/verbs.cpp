@@ -173,10 +173,15 @@ ParseResult parse_with(const VerbSpec& verb, std::string_view line) {
   return parse_args(verb, std::span(tokens).subspan(1));
 }
 
-std::string_view verb_name(const Command& cmd) {
+const VerbSpec* declaration_of(const Command& cmd) {
   for (const auto& v : verb_table())
-    if (v.command == cmd.index()) return v.name;
-  return "?";  // a Command without a declaration; the verb tests rule it out
+    if (v.command == cmd.index()) return &v;
+  return nullptr;
+}
+
+std::string_view verb_name(const Command& cmd) {
+  const VerbSpec* v = declaration_of(cmd);
+  return v ? v->name : "?";
 }
 
 std::string usage_args(const VerbSpec& verb) {

@@ -41,6 +41,20 @@ TEST_CASE("docs/protocol.md's verb table and the declarations agree: names and u
   }
 }
 
+TEST_CASE("docs/protocol.md's list of verbs open to all is the declarations' Open verbs") {
+  auto doc = read_doc();
+  auto at = doc.find("* **Open to all**:");
+  REQUIRE(at != std::string::npos);
+  const std::string line = doc.substr(at, doc.find('\n', at) - at);
+  std::set<std::string> listed;
+  for (auto open = line.find('`'); open != std::string::npos; open = line.find('`', line.find('`', open + 1) + 1))
+    listed.insert(line.substr(open + 1, line.find('`', open + 1) - open - 1));
+  std::set<std::string> declared;
+  for (const auto& v : verb_table())
+    if (v.access == Access::Open) declared.insert(std::string(v.name));
+  CHECK(listed == declared);
+}
+
 TEST_CASE("docs/protocol.md lists every error code with its name") {
   auto doc = read_doc();
   for (const auto& e : error_table()) {

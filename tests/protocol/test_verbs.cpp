@@ -184,7 +184,7 @@ TEST_CASE("the grammar carries axis words for verbs like MoveTo 7 X10 C90 F20") 
   static const VerbSpec move_to{"MoveTo",
                                 args(sequence("id", "MoveTo takes a move number, got '{got}'"),
                                      axis_words("words", "XYZABCF", "MoveTo takes words X Y Z A B C F with a number each, got '{got}'")),
-                                "test only", false, command_index<Quit>(), [](const Args& a) -> Command {
+                                "test only", false, Access::Controlling, command_index<Quit>(), [](const Args& a) -> Command {
                                   Xyz p;  // fold the words into a command that exists, to look at them
                                   for (auto w : a.axis_words) (w.letter == 'X' ? p.x : w.letter == 'C' ? p.y : p.z) = w.value;
                                   return GoTo{p, a.at[0].sequence == 7 ? std::optional<double>(7) : std::nullopt};

@@ -66,11 +66,20 @@ struct ArgList {
   std::size_t size = 0;
 };
 
+// Who may send a verb (docs/protocol.md, "Control"); the daemon enforces it.
+enum class Access : std::uint8_t {
+  Open,         // anyone: it neither moves nor changes the machine
+  Controlling,  // the client in control (the first such command takes control when free)
+  Stop,         // anyone, always (StopMv)
+  Own,          // changes who controls (Take, Release)
+};
+
 struct VerbSpec {
   std::string_view name;   // canonical spelling; matched case-insensitively, at most 8 characters
   ArgList args;            // the grammar; the usage is made from it
   std::string_view help;   // one line
   bool since_1996;         // part of the original MESSD protocol
+  Access access;           // who may send it
   std::size_t command;     // index of the typed command in the Command variant
   Command (*build)(const Args&);  // typed command from checked values
 };

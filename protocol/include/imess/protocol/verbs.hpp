@@ -31,6 +31,10 @@ ParseResult parse_with(const VerbSpec& verb, std::string_view line);
 
 bool is_blank(std::string_view line);
 
+// The declaration a command was built from (null only for a Command nobody declared, which
+// the verb tests rule out).
+const VerbSpec* declaration_of(const Command& cmd);
+
 // The canonical verb name of a command (for `Ok <verb>` replies).
 std::string_view verb_name(const Command& cmd);
 
