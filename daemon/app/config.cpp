@@ -11,6 +11,7 @@
 #include "imess/protocol/numbers.hpp"
 #include "json_object.hpp"
 #include "json_text.hpp"
+#include "param_config.hpp"
 
 namespace imess::app {
 
@@ -111,27 +112,15 @@ void load_config_text(const std::string& text, const std::string& path, DaemonCo
   if (auto s = top.object("server")) {
     cfg.server.port = static_cast<std::uint16_t>(s->whole("port", cfg.server.port, 0, 65535));
     cfg.server.listen = checked_address(*s, "listen", cfg.server.listen);
-    cfg.server.report_hz = s->number("report_hz", cfg.server.report_hz, 0.1, 100);
+    read_param_keys(*s, "server", cfg);  // report_hz: the ReportHz parameter
     cfg.server.max_clients = static_cast<std::size_t>(s->whole("max_clients", static_cast<long long>(cfg.server.max_clients), 1, 10000));
     s->finish();
   }
   if (auto c = top.object("control")) read_control(*c, path, cfg.server.control);
   if (auto m = top.object("motion")) {
-    auto& p = cfg.core.params;
-    cfg.period_us = m->number("period_us", cfg.period_us, 100, 100000);
+    read_param_keys(*m, "motion", cfg);  // period_us, tip_radius, ...: the parameter registry's entries
     cfg.realtime = m->boolean("realtime", cfg.realtime);
-    p.tip_radius = m->number("tip_radius", p.tip_radius, 0, 50);
-    p.speed_level = m->number("speed_level", p.speed_level, 0.01, 2);
-    p.max_speed = m->number("max_speed", p.max_speed, 0.1, 1000);
-    p.max_accel = m->number("max_accel", p.max_accel, 1, 20000);
     cfg.core.max_velocity = m->number("max_velocity", cfg.core.max_velocity, 0.1, 2000);
-    p.retract_distance = m->number("retract_distance", p.retract_distance, 0, 20);
-    p.retract_speed = m->number("retract_speed", p.retract_speed, 0.1, 200);
-    p.retract_timeout = m->number("retract_timeout_s", p.retract_timeout, 0.1, 60);
-    p.idle_open_time = m->number("idle_open_s", p.idle_open_time, 0.1, 1e9);
-    p.goto_speed = m->number("goto_speed", p.goto_speed, 0.1, 1000);
-    p.hand_min_travel = m->number("hand_min_travel", p.hand_min_travel, 0.1, 50);
-    p.hand_min_interval = m->number("hand_min_interval_s", p.hand_min_interval, 0, 60);
     cfg.home_on_start = m->boolean("home_on_start", cfg.home_on_start);
     m->finish();
   }
@@ -217,12 +206,8 @@ std::vector<std::string> load_messdrc_text(const std::string& text, const std::s
     if (!(words >> key)) continue;
     words >> value >> extra;
     std::string at = path + ":" + std::to_string(n) + ": ";
-    auto number = [&](double lo, double hi) {
-      auto v = protocol::parse_number(value);
-      if (!v || *v < lo || *v > hi || !extra.empty())
-        throw ConfigError(at + key + " takes one number from " + compact(lo) + " to " + compact(hi) + ", got '" +
-                          value + "'");
-      return *v;
+    auto number = [&](std::string_view name) {
+      return messdrc_number(*net::find_param(name), value, !extra.empty(), at);
     };
     const bool known = key == "SpeedLevel" || key == "TipRadius" || key == "TipReversed";
     if (known) {
@@ -231,10 +216,10 @@ std::vector<std::string> load_messdrc_text(const std::string& text, const std::s
                           "); give each setting once");
     }
     if (key == "SpeedLevel") {
-      cfg.core.params.speed_level = number(0.01, 2);
+      cfg.core.params.speed_level = number("SpeedLevel");
       cfg.notes.push_back("messdrc: SpeedLevel " + value);
     } else if (key == "TipRadius") {
-      cfg.core.params.tip_radius = number(0, 50);
+      cfg.core.params.tip_radius = number("TipRadius");
       cfg.notes.push_back("messdrc: TipRadius " + value);
     } else if (key == "TipReversed") {
       if ((value != "true" && value != "false") || !extra.empty())

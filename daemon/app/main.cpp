@@ -45,6 +45,8 @@ app::DaemonConfig configure(const app::CliOptions& cli) {
   cfg.server.log_status = cli.debug_status;
   cfg.server.log_timing = cli.timing;
   cfg.server.version = kVersion;
+  cfg.server.period_us = cfg.period_us;  // read-only parameters Period and Backend
+  cfg.server.backend = cfg.backend;
   app::finish_config(cfg);
   return cfg;
 }

@@ -1,36 +1,17 @@
-// Verb table and command parser. Every reject names what was wrong and what is accepted.
+// The generic command parser: finds the verb's declaration (verb_table.cpp), checks the
+// arguments against its grammar and builds the typed command. Every reject names what was
+// wrong and what is accepted.
 #include "imess/protocol/verbs.hpp"
 
-#include <array>
 #include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "imess/protocol/numbers.hpp"
 
 namespace imess::protocol {
 namespace {
-
-constexpr std::array kVerbs{
-    VerbSpec{"StartMv", "vx vy vz", "jog: per-axis speed in % of MaxSpeed (x SpeedLevel), sign = direction", true},
-    VerbSpec{"StopMv", "", "stop any motion (jog, GoTo, Home)", true},
-    VerbSpec{"ForcePt", "", "measure here: broadcast the current position as MeasPt, no radius correction", true},
-    VerbSpec{"Hello", "[name]", "protocol version and capabilities; names this client in the log", false},
-    VerbSpec{"Help", "", "list every command with its usage", false},
-    VerbSpec{"Status", "", "state, position, loops, tip, limits, homed, tip radius, speed level", false},
-    VerbSpec{"GoTo", "x y z [speed]", "straight move to an absolute position (mm), speed in mm/s", false},
-    VerbSpec{"Home", "", "reference search on all axes; zero at the encoder index", false},
-    VerbSpec{"Free", "", "open the position loops now so the machine can be moved by hand", false},
-    VerbSpec{"Reset", "", "clear a fault after its cause was removed", false},
-    VerbSpec{"Set", "name value", "set a runtime parameter (Get lists them)", false},
-    VerbSpec{"Get", "[name]", "read one runtime parameter, or all of them", false},
-    VerbSpec{"Stats", "", "motion-loop period, wake-up latency percentiles, overruns, cycles", false},
-    VerbSpec{"HandMv", "dx dy dz [speed]", "simulator only: push the carriage by hand (loops open), mm and mm/s", false},
-    VerbSpec{"Quit", "", "close this connection", false},
-    VerbSpec{"Replay", "from-seq", "re-send the journaled hits from this sequence number (Hit lines), at most 1000", false},
-    VerbSpec{"Take", "[force]", "take control of the machine; force (configured hosts only) stops it and takes over", false},
-    VerbSpec{"Release", "", "stop the machine and give up control", false},
-    VerbSpec{"Watch", "ms", "dead-man: stop the machine when this controlling client is silent for ms (50-60000; 0 = off)", false},
-};
 
 bool iequals(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
@@ -51,109 +32,122 @@ std::vector<std::string_view> split(std::string_view line) {
   return tokens;
 }
 
-std::string usage(const VerbSpec& v) {
-  std::string u(v.name);
-  if (!v.args.empty()) u.append(" ").append(v.args);
-  return u;
+// A range bound as people write it: whole values without a fraction, others as %g.
+std::string bound(double v) {
+  if (v == std::floor(v) && std::fabs(v) < 1e15) return std::to_string(static_cast<long long>(v));
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
 }
 
-ParseError arg_count_error(const VerbSpec& v, std::size_t got) {
-  return {ErrorCode::BadArguments,
-          std::string(v.name) + " takes " + (v.args.empty() ? std::string("no arguments") : "'" + std::string(v.args) + "'") +
-              ", got " + std::to_string(got) + "; usage: " + usage(v)};
+// The declared refusal text with {min}, {max}, {got} and {usage} filled in.
+ParseError refusal(const VerbSpec& v, const ArgSpec& a, std::string_view got) {
+  std::string text;
+  std::string_view r = a.refusal;
+  while (!r.empty()) {
+    auto open = r.find('{');
+    auto close = r.find('}', open);
+    if (open == std::string_view::npos || close == std::string_view::npos) {
+      text.append(r);
+      break;
+    }
+    text.append(r.substr(0, open));
+    auto key = r.substr(open + 1, close - open - 1);
+    if (key == "min") text += bound(a.min);
+    else if (key == "max") text += a.kind == ArgKind::Sequence ? std::to_string(kMaxSequenceNumber) : bound(a.max);
+    else if (key == "got") text.append(a.kind == ArgKind::Choice ? got.substr(0, 16) : got);  // a stray word: its start
+    else if (key == "usage") text += usage(v);
+    else text.append(r.substr(open, close - open + 1));
+    r.remove_prefix(close + 1);
+  }
+  return {ErrorCode::BadValue, text};
 }
 
-// Parses tokens[first..] as numbers into out; on failure names the bad token.
-std::optional<ParseError> numbers(const VerbSpec& v, std::span<const std::string_view> tokens, double* out) {
-  for (std::size_t i = 0; i < tokens.size(); ++i) {
-    auto n = parse_number(tokens[i]);
-    if (!n)
-      return ParseError{ErrorCode::BadNumber, "'" + std::string(tokens[i]) +
-                                                  "' is not a number; usage: " + usage(v) + " (decimal numbers, e.g. -12.5)"};
-    out[i] = *n;
+ParseError count_error(const VerbSpec& v, std::size_t got) {
+  const std::string a = usage_args(v);
+  return {ErrorCode::BadArguments, std::string(v.name) + " takes " + (a.empty() ? std::string("no arguments") : "'" + a + "'") +
+                                       ", got " + std::to_string(got) + "; usage: " + usage(v)};
+}
+
+ParseError number_error(const VerbSpec& v, std::string_view token) {
+  return {ErrorCode::BadNumber,
+          "'" + std::string(token) + "' is not a number; usage: " + usage(v) + " (decimal numbers, e.g. -12.5)"};
+}
+
+bool in_range(const ArgSpec& a, double x) {
+  if (a.or_zero && x == 0) return true;
+  if (a.whole && x != std::floor(x)) return false;
+  return (a.above_min ? x > a.min : x >= a.min) && x <= a.max;
+}
+
+// "X10" etc.: each letter of the declared set at most once, each with a number.
+std::optional<ParseError> read_axis_words(const VerbSpec& v, const ArgSpec& a, std::span<const std::string_view> tokens,
+                                          Args& out) {
+  for (auto t : tokens) {
+    const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(t[0])));
+    bool repeated = false;
+    for (const auto& w : out.axis_words) repeated = repeated || w.letter == letter;
+    if (a.words.find(letter) == std::string_view::npos || repeated) return refusal(v, a, t);
+    auto n = parse_number(t.substr(1));
+    if (!n) return number_error(v, t);
+    out.axis_words.push_back({letter, *n});
   }
   return std::nullopt;
 }
 
-ParseResult build(const VerbSpec& v, std::size_t index, std::span<const std::string_view> args) {
-  auto count = [&](std::size_t lo, std::size_t hi) { return args.size() >= lo && args.size() <= hi; };
-  double n[4] = {0, 0, 0, 0};
-  switch (index) {
-    case 0:  // StartMv
-      if (!count(3, 3)) return arg_count_error(v, args.size());
-      if (auto e = numbers(v, args, n)) return *e;
-      for (double p : {n[0], n[1], n[2]})
-        if (p < -100.0 || p > 100.0)
-          return ParseError{ErrorCode::BadValue, "StartMv speeds are percent of MaxSpeed, -100 to 100"};
-      return StartMv{{n[0], n[1], n[2]}};
-    case 1: return args.empty() ? ParseResult{StopMv{}} : ParseResult{arg_count_error(v, args.size())};
-    case 2: return args.empty() ? ParseResult{ForcePt{}} : ParseResult{arg_count_error(v, args.size())};
-    case 3:
-      if (!count(0, 1)) return arg_count_error(v, args.size());
-      return Hello{args.empty() ? std::string{} : std::string(args[0])};
-    case 4: return args.empty() ? ParseResult{Help{}} : ParseResult{arg_count_error(v, args.size())};
-    case 5: return args.empty() ? ParseResult{Status{}} : ParseResult{arg_count_error(v, args.size())};
-    case 6: {  // GoTo
-      if (!count(3, 4)) return arg_count_error(v, args.size());
-      if (auto e = numbers(v, args, n)) return *e;
-      GoTo g{{n[0], n[1], n[2]}, std::nullopt};
-      if (args.size() == 4) {
-        if (n[3] <= 0) return ParseError{ErrorCode::BadValue, "GoTo speed must be greater than 0 mm/s"};
-        g.speed = n[3];
+// Checks the tokens against the grammar: the count first, then the syntax of every number,
+// then the values — so a line with both a non-number and a value out of range is Err 102.
+ParseResult parse_args(const VerbSpec& v, std::span<const std::string_view> tokens) {
+  const auto specs = std::span(v.args.items).first(v.args.size);
+  std::size_t required = 0;
+  bool variadic = false;
+  for (const auto& a : specs) {
+    required += a.optional ? 0 : 1;
+    variadic = variadic || a.kind == ArgKind::AxisWords;
+  }
+  if (tokens.size() < required || (!variadic && tokens.size() > specs.size())) return count_error(v, tokens.size());
+  Args out;
+  for (std::size_t i = 0; i < specs.size() && i < tokens.size(); ++i) {
+    if (specs[i].kind != ArgKind::Number) continue;
+    auto n = parse_number(tokens[i]);
+    if (!n) return number_error(v, tokens[i]);
+    out.at[i].number = *n;
+  }
+  for (std::size_t i = 0; i < specs.size() && i < tokens.size(); ++i) {
+    const ArgSpec& a = specs[i];
+    ArgValue& value = out.at[i];
+    value.present = true;
+    value.text = tokens[i];
+    switch (a.kind) {
+      case ArgKind::Number:
+        if (!in_range(a, value.number)) return refusal(v, a, tokens[i]);
+        break;
+      case ArgKind::Word: break;
+      case ArgKind::Choice: {
+        value.choice = 0;
+        bool found = false;
+        for (auto w : split(a.words)) {
+          if (iequals(w, tokens[i])) { found = true; break; }
+          ++value.choice;
+        }
+        if (!found) return refusal(v, a, tokens[i]);
+        break;
       }
-      return g;
-    }
-    case 7: return args.empty() ? ParseResult{Home{}} : ParseResult{arg_count_error(v, args.size())};
-    case 8: return args.empty() ? ParseResult{Free{}} : ParseResult{arg_count_error(v, args.size())};
-    case 9: return args.empty() ? ParseResult{Reset{}} : ParseResult{arg_count_error(v, args.size())};
-    case 10:
-      if (!count(2, 2)) return arg_count_error(v, args.size());
-      return Set{std::string(args[0]), std::string(args[1])};
-    case 11:
-      if (!count(0, 1)) return arg_count_error(v, args.size());
-      return Get{args.empty() ? std::string{} : std::string(args[0])};
-    case 12: return args.empty() ? ParseResult{Stats{}} : ParseResult{arg_count_error(v, args.size())};
-    case 13: {  // HandMv
-      if (!count(3, 4)) return arg_count_error(v, args.size());
-      if (auto e = numbers(v, args, n)) return *e;
-      HandMv h{{n[0], n[1], n[2]}, std::nullopt};
-      if (args.size() == 4) {
-        if (n[3] <= 0) return ParseError{ErrorCode::BadValue, "HandMv speed must be greater than 0 mm/s"};
-        h.speed = n[3];
+      case ArgKind::Sequence: {
+        auto seq = parse_sequence_number(tokens[i]);
+        if (!seq) return refusal(v, a, tokens[i]);
+        value.sequence = *seq;
+        break;
       }
-      return h;
-    }
-    case 14: return args.empty() ? ParseResult{Quit{}} : ParseResult{arg_count_error(v, args.size())};
-    case 15: {  // Replay
-      if (!count(1, 1)) return arg_count_error(v, args.size());
-      auto seq = parse_sequence_number(args[0]);
-      if (!seq)
-        return ParseError{ErrorCode::BadValue, "Replay takes a hit sequence number, a whole number from 0 to " +
-                                                   std::to_string(kMaxSequenceNumber) + ", got '" + std::string(args[0]) + "'"};
-      return Replay{*seq};
-    }
-    case 16:  // Take
-      if (!count(0, 1)) return arg_count_error(v, args.size());
-      if (args.empty()) return Take{false};
-      if (iequals(args[0], "force")) return Take{true};
-      return ParseError{ErrorCode::BadValue, "Take takes nothing or the word 'force', got '" +
-                                                 std::string(args[0].substr(0, 16)) + "'; usage: " + usage(v)};
-    case 17: return args.empty() ? ParseResult{Release{}} : ParseResult{arg_count_error(v, args.size())};
-    case 18: {  // Watch
-      if (!count(1, 1)) return arg_count_error(v, args.size());
-      if (auto e = numbers(v, args, n)) return *e;
-      if (n[0] != 0 && (n[0] < kWatchMinMs || n[0] > kWatchMaxMs || n[0] != static_cast<int>(n[0])))
-        return ParseError{ErrorCode::BadValue, "Watch takes whole milliseconds from " + std::to_string(kWatchMinMs) +
-                                                   " to " + std::to_string(kWatchMaxMs) + ", or 0 to switch it off"};
-      return Watch{static_cast<int>(n[0])};
+      case ArgKind::AxisWords:
+        if (auto e = read_axis_words(v, a, tokens.subspan(i), out)) return *e;
+        break;
     }
   }
-  return ParseError{ErrorCode::Internal, "verb table and parser disagree"};
+  return v.build(out);
 }
 
 }  // namespace
-
-std::span<const VerbSpec> verb_table() { return kVerbs; }
 
 bool is_blank(std::string_view line) { return line.find_first_not_of(" \t") == std::string_view::npos; }
 
@@ -167,14 +161,44 @@ ParseResult parse_command(std::string_view line) {
   }
   auto tokens = split(line);
   if (tokens.empty()) return ParseError{ErrorCode::UnknownCommand, "empty command; Help lists the commands"};
-  for (std::size_t i = 0; i < kVerbs.size(); ++i)
-    if (iequals(tokens[0], kVerbs[i].name))
-      return build(kVerbs[i], i, std::span(tokens).subspan(1));
+  for (const auto& v : verb_table())
+    if (iequals(tokens[0], v.name)) return parse_args(v, std::span(tokens).subspan(1));
   std::string shown(tokens[0].substr(0, 16));
   return ParseError{ErrorCode::UnknownCommand, "unknown command '" + shown + "'; Help lists the commands"};
 }
 
-std::string_view verb_name(const Command& cmd) { return kVerbs[cmd.index()].name; }
+ParseResult parse_with(const VerbSpec& verb, std::string_view line) {
+  auto tokens = split(line);
+  if (tokens.empty()) return ParseError{ErrorCode::UnknownCommand, "empty command; Help lists the commands"};
+  return parse_args(verb, std::span(tokens).subspan(1));
+}
+
+const VerbSpec* declaration_of(const Command& cmd) {
+  for (const auto& v : verb_table())
+    if (v.command == cmd.index()) return &v;
+  return nullptr;
+}
+
+std::string_view verb_name(const Command& cmd) {
+  const VerbSpec* v = declaration_of(cmd);
+  return v ? v->name : "?";
+}
+
+std::string usage_args(const VerbSpec& verb) {
+  std::string u;
+  for (std::size_t i = 0; i < verb.args.size; ++i) {
+    const ArgSpec& a = verb.args.items[i];
+    if (!u.empty()) u += ' ';
+    u += a.optional ? "[" + std::string(a.name) + "]" : std::string(a.name);
+  }
+  return u;
+}
+
+std::string usage(const VerbSpec& verb) {
+  std::string u(verb.name);
+  if (verb.args.size > 0) u.append(" ").append(usage_args(verb));
+  return u;
+}
 
 std::string help_line(const VerbSpec& verb) {
   std::string line = "Help ";

@@ -198,9 +198,14 @@ void send_random(ConfigRig& rig, std::mt19937_64& rng, std::uint32_t seq) {
     for (int a = 0; a < core::kAxes; ++a) c.v[a] = travel(a);
     c.speed = pick(3) == 0 ? 0.0 : extreme_or_random(rng, 1e-300, 1e9);
   } else if (verb < 76) {
-    auto table = net::param_table();
-    const auto& p = table[static_cast<std::size_t>(pick(static_cast<int>(table.size())))];
-    if (p.core_id) core.set_param(*p.core_id, extreme_or_random(rng, p.min, std::min(p.max, 1e6)));
+    static const auto settable = [] {  // what a client can Set; read-only entries are not drawn
+      std::vector<net::ParamSpec> out;
+      for (const auto& p : net::param_table())
+        if (!p.read_only) out.push_back(p);
+      return out;
+    }();
+    const auto& p = settable[static_cast<std::size_t>(pick(static_cast<int>(settable.size())))];
+    if (p.home == net::ParamHome::Core) core.set_param(p.core_id, extreme_or_random(rng, p.min, std::min(p.max, 1e6)));
     return;
   } else if (verb < 80) {
     c.kind = core::CommandKind::ForcePt;

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "daemon_process.hpp"
+#include "imess/protocol/verbs.hpp"
 
 using namespace imess::test;
 
@@ -46,7 +47,7 @@ TEST_CASE("Help lists every command and ends with Ok Help") {
     if (l.rfind("Help ", 0) == 0) help.push_back(l);
     return l == "Ok Help";
   }));
-  CHECK(help.size() == 19);
+  CHECK(help.size() == imess::protocol::verb_table().size());  // one line per declared verb
   CHECK(help[0].rfind("Help StartMv vx vy vz - ", 0) == 0);
 }
 
@@ -96,7 +97,7 @@ TEST_CASE("hostile telnet bytes never silence a session or merge two lines") {
   CHECK(c.until_prefix("Ok Get TipRadius", 2.0) == std::optional<std::string>("Ok Get TipRadius 2.000"));
 }
 
-TEST_CASE("a number that underflows is zero, one that overflows is refused") {
+TEST_CASE("a number that underflows is zero, one that overflows is not a number (Err 102)") {
   DaemonProcess messd;
   LineClient c(messd.port());
   CHECK(c.request("Set TipRadius 1e-400") == std::optional<std::string>("Ok Set"));
@@ -105,4 +106,31 @@ TEST_CASE("a number that underflows is zero, one that overflows is refused") {
   CHECK(c.request("Get TipRadius") == std::optional<std::string>("Ok Get TipRadius 0.000"));
   CHECK(c.request("GoTo 1e400 0 0")->rfind("Err 102 ", 0) == 0);
   CHECK(c.request("StartMv 1e-400 0 0") == std::optional<std::string>("Ok StartMv"));
+}
+
+TEST_CASE("read-only parameters: Get reads them, Set answers Err 301, Get alone lists them") {
+  DaemonProcess messd;
+  LineClient c(messd.port());
+  CHECK(c.request("Get Period") == std::optional<std::string>("Ok Get Period 1000"));
+  CHECK(c.request("Get axes") == std::optional<std::string>("Ok Get Axes 3"));
+  CHECK(c.request("Get Backend") == std::optional<std::string>("Ok Get Backend sim-servo-card"));
+  CHECK(c.request("Set Period 500") ==
+        std::optional<std::string>("Err 301 Period can be read but not set: the motion loop's period, from the "
+                                   "configuration's motion.period_us; Get reads it"));
+  CHECK(c.request("Set Backend x")->rfind("Err 301 Backend can be read but not set", 0) == 0);
+  auto all = c.request("Get");
+  REQUIRE(all);
+  CHECK(all->rfind("Ok Get TipRadius 2.000 ", 0) == 0);
+  CHECK(all->find(" ReportHz 10.000 Period 1000 Axes 3 Backend sim-servo-card") != std::string::npos);
+  CHECK(c.request("Get Period")->rfind("Ok Get Period 1000", 0) == 0);  // a refused Set changed nothing
+}
+
+TEST_CASE("Version answers the daemon's version, as Hello does, to anyone") {
+  DaemonProcess messd;
+  LineClient owner(messd.port()), observer(messd.port());
+  REQUIRE(owner.request("Take") == std::optional<std::string>("Ok Take"));
+  auto version = observer.request("Version");
+  REQUIRE(version);
+  CHECK(version->rfind("Ok Version ", 0) == 0);
+  CHECK(observer.request("Hello")->find("messd " + version->substr(11) + " Caps") != std::string::npos);
 }

@@ -19,7 +19,7 @@ TEST_CASE("command_need: motion and changes need control, StopMv is open to all 
     CHECK(need(line) == CommandNeed::Controlling);
   }
   CHECK(need("StopMv") == CommandNeed::Stop);
-  for (auto line : {"Hello x", "Help", "Status", "Get", "Get TipRadius", "Stats", "Quit", "Watch 250"}) {
+  for (auto line : {"Hello x", "Help", "Status", "Get", "Get TipRadius", "Stats", "Quit", "Watch 250", "Version"}) {
     INFO(line);
     CHECK(need(line) == CommandNeed::Open);
   }

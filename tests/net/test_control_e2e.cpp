@@ -115,6 +115,7 @@ TEST_CASE("Release and Quit stop the machine and free control") {
 TEST_CASE("a Hello after taking control announces the owner under its new name") {
   DaemonProcess messd;
   LineClient panel(messd.port()), observer(messd.port());
+  REQUIRE(observer.request("Status"));  // admitted before the Take, so it sees the announcement
   REQUIRE(panel.request("Take") == std::optional<std::string>("Ok Take"));
   REQUIRE(observer.until_prefix("Control client1 127.0.0.1", 2.0));
   REQUIRE(starts_with(panel.request("Hello panel"), "Ok Hello"));

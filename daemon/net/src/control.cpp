@@ -4,23 +4,21 @@
 #include <algorithm>
 #include <type_traits>
 
+#include "imess/protocol/verbs.hpp"
+
 namespace imess::net {
 
+// Declared with each verb (protocol/src/verb_table.cpp); an undeclared command needs control.
 CommandNeed command_need(const protocol::Command& cmd) {
-  return std::visit(
-      [](const auto& c) {
-        using T = std::decay_t<decltype(c)>;
-        namespace p = protocol;
-        if constexpr (std::is_same_v<T, p::StopMv>) return CommandNeed::Stop;
-        else if constexpr (std::is_same_v<T, p::Take> || std::is_same_v<T, p::Release>) return CommandNeed::Own;
-        else if constexpr (std::is_same_v<T, p::StartMv> || std::is_same_v<T, p::GoTo> || std::is_same_v<T, p::Home> ||
-                           std::is_same_v<T, p::Free> || std::is_same_v<T, p::Reset> || std::is_same_v<T, p::Set> ||
-                           std::is_same_v<T, p::HandMv> || std::is_same_v<T, p::ForcePt>)
-          return CommandNeed::Controlling;  // ForcePt puts a point into everyone's capture
-        else
-          return CommandNeed::Open;  // Hello, Help, Status, Get, Stats, Quit, Watch
-      },
-      cmd);
+  const protocol::VerbSpec* verb = protocol::declaration_of(cmd);
+  if (!verb) return CommandNeed::Controlling;
+  switch (verb->access) {
+    case protocol::Access::Open: return CommandNeed::Open;
+    case protocol::Access::Controlling: return CommandNeed::Controlling;  // ForcePt too: a point in everyone's capture
+    case protocol::Access::Stop: return CommandNeed::Stop;
+    case protocol::Access::Own: return CommandNeed::Own;
+  }
+  return CommandNeed::Controlling;
 }
 
 ControlOutcome Control::claim(const Controller& who, bool may_control) {

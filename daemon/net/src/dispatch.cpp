@@ -113,12 +113,10 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Status&) { reply(s, slot, format_ok("Status", status_line())); },
           [&](const protocol::Stats&) { reply(s, slot, format_ok("Stats", stats_line())); },
           [&](const protocol::Get& c) {
-            auto value = [&](const ParamSpec& p) {
-              return p.core_id ? fixed(core::param_value(core_.params(), *p.core_id)) : fixed(config_.report_hz);
-            };
+            ParamPlaces at{core_, config_.report_hz, config_.period_us, config_.backend};
             if (c.name.empty()) {
               std::string all;
-              for (const auto& p : param_table()) all += (all.empty() ? "" : " ") + std::string(p.name) + " " + value(p);
+              for (const auto& p : param_table()) all += (all.empty() ? "" : " ") + std::string(p.name) + " " + param_text(p, at);
               reply(s, slot, format_ok("Get", all));
               return;
             }
@@ -127,7 +125,7 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
               reply(s, slot, format_err(ErrorCode::UnknownParameter, "no parameter '" + c.name + "'; Get alone lists them all"));
               return;
             }
-            reply(s, slot, format_ok("Get", std::string(p->name) + " " + value(*p)));
+            reply(s, slot, format_ok("Get", std::string(p->name) + " " + param_text(*p, at)));
           },
           [&](const protocol::Set& c) {
             const ParamSpec* p = find_param(c.name);
@@ -136,7 +134,8 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
               return;
             }
             if (p->read_only) {
-              reply(s, slot, format_err(ErrorCode::ReadOnlyParameter, std::string(p->name) + " can be read but not set"));
+              reply(s, slot, format_err(ErrorCode::ReadOnlyParameter, std::string(p->name) + " can be read but not set: " +
+                                                                          std::string(p->help) + "; Get reads it"));
               return;
             }
             std::string error;
@@ -146,10 +145,8 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
               return;
             }
             spdlog::debug("client {} sets {} to {}", s.id(), p->name, *v);  // debug: a flood must not fill the disk
-            if (p->core_id)
-              core_.set_param(*p->core_id, *v);  // the parameter lane: no command-ring slot
-            else
-              config_.report_hz = *v;
+            ParamPlaces at{core_, config_.report_hz, config_.period_us, config_.backend};
+            store_param(*p, at, *v);
             reply(s, slot, format_ok("Set"));
           },
           [&](const protocol::Replay& c) { on_replay(s, slot, c.from); },
@@ -164,6 +161,7 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
             s.info().watch_fired_for = {};
             reply(s, slot, format_ok("Watch"));
           },
+          [&](const protocol::Version&) { reply(s, slot, format_ok("Version", config_.version)); },
       },
       cmd);
 }

@@ -1,29 +1,62 @@
-// Parameter table: one entry per name; Get lists them in this order.
+// The parameter registry: one entry per name; Get lists them in this order.
 #include "imess/net/params.hpp"
 
 #include <array>
 #include <cctype>
 #include <cstdio>
 
+#include "imess/core/motion_core.hpp"
 #include "imess/protocol/numbers.hpp"
 
 namespace imess::net {
 namespace {
 using core::ParamId;
-constexpr double kBig = 1e9;
+
+constexpr ParamSpec core_param(std::string_view name, std::string_view unit, double min, double max, double initial,
+                               ParamId id, std::string_view config, std::string_view help) {
+  ParamSpec p;
+  p.name = name, p.unit = unit, p.min = min, p.max = max, p.initial = initial;
+  p.home = ParamHome::Core, p.core_id = id, p.config = config, p.help = help;
+  return p;
+}
+constexpr ParamSpec net_param(ParamSpec p, ParamHome home, bool read_only, int decimals, bool text = false) {
+  p.home = home, p.read_only = read_only, p.decimals = decimals, p.text = text;
+  return p;
+}
+constexpr ParamSpec plain(std::string_view name, std::string_view unit, double min, double max, double initial,
+                          std::string_view config, std::string_view help) {
+  ParamSpec p;
+  p.name = name, p.unit = unit, p.min = min, p.max = max, p.initial = initial, p.config = config, p.help = help;
+  return p;
+}
+
 const std::array kParams{
-    ParamSpec{"TipRadius", "mm", 0, 50, ParamId::TipRadius, false, "probe ball radius used for compensation; 0 = none"},
-    ParamSpec{"SpeedLevel", "", 0.01, 2, ParamId::SpeedLevel, false, "multiplier for every speed (1996: 0.1 ... 1.5)"},
-    ParamSpec{"MaxSpeed", "mm/s", 0.1, 1000, ParamId::MaxSpeed, false, "speed of StartMv 100"},
-    ParamSpec{"MaxAccel", "mm/s2", 1, 20000, ParamId::MaxAccel, false, "acceleration of every move"},
-    ParamSpec{"RetractDist", "mm", 0, 20, ParamId::RetractDistance, false, "retract behind the latched point"},
-    ParamSpec{"RetractSpeed", "mm/s", 0.1, 200, ParamId::RetractSpeed, false, "speed of the retract"},
-    ParamSpec{"RetractTime", "s", 0.1, 60, ParamId::RetractTimeout, false, "time for the tip to re-seat"},
-    ParamSpec{"IdleOpen", "s", 0.1, kBig, ParamId::IdleOpenTime, false, "loops open this long after the last stop"},
-    ParamSpec{"GoToSpeed", "mm/s", 0.1, 1000, ParamId::GoToSpeed, false, "GoTo speed when none is given"},
-    ParamSpec{"HandTravel", "mm", 0.1, 50, ParamId::HandMinTravel, false, "travel that gives a hand hit its direction"},
-    ParamSpec{"HandInterval", "s", 0, 60, ParamId::HandMinInterval, false, "minimum time between hand hits"},
-    ParamSpec{"ReportHz", "Hz", 0.1, 100, std::nullopt, false, "CurrCor broadcast rate (only when the position changed)"},
+    core_param("TipRadius", "mm", 0, 50, 2.0, ParamId::TipRadius, "motion.tip_radius",
+               "probe ball radius used for compensation; 0 = none"),
+    core_param("SpeedLevel", "", 0.01, 2, 1.0, ParamId::SpeedLevel, "motion.speed_level",
+               "multiplier for every speed (1996: 0.1 ... 1.5)"),
+    core_param("MaxSpeed", "mm/s", 0.1, 1000, 100, ParamId::MaxSpeed, "motion.max_speed", "speed of StartMv 100"),
+    core_param("MaxAccel", "mm/s2", 1, 20000, 1000, ParamId::MaxAccel, "motion.max_accel", "acceleration of every move"),
+    core_param("RetractDist", "mm", 0, 20, 0.5, ParamId::RetractDistance, "motion.retract_distance",
+               "retract behind the latched point"),
+    core_param("RetractSpeed", "mm/s", 0.1, 200, 10, ParamId::RetractSpeed, "motion.retract_speed", "speed of the retract"),
+    core_param("RetractTime", "s", 0.1, 60, 5, ParamId::RetractTimeout, "motion.retract_timeout_s",
+               "time for the tip to re-seat"),
+    core_param("IdleOpen", "s", 0.1, kUnbounded, 7, ParamId::IdleOpenTime, "motion.idle_open_s",
+               "loops open this long after the last stop"),
+    core_param("GoToSpeed", "mm/s", 0.1, 1000, 50, ParamId::GoToSpeed, "motion.goto_speed", "GoTo speed when none is given"),
+    core_param("HandTravel", "mm", 0.1, 50, 1.0, ParamId::HandMinTravel, "motion.hand_min_travel",
+               "travel that gives a hand hit its direction"),
+    core_param("HandInterval", "s", 0, 60, 1.0, ParamId::HandMinInterval, "motion.hand_min_interval_s",
+               "minimum time between hand hits"),
+    net_param(plain("ReportHz", "Hz", 0.1, 100, 10, "server.report_hz", "CurrCor broadcast rate (only when the position changed)"),
+              ParamHome::ReportHz, false, 3),
+    net_param(plain("Period", "us", 100, 100000, 1000, "motion.period_us", "the motion loop's period, from the configuration's motion.period_us"),
+              ParamHome::LoopPeriod, true, 0),
+    net_param(plain("Axes", "", core::kAxes, core::kAxes, core::kAxes, "", "axes the motion loop drives"),
+              ParamHome::AxisCount, true, 0),
+    net_param(plain("Backend", "", 0, 0, 0, "", "the machine behind the motion loop, from the configuration's backend.type"),
+              ParamHome::Backend, true, 0, true),
 };
 
 std::string compact(double v) {
@@ -52,11 +85,35 @@ std::optional<double> parse_param_value(const ParamSpec& spec, std::string_view 
   auto v = protocol::parse_number(text);
   if (!v || *v < spec.min || *v > spec.max) {
     error = std::string(spec.name) + " takes a number from " + compact(spec.min) + " to " +
-            (spec.max >= kBig ? std::string("any") : compact(spec.max)) +
+            (spec.max >= kUnbounded ? std::string("any") : compact(spec.max)) +
             (spec.unit.empty() ? "" : " " + std::string(spec.unit)) + ", got '" + std::string(text) + "'";
     return std::nullopt;
   }
   return v;
+}
+
+std::string param_text(const ParamSpec& spec, const ParamPlaces& at) {
+  double v = 0;
+  switch (spec.home) {
+    case ParamHome::Core: v = core::param_value(at.core.params(), spec.core_id); break;
+    case ParamHome::ReportHz: v = at.report_hz; break;
+    case ParamHome::LoopPeriod: v = at.period_us; break;
+    case ParamHome::AxisCount: v = core::kAxes; break;
+    case ParamHome::Backend: return std::string(at.backend);
+  }
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", spec.decimals, v);
+  return buf;
+}
+
+void store_param(const ParamSpec& spec, ParamPlaces& at, double value) {
+  switch (spec.home) {
+    case ParamHome::Core: at.core.set_param(spec.core_id, value); break;  // the parameter lane: no ring slot
+    case ParamHome::ReportHz: at.report_hz = value; break;
+    case ParamHome::LoopPeriod:
+    case ParamHome::AxisCount:
+    case ParamHome::Backend: break;  // read-only: Set refuses them before this
+  }
 }
 
 }  // namespace imess::net

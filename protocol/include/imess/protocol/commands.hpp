@@ -36,10 +36,12 @@ struct Take { bool force = false; };                        // force: stop the m
 struct Release {};                                          // stop the machine, give up control
 struct Watch { int ms = 0; };                               // dead-man interval; 0 = off
 
+struct Version {};                                          // the daemon's version
+
 inline constexpr int kWatchMinMs = 50;     // below this, io jitter alone would stop the machine
 inline constexpr int kWatchMaxMs = 60000;
 
 using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo, Home, Free,
-                             Reset, Set, Get, Stats, HandMv, Quit, Replay, Take, Release, Watch>;
+                             Reset, Set, Get, Stats, HandMv, Quit, Replay, Take, Release, Watch, Version>;
 
 }  // namespace imess::protocol

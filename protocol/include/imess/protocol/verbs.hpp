@@ -1,5 +1,5 @@
-// The verb table: one entry per command drives parsing, Help and the protocol docs.
-// Adding a verb is one entry in verbs.cpp plus its struct in commands.hpp.
+// The verbs: their declarations (verb_table.cpp, one entry each) drive parsing, Help and the
+// protocol docs. Adding a verb: its struct in commands.hpp, its entry in verb_table.cpp.
 #pragma once
 #include <span>
 #include <string>
@@ -8,15 +8,9 @@
 
 #include "imess/protocol/commands.hpp"
 #include "imess/protocol/error_code.hpp"
+#include "imess/protocol/verb_spec.hpp"
 
 namespace imess::protocol {
-
-struct VerbSpec {
-  std::string_view name;   // canonical spelling; matched case-insensitively, at most 8 characters
-  std::string_view args;   // usage, e.g. "x y z [speed]"
-  std::string_view help;   // one line
-  bool since_1996;         // part of the original MESSD protocol
-};
 
 std::span<const VerbSpec> verb_table();
 
@@ -31,10 +25,23 @@ using ParseResult = std::variant<Command, ParseError>;
 // callers skip them before calling (see is_blank).
 ParseResult parse_command(std::string_view line);
 
+// Parses a line against one declaration (its first word is taken as the verb, not compared):
+// how tests check an argument kind before any verb of the table uses it.
+ParseResult parse_with(const VerbSpec& verb, std::string_view line);
+
 bool is_blank(std::string_view line);
+
+// The declaration a command was built from (null only for a Command nobody declared, which
+// the verb tests rule out).
+const VerbSpec* declaration_of(const Command& cmd);
 
 // The canonical verb name of a command (for `Ok <verb>` replies).
 std::string_view verb_name(const Command& cmd);
+
+// The arguments as documented, made from the grammar: "x y z [speed]"; empty without any.
+std::string usage_args(const VerbSpec& verb);
+// "<Name> <args>", e.g. "GoTo x y z [speed]".
+std::string usage(const VerbSpec& verb);
 
 // "Help" data lines: "<Name> <args> - <help>", one per verb.
 std::string help_line(const VerbSpec& verb);

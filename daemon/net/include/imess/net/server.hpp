@@ -44,6 +44,8 @@ struct ServerConfig {
   bool beep = true;               // BEL on the console for every point (when it is a terminal)
   ControlConfig control;
   std::string version = "0.1.0";
+  double period_us = 1000;          // the motion loop's period (Get Period)
+  std::string backend = "unknown";  // the backend type (Get Backend): one word
 };
 
 class Server {

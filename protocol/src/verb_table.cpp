@@ -1,0 +1,83 @@
+// The verb declarations: one entry per verb — name, argument grammar with ranges, help, and
+// the typed command it builds. Parsing, argument errors, Help, usage and the docs test follow.
+#include <array>
+#include <limits>
+
+#include "imess/protocol/verbs.hpp"
+
+namespace imess::protocol {
+namespace {
+
+// Axis speeds of a jog: percent of MaxSpeed.
+constexpr ArgSpec percent(std::string_view name) {
+  return number(name, -100, 100, "StartMv speeds are percent of MaxSpeed, {min} to {max}");
+}
+constexpr double kAny = std::numeric_limits<double>::infinity();
+constexpr ArgSpec coordinate(std::string_view name) { return number(name, -kAny, kAny, ""); }
+Xyz xyz(const Args& a) { return {a.number(0), a.number(1), a.number(2)}; }
+std::optional<double> optional_number(const Args& a, std::size_t i) {
+  return a.has(i) ? std::optional<double>(a.number(i)) : std::nullopt;
+}
+
+const std::array kVerbs{
+    VerbSpec{"StartMv", args(percent("vx"), percent("vy"), percent("vz")),
+             "jog: per-axis speed in % of MaxSpeed (x SpeedLevel), sign = direction", true, Access::Controlling,
+             command_index<StartMv>(), [](const Args& a) -> Command { return StartMv{xyz(a)}; }},
+    VerbSpec{"StopMv", args(), "stop any motion (jog, GoTo, Home)", true, Access::Stop,
+             command_index<StopMv>(), [](const Args&) -> Command { return StopMv{}; }},
+    VerbSpec{"ForcePt", args(), "measure here: broadcast the current position as MeasPt, no radius correction", true, Access::Controlling,
+             command_index<ForcePt>(), [](const Args&) -> Command { return ForcePt{}; }},
+    VerbSpec{"Hello", args(optional(word("name"))), "protocol version and capabilities; names this client in the log", false, Access::Open,
+             command_index<Hello>(), [](const Args& a) -> Command { return Hello{std::string(a.at[0].text)}; }},
+    VerbSpec{"Help", args(), "list every command with its usage", false, Access::Open,
+             command_index<Help>(), [](const Args&) -> Command { return Help{}; }},
+    VerbSpec{"Status", args(), "state, position, loops, tip, limits, homed, tip radius, speed level", false, Access::Open,
+             command_index<Status>(), [](const Args&) -> Command { return Status{}; }},
+    VerbSpec{"GoTo",
+             args(coordinate("x"), coordinate("y"), coordinate("z"),
+                  optional(above_min(number("speed", 0, kAny, "GoTo speed must be greater than {min} mm/s")))),
+             "straight move to an absolute position (mm), speed in mm/s", false, Access::Controlling,
+             command_index<GoTo>(), [](const Args& a) -> Command { return GoTo{xyz(a), optional_number(a, 3)}; }},
+    VerbSpec{"Home", args(), "reference search on all axes; zero at the encoder index", false, Access::Controlling,
+             command_index<Home>(), [](const Args&) -> Command { return Home{}; }},
+    VerbSpec{"Free", args(), "open the position loops now so the machine can be moved by hand", false, Access::Controlling,
+             command_index<Free>(), [](const Args&) -> Command { return Free{}; }},
+    VerbSpec{"Reset", args(), "clear a fault after its cause was removed", false, Access::Controlling,
+             command_index<Reset>(), [](const Args&) -> Command { return Reset{}; }},
+    VerbSpec{"Set", args(word("name"), word("value")), "set a runtime parameter (Get lists them)", false, Access::Controlling,
+             command_index<Set>(),
+             [](const Args& a) -> Command { return Set{std::string(a.at[0].text), std::string(a.at[1].text)}; }},
+    VerbSpec{"Get", args(optional(word("name"))), "read one runtime parameter, or all of them", false, Access::Open,
+             command_index<Get>(), [](const Args& a) -> Command { return Get{std::string(a.at[0].text)}; }},
+    VerbSpec{"Stats", args(), "motion-loop period, wake-up latency percentiles, overruns, cycles", false, Access::Open,
+             command_index<Stats>(), [](const Args&) -> Command { return Stats{}; }},
+    VerbSpec{"HandMv",
+             args(coordinate("dx"), coordinate("dy"), coordinate("dz"),
+                  optional(above_min(number("speed", 0, kAny, "HandMv speed must be greater than {min} mm/s")))),
+             "simulator only: push the carriage by hand (loops open), mm and mm/s", false, Access::Controlling,
+             command_index<HandMv>(), [](const Args& a) -> Command { return HandMv{xyz(a), optional_number(a, 3)}; }},
+    VerbSpec{"Quit", args(), "close this connection", false, Access::Open,
+             command_index<Quit>(), [](const Args&) -> Command { return Quit{}; }},
+    VerbSpec{"Replay",
+             args(sequence("from-seq", "Replay takes a hit sequence number, a whole number from 0 to {max}, got '{got}'")),
+             "re-send the journaled hits from this sequence number (Hit lines), at most 1000", false, Access::Open,
+             command_index<Replay>(), [](const Args& a) -> Command { return Replay{a.at[0].sequence}; }},
+    VerbSpec{"Take", args(optional(choice("force", "force", "Take takes nothing or the word 'force', got '{got}'; usage: {usage}"))),
+             "take control of the machine; force (configured hosts only) stops it and takes over", false, Access::Own,
+             command_index<Take>(), [](const Args& a) -> Command { return Take{a.has(0)}; }},
+    VerbSpec{"Release", args(), "stop the machine and give up control", false, Access::Own,
+             command_index<Release>(), [](const Args&) -> Command { return Release{}; }},
+    VerbSpec{"Watch",
+             args(or_zero(whole(number("ms", kWatchMinMs, kWatchMaxMs,
+                                       "Watch takes whole milliseconds from {min} to {max}, or 0 to switch it off")))),
+             "dead-man: stop the machine when this controlling client is silent for ms (50-60000; 0 = off)", false, Access::Open,
+             command_index<Watch>(), [](const Args& a) -> Command { return Watch{static_cast<int>(a.number(0))}; }},
+    VerbSpec{"Version", args(), "the daemon's version", false, Access::Open,
+             command_index<Version>(), [](const Args&) -> Command { return Version{}; }},
+};
+
+}  // namespace
+
+std::span<const VerbSpec> verb_table() { return kVerbs; }
+
+}  // namespace imess::protocol
