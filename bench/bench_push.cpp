@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <random>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -32,7 +34,12 @@ void run(int clients, int requests, double jog_s) {
   owner.request("Take");
 
   std::vector<double> ms;
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> phase_us(0, 2000);
   for (int i = 0; i < requests; ++i) {
+    // At a random moment: sent right after a MeasPt, a request would always wait one whole
+    // 1 ms loop cycle before the loop takes it.
+    std::this_thread::sleep_for(std::chrono::microseconds(phase_us(rng)));
     auto t0 = Clock::now();
     owner.send("ForcePt");
     if (!last.until_prefix("MeasPt")) {

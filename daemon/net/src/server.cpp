@@ -57,7 +57,7 @@ void Server::start() {
   // Without an EventFd the timer is the only drain, so it keeps the old millisecond.
   const double drain_ms = wake_ ? config_.event_backstop_ms : 1.0;
   schedule(event_timer_, std::chrono::microseconds(static_cast<long>(drain_ms * 1000)), &Server::backstop_events);
-  schedule(watch_timer_, std::chrono::microseconds(1000), &Server::check_watch);
+  schedule(watch_timer_, std::chrono::microseconds(1000), &Server::every_millisecond);
   schedule(clients_timer_, std::chrono::microseconds(250000), &Server::check_clients);
   schedule(report_timer_, std::chrono::microseconds(static_cast<long>(1e6 / config_.report_hz)), &Server::report_position);
   if (config_.log_status || config_.log_timing) schedule(log_timer_, std::chrono::seconds(5), &Server::log_periodic);
@@ -76,6 +76,13 @@ void Server::stop() {
   accept_timer_.cancel();
   auto sessions = sessions_;
   for (auto& [id, s] : sessions) s->close();
+}
+
+// The owner's dead-man, and the journal's fdatasync once its oldest unsynced hit is
+// journal.fsync_ms old (nothing else calls it: a hit must not wait for the next hit's append).
+void Server::every_millisecond() {
+  check_watch();
+  journal_.sync_if_due();
 }
 
 void Server::schedule(asio::steady_timer& t, std::chrono::microseconds every, void (Server::*fn)()) {

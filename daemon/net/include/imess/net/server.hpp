@@ -89,6 +89,7 @@ class Server {
   // place a stop is made for control reasons (the motion core's stop lane replaces its body).
   void stop_machine();
   // liveness.cpp
+  void every_millisecond();  // check_watch, journal sync when due
   void check_watch();     // every millisecond: the owner's dead-man
   void check_clients();   // every 250 ms: stalled writers, silent controllers
   void drop(Session& s, std::string_view why);
