@@ -114,6 +114,9 @@ void load_config_text(const std::string& text, const std::string& path, DaemonCo
     cfg.server.listen = checked_address(*s, "listen", cfg.server.listen);
     read_param_keys(*s, "server", cfg);  // report_hz: the ReportHz parameter
     cfg.server.max_clients = static_cast<std::size_t>(s->whole("max_clients", static_cast<long long>(cfg.server.max_clients), 1, 10000));
+    cfg.server.event_backstop_ms = s->number("event_backstop_ms", cfg.server.event_backstop_ms, 1, 600000);
+    cfg.server.max_queue_bytes = static_cast<std::size_t>(
+        s->whole("max_queue_bytes", static_cast<long long>(cfg.server.max_queue_bytes), 4096, 1LL << 30));
     s->finish();
   }
   if (auto c = top.object("control")) read_control(*c, path, cfg.server.control);

@@ -12,6 +12,7 @@
 #include "cli.hpp"
 #include "config.hpp"
 #include "fd_limit.hpp"
+#include "imess/core/event_fd.hpp"
 #include "imess/core/loop_runner.hpp"
 #include "imess/core/motion_core.hpp"
 #include "imess/journal/journal.hpp"
@@ -105,6 +106,8 @@ int run(int argc, char** argv) {
   spdlog::info("controller: {}", machine->describe());
 
   core::MotionCore core(machine->backend(), cfg.core, machine->sim_hooks());
+  core::EventFd wake;  // the loop wakes the io thread through it when it pushed events
+  core.set_event_signal(&wake);
   core.start(clock.now());
   core::LoopRunner runner(core, clock, std::chrono::nanoseconds(static_cast<long>(cfg.period_us * 1000)));
   std::string rt = runner.start(cfg.realtime);
@@ -128,7 +131,7 @@ int run(int argc, char** argv) {
                std::min(rules.reserved_slots, cfg.server.max_clients - 1), cfg.server.max_clients);
 
   boost::asio::io_context io;
-  net::Server server(io, cfg.server, core, &runner, *hits);
+  net::Server server(io, cfg.server, core, &runner, *hits, &wake);
   try {
     server.start();
   } catch (const std::exception& e) {

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "core_rig.hpp"
+#include "imess/core/event_fd.hpp"
 
 #include "allocation_counter.hpp"
 
@@ -34,4 +35,18 @@ TEST_CASE("no motion cycle allocates: jog, hit, retract, idle, hand hits, GoTo, 
   push(rig, {CommandKind::HandMv, 1, 10, Vec3(0, 0, -700), 100});
   CHECK(allocations_over_cycles(rig, 8000) == 0);  // into the table: overtravel fault
   CHECK(rig.mode() == Mode::Fault);
+}
+
+TEST_CASE("the eventfd wake-up allocates nothing and fires only for cycles that pushed events") {
+  CoreRig rig;
+  imess::core::EventFd wake;
+  rig.core().set_event_signal(&wake);
+  CHECK(allocations_over_cycles(rig, 100) == 0);  // idle: nothing pushed
+  CHECK(wake.drain() == 0);
+  push(rig, {CommandKind::StartMv, 1, 1, Vec3(0, 0, -20)});
+  CHECK(allocations_over_cycles(rig, 3000) == 0);  // reply, hit, MeasPt, retract, State events
+  const auto woken = wake.drain();
+  CHECK(woken > 0);
+  CHECK(woken < 3000);  // not every cycle: only those with events
+  rig.core().set_event_signal(nullptr);
 }

@@ -32,6 +32,7 @@ TEST_CASE("an observer's commands that move or change the machine are refused na
 TEST_CASE("StopMv from an observer stops the owner's jog and does not take control") {
   DaemonProcess messd;
   LineClient panel(messd.port()), observer(messd.port());
+  REQUIRE(observer.until_prefix("CurrCor", 2.0));  // admitted before the jog's State line
   REQUIRE(panel.request("StartMv 20 0 0") == std::optional<std::string>("Ok StartMv"));
   REQUIRE(observer.until_prefix("State jog", 2.0));
   CHECK(observer.request("StopMv") == std::optional<std::string>("Ok StopMv"));
@@ -115,7 +116,7 @@ TEST_CASE("Release and Quit stop the machine and free control") {
 TEST_CASE("a Hello after taking control announces the owner under its new name") {
   DaemonProcess messd;
   LineClient panel(messd.port()), observer(messd.port());
-  REQUIRE(observer.request("Status"));  // admitted before the Take, so it sees the announcement
+  REQUIRE(observer.until_prefix("CurrCor", 2.0));  // admitted (else the Control line may precede it)
   REQUIRE(panel.request("Take") == std::optional<std::string>("Ok Take"));
   REQUIRE(observer.until_prefix("Control client1 127.0.0.1", 2.0));
   REQUIRE(starts_with(panel.request("Hello panel"), "Ok Hello"));

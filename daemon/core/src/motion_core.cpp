@@ -118,6 +118,10 @@ void MotionCore::cycle(Nanos now) noexcept {
   check_limits(now);
   update_mode(now);
   publish(now);
+  if (pushed_) {  // after publish: the io side sees the snapshot of this cycle too
+    pushed_ = false;
+    signal_->notify();
+  }
 }
 
 // ---------------------------------------------------------------- commands
@@ -529,7 +533,10 @@ void MotionCore::fault(FaultKind f, Nanos now) noexcept {
 // ---------------------------------------------------------------- output
 
 void MotionCore::emit(const Event& e) noexcept {
-  if (!events_.push(e)) ++events_dropped_;
+  if (events_.push(e))
+    pushed_ = true;
+  else
+    ++events_dropped_;
 }
 
 void MotionCore::reply(const Command& c, Refusal r) noexcept {

@@ -10,8 +10,22 @@ namespace imess::net {
 
 using core::EventKind;
 
+void Server::wait_for_events() {
+  wake_wait_->async_wait(boost::asio::posix::stream_descriptor::wait_read, [this](boost::system::error_code ec) {
+    if (ec || !running_) return;
+    wake_->drain();  // before the drain: a notify after this point wakes us again
+    ++woken_;
+    pump_events();
+    wait_for_events();
+  });
+}
+
+void Server::backstop_events() {
+  if (core_.events().read_available() > 0) ++backstop_found_;  // a wake-up was missed (or none is wired)
+  pump_events();
+}
+
 void Server::pump_events() {
-  check_watch();
   core::Event e;
   while (core_.events().pop(e)) {
     switch (e.kind) {
@@ -86,6 +100,9 @@ void Server::log_periodic() {
                  snap.status[0], snap.status[1], snap.status[2], snap.inputs[0], snap.inputs[1], snap.inputs[2],
                  snap.hardware_errors, snap.events_dropped);
   if (config_.log_timing) spdlog::info("loop: {}", stats_line());
+  if (config_.log_timing)
+    spdlog::info("io: {} wake-ups, {} times the {:g} ms backstop found events first", woken_, backstop_found_,
+                 config_.event_backstop_ms);
 }
 
 }  // namespace imess::net

@@ -12,6 +12,12 @@ using Clock = Session::Clock;
 namespace {
 std::chrono::duration<double> seconds(double s) { return std::chrono::duration<double>(s); }
 
+std::string lost_reply_line(double timeout_s) {
+  return protocol::format_err(protocol::ErrorCode::Internal,
+                              "no answer from the motion loop within " + fmt::format("{:g}", timeout_s) +
+                                  " s (its event queue overflowed); the command's effect is unknown, ask Status");
+}
+
 bool moving(core::Mode m) {
   return m == core::Mode::Jog || m == core::Mode::Move || m == core::Mode::Retract || m == core::Mode::Home;
 }
@@ -41,9 +47,21 @@ void Server::check_clients() {
   for (const auto& [name, count] : log_limiter_.take_expired(now))
     spdlog::warn("... suppressed {} similar '{}' lines", count, name);
   const auto& rules = config_.control;
+  const auto reply_timeout = std::chrono::duration_cast<Clock::duration>(seconds(config_.reply_timeout_s));
   auto sessions = sessions_;  // drops erase from sessions_
   for (auto& [id, s] : sessions) {
     if (!s->open()) continue;
+    // An answer from the motion loop that never came (its event ring overflowed) must not
+    // hold back every later reply: the slot is answered Err 500 and the rest flow.
+    if (auto lost = s->expire_replies(now, reply_timeout, lost_reply_line(config_.reply_timeout_s))) {
+      auto& in_flight = s->info().in_flight;
+      in_flight -= std::min<std::uint32_t>(in_flight, static_cast<std::uint32_t>(lost));
+      log_limited(spdlog::level::warn, "reply-lost",
+                  "client " + std::to_string(id) + ": " + std::to_string(lost) + " replies not answered within " +
+                      fmt::format("{:g}", config_.reply_timeout_s) + " s (events dropped: " +
+                      std::to_string(core_.snapshot().events_dropped) + "); answered Err 500");
+      if (!s->open()) continue;
+    }
     // Output that does not drain: the client stopped reading (or was stopped, SIGSTOP, and
     // its receive buffer is full). No line would reach it any more: log and close.
     if (s->output_stalled_for(now) > seconds(rules.write_stall_s)) {

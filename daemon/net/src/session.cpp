@@ -1,4 +1,4 @@
-// Session I/O on the io thread: async read loop, one async write at a time.
+// Session I/O on the io thread: async read loop, one gathered async write at a time.
 #include "imess/net/session.hpp"
 
 #include <linux/sockios.h>
@@ -70,30 +70,56 @@ void Session::resume_reading() {
 
 void Session::send(std::string line) {
   if (!open_) return;
-  if (queued_bytes_ + line.size() > max_queue_bytes_) {  // not reading: drop it, never block
+  send(std::make_shared<const std::string>(std::move(line)));
+}
+
+void Session::send(std::shared_ptr<const std::string> line) {
+  if (!open_) return;
+  if (queued_bytes_ + line->size() > max_queue_bytes_) {  // not reading: drop it, never block
     close("dropped: more than " + std::to_string(max_queue_bytes_) + " bytes of output waiting (not reading fast enough)");
     return;
   }
-  queued_bytes_ += line.size();
+  queued_bytes_ += line->size();
   queue_.push_back(std::move(line));
-  if (!writing_) write();
+  if (!writing_) {
+    // Start the write after the current handler: everything it queues for this client (a
+    // hit's Hit and MeasPt, a burst of events) then leaves in one gathered write.
+    writing_ = true;
+    asio::post(socket_.get_executor(), [self = shared_from_this()] { self->write(); });
+  }
 }
 
 std::uint32_t Session::reserve_reply() {
-  replies_.emplace_back(next_slot_, std::string{});
+  replies_.push_back({next_slot_, std::string{}, Clock::now()});
   return next_slot_++;
 }
 
 void Session::fill_reply(std::uint32_t slot, std::string lines) {
-  for (auto& [id, text] : replies_)
-    if (id == slot) text = std::move(lines);
-  while (!replies_.empty() && !replies_.front().second.empty()) {
-    send(std::move(replies_.front().second));
+  for (auto& r : replies_)
+    if (r.id == slot) r.text = std::move(lines);
+  flush_replies();
+}
+
+std::size_t Session::expire_replies(Clock::time_point now, Clock::duration after, const std::string& line) {
+  std::size_t expired = 0;
+  for (auto& r : replies_)
+    if (r.text.empty() && now - r.since >= after) {
+      r.text = line;
+      ++expired;
+    }
+  if (expired > 0) flush_replies();
+  return expired;
+}
+
+void Session::flush_replies() {
+  while (!replies_.empty() && !replies_.front().text.empty()) {
+    send(std::move(replies_.front().text));
     replies_.pop_front();
   }
 }
 
 void Session::write() {
+  if (!open_) return;
   if (queue_.empty()) {
     writing_ = false;
     if (close_when_flushed_ && replies_.empty()) close();
@@ -102,16 +128,22 @@ void Session::write() {
   }
   writing_ = true;
   // Everything queued goes out in one gathered write (up to kMaxGather lines): one line per
-  // write let a client that sends fast build up replies faster than they left.
+  // write let a client that sends fast build up replies faster than they left. The handler
+  // holds the lines it writes, so closing the session (which clears queue_) while the write
+  // is in flight frees nothing the kernel call still reads.
   std::vector<asio::const_buffer> buffers;
-  for (std::size_t i = 0; i < queue_.size() && i < kMaxGather; ++i) buffers.push_back(asio::buffer(queue_[i]));
-  asio::async_write(socket_, buffers, [self = shared_from_this(), count = buffers.size()](boost::system::error_code ec, std::size_t) {
+  std::vector<std::shared_ptr<const std::string>> held;
+  for (std::size_t i = 0; i < queue_.size() && i < kMaxGather; ++i) {
+    buffers.push_back(asio::buffer(*queue_[i]));
+    held.push_back(queue_[i]);
+  }
+  asio::async_write(socket_, buffers, [self = shared_from_this(), held = std::move(held)](boost::system::error_code ec, std::size_t) {
     if (ec || !self->open_) {
       self->close();
       return;
     }
-    for (std::size_t i = 0; i < count; ++i) {  // lines queued meanwhile stay (deque keeps their storage)
-      self->queued_bytes_ -= self->queue_.front().size();
+    for (std::size_t i = 0; i < held.size(); ++i) {  // lines queued meanwhile stay behind them
+      self->queued_bytes_ -= self->queue_.front()->size();
       self->queue_.pop_front();
     }
     self->resume_reading();

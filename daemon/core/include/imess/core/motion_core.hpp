@@ -5,6 +5,7 @@
 #pragma once
 #include <atomic>
 
+#include "imess/core/event_signal.hpp"
 #include "imess/core/hand_travel.hpp"
 #include "imess/core/homing.hpp"
 #include "imess/core/queues.hpp"
@@ -20,6 +21,9 @@ class MotionCore {
 
   // Set-up: the backend is initialised; reads the first state. Not real-time.
   void start(Nanos now);
+  // Set-up, before the loop runs: who is told at the end of a cycle that pushed events
+  // (default: nobody; the signal must outlive every cycle).
+  void set_event_signal(EventSignal* signal) noexcept { signal_ = signal ? signal : &no_signal_; }
   // One motion cycle. Measured budget on the simulated card: see bench/ and docs.
   void cycle(Nanos now) noexcept;
 
@@ -94,6 +98,9 @@ class MotionCore {
   Mode stopped_from_ = Mode::Idle;           // what was braking in Mode::Stopping
   Vec3 approach_dir_ = Vec3::Zero();         // direction of the last hit (zero: unknown)
   EventQueue events_;
+  EventSignal no_signal_;
+  EventSignal* signal_ = &no_signal_;
+  bool pushed_ = false;                      // this cycle pushed an event: notify at its end
   TripleBuffer<Snapshot> snapshot_;
 
   hal::MachineState ms_;

@@ -8,7 +8,7 @@
 namespace imess::core {
 
 inline constexpr std::size_t kCommandCapacity = 256;  // a full ring is an immediate Err QueueFull
-inline constexpr std::size_t kEventCapacity = 4096;   // drained every millisecond by the io thread
+inline constexpr std::size_t kEventCapacity = 4096;   // drained by the io thread as soon as the loop wakes it
 inline constexpr int kCommandsPerCycle = 8;           // bounded work per motion cycle
 
 using CommandQueue = boost::lockfree::spsc_queue<Command, boost::lockfree::capacity<kCommandCapacity>>;

@@ -6,8 +6,10 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
+#include "imess/core/event_fd.hpp"
 #include "imess/core/loop_runner.hpp"
 #include "imess/core/motion_core.hpp"
 #include "imess/journal/journal.hpp"
@@ -42,6 +44,10 @@ struct ServerConfig {
   bool log_status = false;        // -dt
   bool log_timing = false;        // -p
   bool beep = true;               // BEL on the console for every point (when it is a terminal)
+  // Events are drained when the motion loop wakes the io thread; this timer only catches a
+  // wake-up that never came (and is the only drain when the server has no EventFd).
+  double event_backstop_ms = 50;
+  double reply_timeout_s = 2;     // a reply slot unanswered this long (answer lost) becomes Err 500
   ControlConfig control;
   std::string version = "0.1.0";
   double period_us = 1000;          // the motion loop's period (Get Period)
@@ -51,9 +57,10 @@ struct ServerConfig {
 class Server {
  public:
   // runner may be null (no timing statistics: Stats then reports zeros). Every measured point
-  // is appended to `journal` before any client is sent it.
+  // is appended to `journal` before any client is sent it. wake: the EventFd the core
+  // notifies (core.set_event_signal), or null: events are then drained by the backstop timer.
   Server(boost::asio::io_context& io, ServerConfig config, core::MotionCore& core, core::LoopRunner* runner,
-         journal::Journal& journal);
+         journal::Journal& journal, core::EventFd* wake = nullptr);
   // Binds and starts accepting; throws std::runtime_error naming the address on failure.
   void start();
   void stop();
@@ -70,6 +77,7 @@ class Server {
   void send(Session& s, std::string line);    // an event line for one client
   void reply(Session& s, std::uint32_t slot, std::string lines);  // fills a reply slot
   void schedule(boost::asio::steady_timer& t, std::chrono::microseconds every, void (Server::*fn)());
+  void rearm(boost::asio::steady_timer& t, std::chrono::microseconds every, void (Server::*fn)());
   // Logs through the rate limiter: at most 5 lines a second per message class.
   void log_limited(spdlog::level::level_enum level, std::string_view message_class, const std::string& text);
   // server_control.cpp
@@ -83,6 +91,7 @@ class Server {
   // place a stop is made for control reasons (the motion core's stop lane replaces its body).
   void stop_machine();
   // liveness.cpp
+  void every_millisecond();  // check_watch, journal sync when due
   void check_watch();     // every millisecond: the owner's dead-man
   void check_clients();   // every 250 ms: stalled writers, silent controllers
   void drop(Session& s, std::string_view why);
@@ -97,7 +106,9 @@ class Server {
   void send_hit(const core::Event& e);
   void on_replay(Session& s, std::uint32_t slot, std::uint64_t from);
   // events.cpp
+  void wait_for_events();  // re-arms the wait on the EventFd
   void pump_events();
+  void backstop_events();  // the slow timer: counts the events only it found
   void report_position();
   void log_periodic();
 
@@ -107,12 +118,15 @@ class Server {
   core::LoopRunner* runner_;
   journal::Journal& journal_;
   boost::asio::ip::tcp::acceptor acceptor_;
-  boost::asio::steady_timer event_timer_, report_timer_, log_timer_, clients_timer_, accept_timer_;
+  core::EventFd* wake_;
+  std::optional<boost::asio::posix::stream_descriptor> wake_wait_;  // a dup of wake_'s fd
+  boost::asio::steady_timer event_timer_, watch_timer_, report_timer_, log_timer_, clients_timer_, accept_timer_;
   std::map<std::uint32_t, std::shared_ptr<Session>> sessions_;
   std::uint32_t next_id_ = 1;
   std::uint16_t port_ = 0;
   std::string last_curr_cor_;
   std::uint64_t points_ = 0;
+  std::uint64_t woken_ = 0, backstop_found_ = 0;  // drains by wake-up / events only the backstop found
   bool running_ = false;
   Control control_;
   LogLimiter log_limiter_;

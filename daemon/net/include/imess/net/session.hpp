@@ -36,11 +36,17 @@ class Session : public std::enable_shared_from_this<Session> {
 
   void start();
   void send(std::string line);  // one complete line with its "\n" (events: sent at once)
+  // A line formatted once for many clients (broadcasts): every queue holds the same buffer.
+  void send(std::shared_ptr<const std::string> line);
 
   // Replies leave in the order of the requests, even when the motion loop answers later
   // than the io thread: reserve a slot per request, fill it when the answer is known.
   std::uint32_t reserve_reply();
   void fill_reply(std::uint32_t slot, std::string lines);
+  // A slot unanswered for `after` (its answer was lost: the event ring overflowed) gets
+  // `line` instead, so the replies behind it flow again. Returns how many slots it filled.
+  std::size_t expire_replies(Clock::time_point now, Clock::duration after, const std::string& line);
+  std::size_t open_replies() const { return replies_.size(); }
   void close_after_flush();     // Quit: finish writing, then close
   // Drop: ignore further input, send `line` (an Err line saying why), close once it is out.
   void drop(std::string line);
@@ -73,8 +79,16 @@ class Session : public std::enable_shared_from_this<Session> {
   CloseHandler on_close_;
   protocol::LineFramer framer_;
   std::array<char, 4096> buffer_{};
-  std::deque<std::string> queue_;
-  std::deque<std::pair<std::uint32_t, std::string>> replies_;  // empty text: not answered yet
+  // Output waiting to be written; shared buffers, so one broadcast line is formatted once
+  // and a write in progress keeps its buffers alive even when the session closes.
+  std::deque<std::shared_ptr<const std::string>> queue_;
+  struct ReplySlot {
+    std::uint32_t id;
+    std::string text;         // empty: not answered yet
+    Clock::time_point since;  // reserved at
+  };
+  std::deque<ReplySlot> replies_;
+  void flush_replies();       // answered slots at the front leave, in order
   std::uint32_t next_slot_ = 1;
   std::size_t queued_bytes_ = 0;
   bool writing_ = false, open_ = true, close_when_flushed_ = false, discard_input_ = false, read_paused_ = false;

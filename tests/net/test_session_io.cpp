@@ -1,0 +1,93 @@
+// Session output without a daemon: a lost reply slot times out into Err 500 and the replies
+// behind it flow; a close while a write is in flight frees nothing the write still reads.
+#include <catch2/catch.hpp>
+
+#include <boost/asio.hpp>
+#include <memory>
+#include <string>
+
+#include "imess/net/session.hpp"
+
+using imess::net::Session;
+namespace asio = boost::asio;
+using asio::ip::tcp;
+
+namespace {
+// A connected pair on loopback: the server end for a Session, the client end read directly.
+struct Pair {
+  asio::io_context io;
+  tcp::socket client{io};
+  std::shared_ptr<Session> session;
+  int closed = 0;
+
+  explicit Pair(std::size_t max_queue = 1 << 20) {
+    tcp::acceptor acceptor(io, tcp::endpoint(asio::ip::make_address("127.0.0.1"), 0));
+    client.connect(acceptor.local_endpoint());
+    session = std::make_shared<Session>(
+        acceptor.accept(), 1, max_queue, [](Session&, const imess::protocol::FramedLine&) {},
+        [this](Session&) { ++closed; });
+  }
+  // Runs the handlers that are ready (an io_context that ran out of work stays stopped
+  // until restarted).
+  void pump() {
+    io.restart();
+    io.poll();
+  }
+  std::string read(std::size_t n) {
+    std::string text(n, '\0');
+    asio::read(client, asio::buffer(text));
+    return text;
+  }
+};
+}  // namespace
+
+TEST_CASE("a reply slot that is never answered becomes Err 500 after the timeout and later replies flow") {
+  Pair p;
+  auto& s = *p.session;
+  const auto lost = s.reserve_reply();
+  const auto b = s.reserve_reply();
+  const auto c = s.reserve_reply();
+  s.fill_reply(b, "Ok B\n");
+  s.fill_reply(c, "Ok C\n");
+  p.pump();
+  CHECK(p.client.available() == 0);  // held behind the first slot
+  CHECK(s.expire_replies(Session::Clock::now(), std::chrono::seconds(2), "Err 500 lost\n") == 0);  // not yet
+  CHECK(s.expire_replies(Session::Clock::now() + std::chrono::seconds(3), std::chrono::seconds(2), "Err 500 lost\n") == 1);
+  p.pump();
+  CHECK(p.read(23) == "Err 500 lost\nOk B\nOk C\n");
+  s.fill_reply(lost, "Ok A\n");  // the answer after all: its slot is gone, nothing is sent
+  const auto d = s.reserve_reply();
+  s.fill_reply(d, "Ok D\n");
+  p.pump();
+  CHECK(p.read(5) == "Ok D\n");
+  CHECK(s.open_replies() == 0);
+}
+
+TEST_CASE("one buffer queued for many sessions, and a close during a write frees nothing the write reads") {
+  Pair p, q;
+  auto line = std::make_shared<const std::string>("Control panel 127.0.0.1\n");
+  p.session->send(line);
+  q.session->send(line);
+  CHECK(line.use_count() == 3);  // the same buffer in both queues, not a copy each
+  p.pump();
+  q.pump();
+  CHECK(p.read(line->size()) == *line);
+  CHECK(q.read(line->size()) == *line);
+
+  // 32 MiB to a client that does not read: the kernel takes part, the write stays in flight.
+  auto big = std::make_shared<std::string>(32 << 20, 'x');
+  big->back() = '\n';
+  Pair r(64 << 20);
+  r.session->send(std::shared_ptr<const std::string>(big));
+  r.pump();
+  std::weak_ptr<const std::string> watch = big;
+  big.reset();
+  CHECK(!watch.expired());  // held by the queue and the write in flight
+  r.session->close("test");
+  CHECK(r.closed == 1);
+  CHECK(!watch.expired());  // the queue is cleared, but the write's handler still holds it
+  r.pump();              // the aborted write completes
+  CHECK(watch.expired());
+  r.session->close("again");
+  CHECK(r.closed == 1);
+}
