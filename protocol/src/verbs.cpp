@@ -9,16 +9,10 @@
 #include <vector>
 
 #include "imess/protocol/numbers.hpp"
+#include "imess/protocol/words.hpp"
 
 namespace imess::protocol {
 namespace {
-
-bool iequals(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i]))) return false;
-  return true;
-}
 
 std::vector<std::string_view> split(std::string_view line) {
   std::vector<std::string_view> tokens;

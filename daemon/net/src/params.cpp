@@ -7,6 +7,7 @@
 
 #include "imess/core/motion_core.hpp"
 #include "imess/protocol/numbers.hpp"
+#include "imess/protocol/words.hpp"
 
 namespace imess::net {
 namespace {
@@ -65,19 +66,13 @@ std::string compact(double v) {
   return buf;
 }
 
-bool iequals(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i]))) return false;
-  return true;
-}
 }  // namespace
 
 std::span<const ParamSpec> param_table() { return kParams; }
 
 const ParamSpec* find_param(std::string_view name) {
   for (const auto& p : kParams)
-    if (iequals(p.name, name)) return &p;
+    if (protocol::iequals(p.name, name)) return &p;
   return nullptr;
 }
 
