@@ -102,7 +102,9 @@ hal::PinMap read_pins(JsonObject& b) {
   return map;
 }
 
-void read_stepper(JsonObject& b, DaemonConfig& cfg, bool simulated) {
+}  // namespace
+
+void read_stepper_section(JsonObject& b, DaemonConfig& cfg, bool simulated) {
   auto& s = cfg.ports.stepper;
   cfg.ports.port_io.base = 0x378;  // LPT1
   read_port_io(b, cfg.ports, simulated);
@@ -141,10 +143,14 @@ void read_stepper(JsonObject& b, DaemonConfig& cfg, bool simulated) {
   }
 }
 
+namespace {
+
 // Input/output bit masks as numbers or "0x..." strings.
 std::uint16_t bits(JsonObject& o, const std::string& key, std::uint16_t def) { return port_address(o, key, def); }
 
-void read_drive(JsonObject& b, DaemonConfig& cfg, bool simulated) {
+}  // namespace
+
+void read_drive_section(JsonObject& b, DaemonConfig& cfg, bool simulated) {
   auto& d = cfg.ports.drive;
   cfg.ports.port_io.base = 0x300;  // BRIEF §5
   read_port_io(b, cfg.ports, simulated);
@@ -201,49 +207,33 @@ void read_drive(JsonObject& b, DaemonConfig& cfg, bool simulated) {
   if (simulated) cfg.ports.drive_sim.period_ns = b.number("sim_period_us", cfg.ports.drive_sim.period_ns / 1000, 1, 10000) * 1000;
 }
 
-}  // namespace
-
-const std::vector<std::string>& backend_types() {
-  static const std::vector<std::string> kTypes{"sim-servo-card", "sim-parport", "parport", "sim-portio-drive", "portio-drive"};
-  return kTypes;
-}
-bool is_parport(const std::string& type) { return type == "sim-parport" || type == "parport"; }
-bool is_simulated(const std::string& type) { return type.rfind("sim-", 0) == 0; }
-bool is_drive_kit(const std::string& type) { return type == "sim-portio-drive" || type == "portio-drive"; }
-
-void load_backend_section(JsonObject& b, DaemonConfig& cfg) {
-  if (is_parport(cfg.backend)) read_stepper(b, cfg, is_simulated(cfg.backend));
-  if (is_drive_kit(cfg.backend)) read_drive(b, cfg, is_simulated(cfg.backend));
-}
-
-void finish_backend_config(DaemonConfig& cfg) {
+void finish_stepper_config(DaemonConfig& cfg, bool simulated) {
   auto& p = cfg.ports;
-  const bool sim = is_simulated(cfg.backend);
-  if (is_parport(cfg.backend)) {
-    auto& s = p.stepper;
-    s.servo_period_ns = cfg.period_us * 1000;
-    s.tip_reversed = cfg.card.tip_reversed;
-    // The simulator knows where the machine stands; a real one starts at the configured place.
-    if (sim && !p.initial_position_set) s.initial_position = cfg.sim.mechanics.start;
-    for (int a = 0; a < hal::kAxes; ++a) {
-      s.axes[a].home_direction = cfg.core.axes[a].home_direction;
-    }
-    auto& ss = p.stepper_sim;
-    ss.pins = s.pins;
-    ss.base = s.base;
-    for (int a = 0; a < hal::kAxes; ++a) {
-      ss.steps_per_mm[a] = s.axes[a].steps_per_mm;
-      ss.home_direction[a] = cfg.core.axes[a].home_direction;
-    }
+  auto& s = p.stepper;
+  s.servo_period_ns = cfg.period_us * 1000;
+  s.tip_reversed = cfg.card.tip_reversed;
+  // The simulator knows where the machine stands; a real one starts at the configured place.
+  if (simulated && !p.initial_position_set) s.initial_position = cfg.sim.mechanics.start;
+  for (int a = 0; a < hal::kAxes; ++a) {
+    s.axes[a].home_direction = cfg.core.axes[a].home_direction;
   }
-  if (is_drive_kit(cfg.backend)) {
-    auto& d = p.drive;
-    d.servo_period_ns = cfg.period_us * 1000;
-    d.tip_reversed = cfg.card.tip_reversed;
-    if (sim && !p.initial_position_set) d.initial_position = cfg.sim.mechanics.start;
-    for (int a = 0; a < hal::kAxes; ++a) d.axes[a].home_direction = cfg.core.axes[a].home_direction;
-    p.drive_sim.ports = d;
+  auto& ss = p.stepper_sim;
+  ss.pins = s.pins;
+  ss.base = s.base;
+  for (int a = 0; a < hal::kAxes; ++a) {
+    ss.steps_per_mm[a] = s.axes[a].steps_per_mm;
+    ss.home_direction[a] = cfg.core.axes[a].home_direction;
   }
+}
+
+void finish_drive_config(DaemonConfig& cfg, bool simulated) {
+  auto& p = cfg.ports;
+  auto& d = p.drive;
+  d.servo_period_ns = cfg.period_us * 1000;
+  d.tip_reversed = cfg.card.tip_reversed;
+  if (simulated && !p.initial_position_set) d.initial_position = cfg.sim.mechanics.start;
+  for (int a = 0; a < hal::kAxes; ++a) d.axes[a].home_direction = cfg.core.axes[a].home_direction;
+  p.drive_sim.ports = d;
 }
 
 }  // namespace imess::app

@@ -23,14 +23,12 @@ struct PortBackendConfig {
   bool initial_position_set = false;
 };
 
-// Backend types known to this build.
-const std::vector<std::string>& backend_types();
-bool is_parport(const std::string& type);
-bool is_simulated(const std::string& type);
-bool is_drive_kit(const std::string& type);
-// Reads the keys of the chosen backend type from "backend" (type already read).
-void load_backend_section(JsonObject& b, DaemonConfig& cfg);
-// Derives what follows from the rest of the configuration (axes, motion period, sim).
-void finish_backend_config(DaemonConfig& cfg);
+// The sections of the stepper (parport) and drive-kit (portio-drive) backends, real and
+// simulated; called by their entries in backends/ (backend_registry.hpp).
+void read_stepper_section(JsonObject& b, DaemonConfig& cfg, bool simulated);
+void read_drive_section(JsonObject& b, DaemonConfig& cfg, bool simulated);
+// Derive what follows from the rest of the configuration (axes, motion period, sim).
+void finish_stepper_config(DaemonConfig& cfg, bool simulated);
+void finish_drive_config(DaemonConfig& cfg, bool simulated);
 
 }  // namespace imess::app

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "backend_registry.hpp"
 #include "config_file.hpp"
 #include "imess/protocol/numbers.hpp"
 #include "json_object.hpp"
@@ -150,13 +151,7 @@ void load_config_text(const std::string& text, const std::string& path, DaemonCo
   if (auto b = top.object("backend")) {
     cfg.backend = b->text("type", cfg.backend, backend_types());
     cfg.card.tip_reversed = b->boolean("tip_reversed", cfg.card.tip_reversed);
-    if (cfg.backend == "sim-servo-card") {
-      cfg.card.firmware = b->text("firmware", cfg.card.firmware);
-      double ferr = b->number("max_following_error", cfg.card.max_following_error[0], 0.01, 100);
-      cfg.card.max_following_error = {ferr, ferr, ferr};
-    } else {
-      load_backend_section(*b, cfg);  // backend_config.cpp
-    }
+    load_backend_section(*b, cfg);  // the type's own keys: backend_registry.hpp, backends/<name>.cpp
     b->finish();
   }
   if (auto jn = top.object("journal")) {  // the hit journal
@@ -256,7 +251,8 @@ void finish_config(DaemonConfig& cfg) {
     m.home_direction = c.home_direction;
   }
   if (!cfg.sim_probe_nc_set) cfg.sim.mechanics.probe.normally_closed = cfg.card.tip_reversed;
-  cfg.core.referenced_at_start = cfg.backend == "sim-servo-card" && cfg.sim.card.absolute_scales;
+  const auto* type = find_backend(cfg.backend);
+  cfg.core.referenced_at_start = type && type->absolute_scales && cfg.sim.card.absolute_scales;
   finish_backend_config(cfg);
   for (int a = 0; a < core::kAxes; ++a) {
     auto& s = cfg.core.axes[a];

@@ -1,0 +1,49 @@
+// The backend registry: one BackendType per "backend.type" value (name, description, section
+// loader, factory), each defined in backends/<name>.cpp and listed once in backend_registry.cpp.
+#pragma once
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "machine.hpp"
+
+namespace imess::app {
+
+class JsonObject;
+
+struct BackendType {
+  const char* name;         // the "backend.type" value
+  const char* description;  // one line for people
+  bool simulated;           // the simulator stands behind the real driver
+  bool absolute_scales;     // referenced at start when sim.absolute_scales is set
+  // Reads its keys of "backend" (type and tip_reversed already read); nullptr: none.
+  void (*load_section)(JsonObject& backend, DaemonConfig& cfg);
+  // Derives its settings from the rest of the configuration (axes, period, sim); nullptr: none.
+  void (*finish)(DaemonConfig& cfg);
+  // Builds and initialises the machine; throws std::runtime_error naming the problem.
+  std::unique_ptr<Machine> (*make)(const DaemonConfig& cfg, const hal::Clock& clock, bool force_reboot);
+};
+
+// Every backend of this build, in the order error messages list them.
+const std::vector<const BackendType*>& backend_registry();
+const BackendType* find_backend(const std::string& name);  // nullptr when unknown
+const std::vector<std::string>& backend_types();           // the names
+// The registered entry's section loader and finisher (nothing for an unknown name).
+void load_backend_section(JsonObject& b, DaemonConfig& cfg);
+void finish_backend_config(DaemonConfig& cfg);
+
+// The usual factory: construct (a std::invalid_argument names the backend), then initialise.
+template <class M>
+std::unique_ptr<Machine> build_machine(const DaemonConfig& cfg, const hal::Clock& clock, bool force_reboot) {
+  std::unique_ptr<M> m;
+  try {
+    m = std::make_unique<M>(cfg, clock);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(cfg.backend + ": " + e.what());
+  }
+  m->initialise(force_reboot);
+  return m;
+}
+
+}  // namespace imess::app

@@ -1,0 +1,48 @@
+// "sim-servo-card": the real servo-card driver over a simulated link to the simulated CMM
+// (the default backend; the only one whose absolute scales make it referenced at start).
+#include "backend_registry.hpp"
+#include "imess/hal/servo_card_driver.hpp"
+#include "imess/sim/simulated_cmm.hpp"
+#include "json_object.hpp"
+
+namespace imess::app {
+
+namespace {
+
+class SimServoCardMachine final : public Machine {
+ public:
+  SimServoCardMachine(const DaemonConfig& cfg, const hal::Clock& clock)
+      : cmm_(cfg.sim, clock), driver_(cmm_.link(), cfg.card), absolute_(cfg.sim.card.absolute_scales) {}
+  void initialise(bool force_reboot) { driver_.initialise(force_reboot); }
+  hal::MotionBackend& backend() override { return driver_; }
+  hal::SimHooks* sim_hooks() override { return &cmm_.mechanics(); }
+  std::string describe() const override {
+    return driver_.describe() + " (simulated CMM, " + (absolute_ ? "absolute" : "incremental") + " scales)";
+  }
+
+ private:
+  sim::SimulatedCmm cmm_;
+  hal::ServoCardDriver driver_;
+  bool absolute_;
+};
+
+void load(JsonObject& b, DaemonConfig& cfg) {
+  cfg.card.firmware = b.text("firmware", cfg.card.firmware);
+  double ferr = b.number("max_following_error", cfg.card.max_following_error[0], 0.01, 100);
+  cfg.card.max_following_error = {ferr, ferr, ferr};
+}
+
+std::unique_ptr<Machine> make(const DaemonConfig& cfg, const hal::Clock& clock, bool force_reboot) {
+  auto m = std::make_unique<SimServoCardMachine>(cfg, clock);
+  m->initialise(force_reboot);
+  return m;
+}
+
+}  // namespace
+
+const BackendType& sim_servo_card_backend() {
+  static const BackendType kType{"sim-servo-card", "the servo card driver on a simulated CMM", true, true, load, nullptr, make};
+  return kType;
+}
+
+}  // namespace imess::app
