@@ -15,7 +15,6 @@ class JsonObject;
 struct BackendType {
   const char* name;         // the "backend.type" value
   const char* description;  // one line for people
-  bool simulated;           // the simulator stands behind the real driver
   bool absolute_scales;     // referenced at start when sim.absolute_scales is set
   // Reads its keys of "backend" (type and tip_reversed already read); nullptr: none.
   void (*load_section)(JsonObject& backend, DaemonConfig& cfg);

@@ -40,7 +40,7 @@ class SimDriveKitMachine final : public Machine {
 }  // namespace
 
 const BackendType& sim_portio_drive_backend() {
-  static const BackendType kType{"sim-portio-drive", "a simulated CMM with DC servo drive kits on simulated ports", true, false,
+  static const BackendType kType{"sim-portio-drive", "a simulated CMM with DC servo drive kits on simulated ports", false,
                                  [](JsonObject& b, DaemonConfig& cfg) { read_drive_section(b, cfg, true); },
                                  [](DaemonConfig& cfg) { finish_drive_config(cfg, true); },
                                  build_machine<SimDriveKitMachine>};
