@@ -32,6 +32,19 @@ const std::vector<std::string>& backend_types();           // the names
 void load_backend_section(JsonObject& b, DaemonConfig& cfg);
 void finish_backend_config(DaemonConfig& cfg);
 
+// The part every simulated port-space CMM takes from the configuration: the mechanics, the
+// workpiece and where its simulated port registers live.
+template <class SimConfig>
+SimConfig simulated_port_cmm_config(const DaemonConfig& cfg) {
+  SimConfig c;
+  c.mechanics = cfg.sim.mechanics;
+  c.scene = cfg.sim.scene;
+  c.port_file = cfg.ports.port_io.file;
+  c.port_base = cfg.ports.port_io.base;
+  c.port_count = cfg.ports.port_io.count;
+  return c;
+}
+
 // The usual factory: construct (a std::invalid_argument names the backend), then initialise.
 template <class M>
 std::unique_ptr<Machine> build_machine(const DaemonConfig& cfg, const hal::Clock& clock, bool force_reboot) {

@@ -10,13 +10,8 @@ namespace imess::app {
 namespace {
 
 sim::SimulatedStepperCmmConfig stepper_sim_config(const DaemonConfig& cfg) {
-  sim::SimulatedStepperCmmConfig c;
-  c.mechanics = cfg.sim.mechanics;
-  c.scene = cfg.sim.scene;
+  auto c = simulated_port_cmm_config<sim::SimulatedStepperCmmConfig>(cfg);
   c.stepper = cfg.ports.stepper_sim;
-  c.port_file = cfg.ports.port_io.file;
-  c.port_base = cfg.ports.port_io.base;
-  c.port_count = cfg.ports.port_io.count;
   return c;
 }
 

@@ -10,13 +10,8 @@ namespace imess::app {
 namespace {
 
 sim::SimulatedDriveKitCmmConfig drive_sim_config(const DaemonConfig& cfg) {
-  sim::SimulatedDriveKitCmmConfig c;
-  c.mechanics = cfg.sim.mechanics;
-  c.scene = cfg.sim.scene;
+  auto c = simulated_port_cmm_config<sim::SimulatedDriveKitCmmConfig>(cfg);
   c.kits = cfg.ports.drive_sim;
-  c.port_file = cfg.ports.port_io.file;
-  c.port_base = cfg.ports.port_io.base;
-  c.port_count = cfg.ports.port_io.count;
   return c;
 }
 
