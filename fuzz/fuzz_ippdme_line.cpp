@@ -1,0 +1,54 @@
+// Fuzz target: I++ DME client bytes -> LineFramer -> parse_framed, as the server's session will
+// read them; every error is formatted, every request formatted and parsed back. The first byte
+// chooses the read size, so lines are split across reads at every place.
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <string_view>
+
+#include "imess/ippdme/format.hpp"
+#include "imess/ippdme/line_framer.hpp"
+#include "imess/ippdme/parser.hpp"
+
+using namespace imess::ippdme;
+
+namespace {
+// Tight enough that a fuzzer reaches the cap; the spec's 65 536 is tested in test_ippdme.
+constexpr std::size_t kFuzzLineLength = 512;
+
+void check_line(std::string_view line) {  // one output line: bytes 32..126, then CR LF
+  if (line.size() < 2 || line.substr(line.size() - 2) != "\r\n") std::abort();
+  for (char c : line.substr(0, line.size() - 2))
+    if (c < 32 || c > 126) std::abort();
+}
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return 0;
+  const std::size_t chunk = 1 + data[0] % 16;
+  std::string_view bytes(reinterpret_cast<const char*>(data) + 1, size - 1);
+  LineFramer framer(kFuzzLineLength);
+  TagTracker open;
+  for (std::size_t at = 0; at < bytes.size(); at += chunk) {
+    framer.feed(bytes.substr(at, chunk), [&](const FramedLine& line) {
+      if (line.text.size() > kFuzzLineLength) std::abort();
+      LineResult r = parse_framed(line);
+      if (auto* e = std::get_if<LineError>(&r)) {
+        if (!find_error(number_of(e->code))) std::abort();
+        check_line(format_error(*e, open));
+        check_line(format_error(*e, open, CauseStyle::Quoted));
+        return;
+      }
+      const auto& req = std::get<Request>(r);
+      if (!open.try_open(req.tag)) open.close(req.tag);  // some reused, some not
+      // What the library writes, it reads back to the same command.
+      const std::string again = format_command(req.tag, req.command);
+      check_line(again);
+      LineResult back = parse_line(std::string_view(again).substr(0, again.size() - 2));
+      auto* same = std::get_if<Request>(&back);
+      if (!same || !(same->command == req.command) || !(same->tag == req.tag)) std::abort();
+    });
+    if (framer.pending() > kFuzzLineLength) std::abort();
+  }
+  return 0;
+}
