@@ -261,6 +261,8 @@ void finish_config(DaemonConfig& cfg) {
     cfg.card.max_velocity[a] = s.max_velocity;
   }
   for (int a = 0; a < core::kAxes; ++a) cfg.card.max_accel[a] = 20000;  // the drives' limit; MaxAccel shapes moves
+  cfg.server.period_us = cfg.period_us;  // the read-only parameters Period and Backend
+  cfg.server.backend = cfg.backend;
 }
 
 }  // namespace imess::app

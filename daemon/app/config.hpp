@@ -44,7 +44,8 @@ std::vector<std::string> load_messdrc_text(const std::string& text, const std::s
 // $STATE_DIRECTORY/journal (systemd's StateDirectory=), else ./messd-journal.
 std::string default_journal_dir();
 
-// Derives what follows from other settings (sim axes from the travel, probe polarity).
+// Derives what follows from other settings (sim axes from the travel, probe polarity, the
+// server's read-only Period and Backend).
 void finish_config(DaemonConfig& config);
 
 }  // namespace imess::app

@@ -19,11 +19,11 @@
 #include "imess/net/server.hpp"
 #include "json_object.hpp"
 #include "machine.hpp"
+#include "version.hpp"
 
 using namespace imess;
 
 namespace {
-constexpr const char* kVersion = "0.1.0";
 
 app::DaemonConfig configure(const app::CliOptions& cli) {
   app::DaemonConfig cfg;
@@ -45,9 +45,7 @@ app::DaemonConfig configure(const app::CliOptions& cli) {
   cfg.server.log_motion = cli.debug_motion;
   cfg.server.log_status = cli.debug_status;
   cfg.server.log_timing = cli.timing;
-  cfg.server.version = kVersion;
-  cfg.server.period_us = cfg.period_us;  // read-only parameters Period and Backend
-  cfg.server.backend = cfg.backend;
+  cfg.server.version = app::kVersion;
   app::finish_config(cfg);
   return cfg;
 }
@@ -71,7 +69,7 @@ int run(int argc, char** argv) {
     return 0;
   }
   if (cli.version) {
-    std::cout << "messd " << kVersion << " (IMESS interactive measuring machine controller)\n";
+    std::cout << "messd " << app::kVersion << " (IMESS interactive measuring machine controller)\n";
     return 0;
   }
 

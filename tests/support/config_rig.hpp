@@ -32,7 +32,15 @@ class ConfigRig {
     while (core_->events().pop(e)) on_event(e);
   }
 
+  // One motion cycle at the configured period, leaving the events in the core's ring for
+  // whoever reads them (the golden transcripts' net::Server).
+  void cycle() {
+    clock_.advance(hal::Nanos(static_cast<long>(cfg_.period_us * 1000)));
+    core_->cycle(clock_.now());
+  }
+
   const app::DaemonConfig& config() const { return cfg_; }
+  const VirtualClock& clock() const { return clock_; }
   core::MotionCore& core() { return *core_; }
   bool simulated_hands() const { return machine_->sim_hooks() != nullptr; }
 

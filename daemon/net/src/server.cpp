@@ -59,7 +59,8 @@ void Server::start() {
   schedule(event_timer_, std::chrono::microseconds(static_cast<long>(drain_ms * 1000)), &Server::backstop_events);
   schedule(watch_timer_, std::chrono::microseconds(1000), &Server::every_millisecond);
   schedule(clients_timer_, std::chrono::microseconds(250000), &Server::check_clients);
-  schedule(report_timer_, std::chrono::microseconds(static_cast<long>(1e6 / config_.report_hz)), &Server::report_position);
+  if (config_.stream_position)
+    schedule(report_timer_, std::chrono::microseconds(static_cast<long>(1e6 / config_.report_hz)), &Server::report_position);
   if (config_.log_status || config_.log_timing) schedule(log_timer_, std::chrono::seconds(5), &Server::log_periodic);
 }
 

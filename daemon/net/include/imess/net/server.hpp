@@ -37,6 +37,9 @@ struct ServerConfig {
   std::string listen = "0.0.0.0";
   std::uint16_t port = 1066;      // 0: any free port (tests)
   double report_hz = 10;          // CurrCor rate, only when the position changed
+  // false: CurrCor only on connect, no rate timer — for the golden transcripts, which run the
+  // machine in virtual time and must not depend on a wall-clock timer (tests/golden/README.md).
+  bool stream_position = true;
   std::size_t max_clients = 100;
   std::size_t max_queue_bytes = 1 << 20;  // per client; beyond it a non-reading client is dropped
   bool log_traffic = false;       // -dc
