@@ -195,3 +195,25 @@ TEST_CASE("messd --config with a bad configuration exits 2 with that one message
   }
   CHECK_FALSE(fs::exists(files.dir / "journal"));  // refused before anything was created
 }
+
+TEST_CASE("settings the backend cannot run are a bad configuration too: one message, exit 2") {
+  CaseDir files;
+  // 1e6 steps/mm at the default 25 mm/s: far beyond what the base period can step.
+  const BadConfig c{"backend cannot run it", R"({"backend": {"type": "sim-parport", "axes": {"X": {"steps_per_mm": 1e6}}}})", {}};
+  const std::string path = files.make(0, c);
+  const std::string msg = load_error(path);
+  INFO(msg);
+  CHECK(msg.rfind("sim-parport: axis X: max_speed", 0) == 0);  // a ConfigError naming backend, axis and key
+  CHECK(contains(msg, "steps/s"));
+  CHECK(msg.find('\n') == std::string::npos);
+
+  const auto run = test::run_messd_to_exit({"--config", path, "--journal", (files.dir / "journal").string()});
+  INFO("stderr: " << run.err);
+  CHECK(run.status == 2);  // packaging/messd.service: no restart for a bad configuration
+  CHECK(run.out.empty());
+  std::size_t errors = 0;
+  for (const auto& l : lines_of(run.err)) errors += contains(l, " error: ") ? 1 : 0;
+  CHECK(errors == 1);
+  CHECK(contains(run.err, "error: controller start failed: " + msg));
+  CHECK_FALSE(contains(run.err, "terminate called"));
+}
