@@ -14,6 +14,7 @@ namespace {
 
 // A port address as a number (888) or a hex string ("0x378").
 std::uint16_t port_address(JsonObject& o, const std::string& key, std::uint16_t def) {
+  o.accept(key);
   if (!o.has(key)) return def;
   const char* expected = "a port address from 0 to 0xFFFF, e.g. 888 or \"0x378\"";
   if (!o.is_string(key)) {
@@ -51,20 +52,17 @@ void read_port_io(JsonObject& b, PortBackendConfig& p, bool simulated) {
 
 hal::PinMap read_pins(JsonObject& b) {
   hal::PinMap map = *hal::named_pin_map("shd-adapter");
+  b.accept("pins");
   if (!b.has("pins")) return map;
+  const char* forms = "\"shd-adapter\", \"3d-step\" or an object {\"map\": ..., \"<pin>\": \"<signal>\"}";
   auto named = [&](const std::string& name) {
     auto m = hal::named_pin_map(name);
-    if (!m) b.fail("pins", "\"shd-adapter\", \"3d-step\" or an object {\"map\": ..., \"<pin>\": \"<signal>\"}");
+    if (!m) b.fail("pins", forms);
     return *m;
   };
-  auto o = [&]() -> std::optional<JsonObject> {
-    try {
-      return b.object("pins");
-    } catch (const ConfigError&) {
-      return std::nullopt;  // a name, not an object
-    }
-  }();
-  if (!o) return named(b.text("pins", "shd-adapter"));
+  if (b.is_string("pins")) return named(b.text("pins", "shd-adapter"));
+  if (!b.is_object("pins")) b.fail("pins", forms);
+  auto o = b.object("pins");
   std::string base = o->text("map", "none", {"none", "shd-adapter", "3d-step"});
   if (base == "none") {
     map = hal::PinMap{};
@@ -93,7 +91,7 @@ hal::PinMap read_pins(JsonObject& b) {
       o->fail(key, std::string("a pin signal: ") + e.what() + "; append \" inverted\" for an active-low pin");
     }
   }
-  o->finish();
+  o->finish("\"map\" and the pin numbers \"1\" to \"" + std::to_string(hal::kMaxPin) + "\"");
   try {
     hal::validate_pin_map(map);
   } catch (const std::invalid_argument& e) {

@@ -6,11 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "json_object.hpp"  // ConfigError
 #include "machine.hpp"
 
 namespace imess::app {
-
-class JsonObject;
 
 struct BackendType {
   const char* name;         // the "backend.type" value
@@ -45,14 +44,16 @@ SimConfig simulated_port_cmm_config(const DaemonConfig& cfg) {
   return c;
 }
 
-// The usual factory: construct (a std::invalid_argument names the backend), then initialise.
+// The usual factory: construct, then initialise. A std::invalid_argument from a constructor
+// is a configuration the driver cannot run (keys that contradict each other): a ConfigError
+// naming the backend, so messd exits 2 as for any bad configuration.
 template <class M>
 std::unique_ptr<Machine> build_machine(const DaemonConfig& cfg, const hal::Clock& clock, bool force_reboot) {
   std::unique_ptr<M> m;
   try {
     m = std::make_unique<M>(cfg, clock);
   } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(cfg.backend + ": " + e.what());
+    throw ConfigError(cfg.backend + ": " + e.what());
   }
   m->initialise(force_reboot);
   return m;

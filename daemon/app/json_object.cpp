@@ -108,10 +108,17 @@ std::optional<std::vector<JsonObject>> JsonObject::objects(const std::string& ke
   return out;
 }
 
-void JsonObject::finish() const {
-  for (auto it = j_.begin(); it != j_.end(); ++it)
-    if (!read_.count(it.key()))
-      throw ConfigError(file_ + ": unknown key '" + where(it.key()) + "' (see docs/configuration.md for the accepted keys)");
+void JsonObject::finish(const std::string& accepted) const {
+  for (auto it = j_.begin(); it != j_.end(); ++it) {
+    if (read_.count(it.key())) continue;
+    std::string known = accepted;
+    for (const auto& k : read_)
+      if (accepted.empty() && k != "_comment") known += (known.empty() ? "" : ", ") + k;
+    std::string key = where(it.key());
+    if (key.size() > 80) key = key.substr(0, 77) + "...";
+    throw ConfigError(file_ + ": unknown key '" + key + "'; accepted here: " + (known.empty() ? "none" : known) +
+                      " (docs/configuration.md)");
+  }
 }
 
 }  // namespace imess::app

@@ -37,10 +37,14 @@ class JsonObject {
   // Array of objects (may be absent: nullopt).
   std::optional<std::vector<JsonObject>> objects(const std::string& key);
   bool has(const std::string& key) const { return j_.contains(key); }
+  // Marks a key read by hand (has / is_*) rather than by a typed getter: accepted here.
+  void accept(const std::string& key) { read_.insert(key); }
   bool is_string(const std::string& key) const { return has(key) && j_.at(key).is_string(); }
   bool is_number(const std::string& key) const { return has(key) && j_.at(key).is_number(); }
-  // Throws for keys present but never read.
-  void finish() const;
+  bool is_object(const std::string& key) const { return has(key) && j_.at(key).is_object(); }
+  // Throws for keys present but never read, listing the keys read here (those accepted) or,
+  // when given, `accepted` (for objects whose keys are not all read by name).
+  void finish(const std::string& accepted = "") const;
   [[noreturn]] void fail(const std::string& key, const std::string& expected) const;
   std::string where(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
 

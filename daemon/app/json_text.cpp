@@ -91,6 +91,17 @@ class StrictnessCheck : public nlohmann::json_sax<Json> {
   std::vector<Frame> frames_;
 };
 
+// nlohmann's "[json.exception.parse_error.101] parse error at line 4, column 3: syntax error
+// while parsing object key - unexpected '}'; expected string literal" without the library's
+// prefix: "at line 4, column 3: syntax error ...".
+std::string parse_error_text(const std::string& what) {
+  std::string text = what;
+  if (auto close = text.find("] "); text.rfind("[json.exception.", 0) == 0 && close != std::string::npos)
+    text.erase(0, close + 2);
+  if (text.rfind("parse error ", 0) == 0) text.erase(0, 12);
+  return text;
+}
+
 bool only_blanks(const std::string& text) { return text.find_first_not_of(" \t\r\n") == std::string::npos; }
 
 }  // namespace
@@ -112,7 +123,7 @@ Json parse_json_text(std::string text, const std::string& file) {
     if (check.error_id == 406)  // not found where expected: still name the key, if any
       throw ConfigError(file + ": key '" + check.error_path + "' holds a number too large for a double ('" + tok +
                         "'); see docs/configuration.md for its range");
-    throw ConfigError(file + ": not valid JSON: " + check.error_text);
+    throw ConfigError(file + ": not valid JSON " + parse_error_text(check.error_text));
   }
   try {
     return Json::parse(text, nullptr, true, /*ignore_comments=*/true);

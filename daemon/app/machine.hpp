@@ -23,7 +23,8 @@ class Machine {
 };
 
 // Builds and initialises the configured machine; throws std::runtime_error naming the
-// problem (device missing, firmware, permissions).
+// problem (device missing, firmware, permissions), a ConfigError for settings the backend
+// cannot run.
 std::unique_ptr<Machine> make_machine(const DaemonConfig& config, const hal::Clock& clock, bool force_reboot);
 
 }  // namespace imess::app

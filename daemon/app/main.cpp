@@ -97,6 +97,9 @@ int run(int argc, char** argv) {
   std::unique_ptr<app::Machine> machine;
   try {
     machine = app::make_machine(cfg, clock, cli.reboot);
+  } catch (const app::ConfigError& e) {  // settings the backend cannot run: fix the file first
+    spdlog::error("controller start failed: {}", e.what());
+    return 2;
   } catch (const std::exception& e) {
     spdlog::error("controller start failed: {}", e.what());
     return 1;

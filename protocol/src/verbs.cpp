@@ -145,7 +145,9 @@ ParseResult parse_args(const VerbSpec& v, std::span<const std::string_view> toke
 
 bool is_blank(std::string_view line) { return line.find_first_not_of(" \t") == std::string_view::npos; }
 
-ParseResult parse_command(std::string_view line) {
+ParseResult parse_command(std::string_view line) { return parse_command(line, verb_table()); }
+
+ParseResult parse_command(std::string_view line, std::span<const VerbSpec> table) {
   for (char c : line) {
     auto u = static_cast<unsigned char>(c);
     if ((u < 0x20 && u != '\t') || u > 0x7e)
@@ -155,7 +157,7 @@ ParseResult parse_command(std::string_view line) {
   }
   auto tokens = split(line);
   if (tokens.empty()) return ParseError{ErrorCode::UnknownCommand, "empty command; Help lists the commands"};
-  for (const auto& v : verb_table())
+  for (const auto& v : table)
     if (iequals(tokens[0], v.name)) return parse_args(v, std::span(tokens).subspan(1));
   std::string shown(tokens[0].substr(0, 16));
   return ParseError{ErrorCode::UnknownCommand, "unknown command '" + shown + "'; Help lists the commands"};

@@ -42,6 +42,7 @@ class ConfigRig {
   const app::DaemonConfig& config() const { return cfg_; }
   const VirtualClock& clock() const { return clock_; }
   core::MotionCore& core() { return *core_; }
+  app::Machine& machine() { return *machine_; }
   bool simulated_hands() const { return machine_->sim_hooks() != nullptr; }
 
  private:

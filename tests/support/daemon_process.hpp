@@ -1,5 +1,6 @@
 // DaemonProcess: starts build/bin/messd on a free port as a child process (with its own fresh
-// journal directory unless the test passes --journal) and stops it;
+// journal directory unless the test passes --journal) and stops it; run_messd_to_exit runs one
+// that should refuse to start and keeps its exit status, stdout and stderr;
 // LineClient: a plain TCP client for tests — send lines, wait for lines with timeouts.
 #pragma once
 #include <arpa/inet.h>
@@ -95,6 +96,68 @@ class DaemonProcess {
   int port_ = 0, status_ = -1;
   std::string own_journal_;
 };
+
+// A messd run that is expected to end by itself (a refused start): exit status and what it
+// wrote to stdout and stderr, separately. After timeout_s it is killed (status 128 + 9).
+struct MessdExit {
+  int status = -1;
+  std::string out, err;
+};
+inline MessdExit run_messd_to_exit(const std::vector<std::string>& args, double timeout_s = 10.0) {
+  int out[2], err[2];
+  if (pipe(out) != 0 || pipe(err) != 0) throw std::runtime_error("pipe failed");
+  pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    dup2(out[1], STDOUT_FILENO);
+    dup2(err[1], STDERR_FILENO);
+    close(out[0]);
+    close(err[0]);
+    std::string bin = std::string(IMESS_BIN_DIR) + "/messd";
+    std::vector<std::string> all{bin, "--port", "0", "--listen", "127.0.0.1", "--no-rt"};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(bin.c_str(), argv.data());
+    _exit(127);
+  }
+  close(out[1]);
+  close(err[1]);
+  MessdExit r;
+  pollfd fds[2]{{out[0], POLLIN, 0}, {err[0], POLLIN, 0}};
+  std::string* texts[2]{&r.out, &r.err};
+  auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  int open_fds = 2;
+  bool killed = false;
+  while (open_fds > 0) {
+    auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      kill(pid, SIGKILL);
+      killed = true;
+      break;
+    }
+    if (poll(fds, 2, static_cast<int>(left.count())) <= 0) continue;
+    for (int i = 0; i < 2; ++i) {
+      if (fds[i].fd < 0 || !(fds[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
+      char buf[4096];
+      auto n = read(fds[i].fd, buf, sizeof buf);
+      if (n > 0) {
+        texts[i]->append(buf, static_cast<std::size_t>(n));
+      } else {
+        close(fds[i].fd);
+        fds[i].fd = -1;
+        --open_fds;
+      }
+    }
+  }
+  for (auto& f : fds)
+    if (f.fd >= 0) close(f.fd);
+  int st = 0;
+  waitpid(pid, &st, 0);
+  r.status = killed ? 128 + SIGKILL : WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+  return r;
+}
 
 class LineClient {
  public:

@@ -24,6 +24,9 @@ using ParseResult = std::variant<Command, ParseError>;
 // Parses one framed line (without terminator). Empty or blank lines are not commands:
 // callers skip them before calling (see is_blank).
 ParseResult parse_command(std::string_view line);
+// The same against another table of declarations (a second line protocol's verbs): the
+// first word is looked up case-insensitively in `table` only.
+ParseResult parse_command(std::string_view line, std::span<const VerbSpec> table);
 
 // Parses a line against one declaration (its first word is taken as the verb, not compared):
 // how tests check an argument kind before any verb of the table uses it.

@@ -1,0 +1,121 @@
+// Every shipped configuration (config/*.json and every config/ file the README names) loads as
+// messd loads it, builds its machine through the backend registry and says what the file says.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "backend_registry.hpp"
+#include "config_rig.hpp"
+#include "json_object.hpp"
+
+using namespace imess;
+using namespace imess::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kRoot = IMESS_SOURCE_DIR;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// config/*.json, sorted.
+std::vector<std::string> globbed_configs() {
+  std::vector<std::string> files;
+  for (const auto& f : fs::directory_iterator(kRoot + "/config"))
+    if (f.path().extension() == ".json") files.push_back("config/" + f.path().filename().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// Every "config/<name>.json" the README mentions.
+std::set<std::string> readme_configs() {
+  const std::string text = slurp(kRoot + "/README.md");
+  std::set<std::string> named;
+  const std::regex path(R"(config/[A-Za-z0-9._-]+\.json)");
+  for (std::sregex_iterator it(text.begin(), text.end(), path), end; it != end; ++it) named.insert(it->str());
+  return named;
+}
+
+std::vector<std::string> shipped_configs() {
+  auto files = globbed_configs();
+  for (const auto& n : readme_configs())
+    if (std::find(files.begin(), files.end(), n) == files.end()) files.push_back(n);
+  return files;
+}
+
+}  // namespace
+
+TEST_CASE("the configurations the README names are shipped in config/") {
+  const auto named = readme_configs();
+  CHECK(named.size() >= 4);  // the README's "Other machines" and "Configuration" paragraphs
+  for (const auto& n : named) {
+    INFO(n);
+    CHECK(fs::is_regular_file(kRoot + "/" + n));
+  }
+  CHECK(globbed_configs().size() >= 5);
+}
+
+TEST_CASE("every shipped configuration builds its machine, and it is the machine the file describes") {
+  for (const auto& rel : shipped_configs()) {
+    const std::string path = kRoot + "/" + rel;
+    INFO(rel);
+    // The file read on its own, to compare with what the loader made of it.
+    const auto j = nlohmann::json::parse(slurp(path), nullptr, true, /*ignore_comments=*/true);
+    std::unique_ptr<ConfigRig> rig;
+    REQUIRE_NOTHROW(rig = std::make_unique<ConfigRig>(path));  // load_json_config, finish_config, make_machine
+    const auto& cfg = rig->config();
+
+    // The backend: the type the file names, registered, and a machine that says what it is.
+    const std::string type = j.contains("backend") ? j["backend"].value("type", "sim-servo-card") : "sim-servo-card";
+    CHECK(cfg.backend == type);
+    REQUIRE(app::find_backend(type) != nullptr);
+    CHECK_FALSE(rig->machine().describe().empty());
+
+    // The axes: the file's axes are the machine's (X, Y, Z), with the travel and limits given.
+    if (j.contains("axes")) {
+      CHECK(j["axes"].size() == static_cast<std::size_t>(core::kAxes));
+      for (int a = 0; a < core::kAxes; ++a) {
+        const std::string name(1, hal::kAxisNames[a]);
+        INFO("axis " << name);
+        REQUIRE(j["axes"].contains(name));
+        const auto& ja = j["axes"][name];
+        const auto& ca = cfg.core.axes[a];
+        const auto& live = rig->core().config().axes[a];
+        CHECK(ca.travel_min == ja.value("travel_min", 0.0));
+        CHECK(ca.travel_max == ja.value("travel_max", 1000.0));
+        CHECK(live.travel_min == ca.travel_min);
+        CHECK(live.travel_max == ca.travel_max);
+        CHECK(ca.home_direction == (ja.value("home_direction", "neg") == std::string("neg") ? -1 : 1));
+        const double vmax = j.contains("motion") ? j["motion"].value("max_velocity", 150.0) : 150.0;
+        CHECK(ca.max_velocity == ja.value("max_velocity", vmax));
+        CHECK(live.max_velocity == ca.max_velocity);
+        if (ja.contains("max_accel")) CHECK(ca.max_accel == ja["max_accel"].get<double>());
+        CHECK(live.max_accel > 0);
+      }
+    }
+    if (j.contains("motion") && j["motion"].contains("period_us")) CHECK(cfg.period_us == j["motion"]["period_us"].get<double>());
+    if (j.contains("server") && j["server"].contains("port")) CHECK(cfg.server.port == j["server"]["port"].get<int>());
+
+    // The machine runs: a quarter second of motion cycles without a fault, standing within its travel.
+    for (int i = 0; i < 250; ++i) rig->step([](const core::Event&) {});
+    const auto& snap = rig->core().snapshot();
+    CHECK(snap.mode != core::Mode::Fault);
+    CHECK(snap.hardware_errors == 0);
+    for (int a = 0; a < core::kAxes; ++a) {
+      CHECK(snap.position[a] >= cfg.core.axes[a].travel_min - 1e-6);
+      CHECK(snap.position[a] <= cfg.core.axes[a].travel_max + 1e-6);
+    }
+  }
+}
