@@ -100,10 +100,22 @@ double Sampler::time_at_length(double s) const noexcept {
   return hi;
 }
 
-const Sample& Sampler::finish_scaled(double w_target, bool braking) noexcept {
+double Sampler::resume_speed(double dw, double dt) const noexcept {
+  const double s_now = current_.profile.at(tau_).s;
+  double w = w_ + dw;
+  for (int round = 0; round < 3; ++round) {
+    const double s_end = std::min(current_.length, s_now + 0.5 * (w_ + w) * dt);
+    w = std::min(w_ + dw, current_.profile.at(time_at_length(s_end)).v);
+  }
+  return std::max(w, std::max(0.0, w_ - dw));  // never brakes harder than a
+}
+
+const Sample& Sampler::finish_scaled(double w_target, bool braking, double dt) noexcept {
   const double v_plan = current_.profile.at(tau_).v;
+  // Caught up with the plan (w could reach its speed within a·dt): back on its time.
+  const bool caught_up = !braking && (w_target >= v_plan * (1 - 1e-9) || w_ + current_.a * dt >= v_plan);
   w_ = w_target;
-  if (!braking && w_ >= v_plan) {  // caught up with the plan: back on its time
+  if (caught_up) {
     scaled_ = false;
     w_ = v_plan;
     k_ = 1;

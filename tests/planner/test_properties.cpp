@@ -122,3 +122,31 @@ TEST_CASE("properties: batching input differently changes speeds, never limits o
     CHECK(r.ticks.back().pose == sc.end);
   }
 }
+
+TEST_CASE("properties: random feed holds and resumes keep every limit and the same end") {
+  for (unsigned seed = 30; seed < 42; ++seed) {
+    INFO("seed " << seed);
+    const Scenario sc = make_scenario(seed);
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> gap(1, 400);
+    int next_toggle = gap(rng);
+    bool held = false;
+    RunOptions o;
+    o.on_tick = [&](int t, Sampler& s) {
+      if (t < next_toggle) return;
+      held = !held;
+      held ? s.hold() : s.resume();
+      next_toggle = t + gap(rng);
+    };
+    o.max_ticks = 5'000'000;
+    Planner p(sc.machine);
+    p.set_position(sc.start);
+    const auto r = run(p, sc.requests, o);
+    check_continuity(r);
+    check_limits(sc.machine, r);
+    std::vector<std::uint32_t> want;
+    for (std::uint32_t i = 1; i <= sc.requests.size(); ++i) want.push_back(i);
+    CHECK(r.done == want);
+    CHECK(r.ticks.back().pose == sc.end);
+  }
+}

@@ -115,8 +115,11 @@ class Sampler {
   bool update_braking(double dt) noexcept;
   // Profile time at which the current segment reaches path length s (≥ tau_), by bisection.
   double time_at_length(double s) const noexcept;
+  // Resuming: w + a·dt, but never above the planned speed where the tick ends (the plan
+  // may be braking toward a junction there).
+  double resume_speed(double dw, double dt) const noexcept;
   // After the distance of a scaled tick: the new speed, and back to the plan when reached.
-  const Sample& finish_scaled(double w_target, bool braking) noexcept;
+  const Sample& finish_scaled(double w_target, bool braking, double dt) noexcept;
 
   // A scaled tick: the path speed w changes by the path acceleration a·dt (down while
   // braking, up while resuming), the tick covers ½(w + w_new)·dt of path, and τ is found
@@ -130,7 +133,7 @@ class Sampler {
       return advance(dt, pop);
     }
     const double a = current_.a;
-    const double w_target = braking ? std::max(0.0, w_ - a * dt) : w_ + a * dt;
+    const double w_target = braking ? std::max(0.0, w_ - a * dt) : resume_speed(a * dt, dt);
     double d = 0.5 * (w_ + w_target) * dt;
     while (true) {
       if (current_.length <= 0) {
@@ -150,7 +153,7 @@ class Sampler {
       if (braking && current_.v0 <= 0) d = 0;  // never past a planned stop while braking
       if (sample_.done_count == kMaxCompletionsPerTick) break;
     }
-    return finish_scaled(w_target, braking);
+    return finish_scaled(w_target, braking, dt);
   }
 
   PlannedSegment current_{}, next_{};
