@@ -1,7 +1,7 @@
 // Sampler: the real-time side. Holds the current PlannedSegment and the time into it;
 // advance(dt) gives the pose and velocity at the new time, moves on to the next segment
 // carrying the leftover time (junctions are continuous), reports the ids that completed,
-// and comes to rest at the end of the queue. Feed hold scales time along the path.
+// and comes to rest at the end of the queue. Feed hold brakes along the path (sampler.cpp).
 // Everything here is noexcept and allocation-free; sizes are fixed at compile time.
 // Measured cost: see bench/bench_planner.cpp and docs/architecture.md ("Planner").
 #pragma once
