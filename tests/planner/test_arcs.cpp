@@ -43,7 +43,7 @@ TEST_CASE("arcs: a quarter circle is native, its length is Rφ and the samples l
   check_limits(p.machine(), r);
 }
 
-TEST_CASE("arcs: clockwise goes the other way round; end == start is a full circle; turns add") {
+TEST_CASE("arcs: clockwise goes the other way round, end == start is a full circle, turns add") {
   Planner p(make_machine("XYZ", -100, 100, 100, 1000));
   p.set_position(pose_of({10, 0, 0}));
   p.append(arc_xy(1, pose_of({0, 10, 0}), 0, 0, false, 20));

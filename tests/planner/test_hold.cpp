@@ -62,7 +62,7 @@ TEST_CASE("hold: braking and resuming stay on the path, within the limits, and e
   }
 }
 
-TEST_CASE("hold: while held nothing moves and dwells wait; resume continues where it stood") {
+TEST_CASE("hold: while held nothing moves and dwells wait, resume continues where it stood") {
   Planner p(make_machine("XYZ", 0, 400, 100, 1000));
   std::vector<Pose> held_poses;
   RunOptions o;
@@ -78,4 +78,20 @@ TEST_CASE("hold: while held nothing moves and dwells wait; resume continues wher
   CHECK(held_poses.front()[0] == Approx(30).margin(0.3));
   CHECK(r.ticks.back().pose == pose_of({0, 0, 0}));
   CHECK(r.done == std::vector<std::uint32_t>{1, 2, 3});
+}
+
+TEST_CASE("hold: a dwell's clock stops while held") {
+  const std::vector<Request> reqs{Line{1, pose_of({1, 0, 0}), 100}, Dwell{2, 0.2}, Line{3, pose_of({2, 0, 0}), 100}};
+  Planner ref_p(make_machine("XYZ", 0, 400, 100, 1000));
+  const auto ref = run(ref_p, reqs);
+  Planner p(make_machine("XYZ", 0, 400, 100, 1000));
+  RunOptions o;
+  o.on_tick = [&](int t, Sampler& s) {
+    if (t == 150) s.hold();  // inside the dwell (the first line takes about 65 ms)
+    if (t == 650) s.resume();
+  };
+  const auto r = run(p, reqs, o);
+  CHECK(r.ticks.size() >= ref.ticks.size() + 499);
+  CHECK(r.ticks.size() <= ref.ticks.size() + 501);
+  CHECK(r.ticks.back().pose == pose_of({2, 0, 0}));
 }
