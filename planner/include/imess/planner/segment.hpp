@@ -1,0 +1,88 @@
+// What the planner is asked for (requests) and what it hands to the motion loop
+// (PlannedSegment: trivially copyable, fixed size, so it crosses an SPSC ring as it is).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <type_traits>
+#include <variant>
+
+#include "imess/planner/axes.hpp"
+#include "imess/planner/profile.hpp"
+
+namespace imess::planner {
+
+// Requests. Ids are the client's; poses are absolute and full (the caller fills the axes a
+// command does not name with their current position). Feeds follow the feed rule
+// (axes.hpp AxisGroup): mm/s along XYZ (else UVW), else deg/s over ABC.
+struct Line {
+  std::uint32_t id = 0;
+  Pose target{};
+  double feed = 0;
+};
+
+// A circular arc or helix. The circle lies in the plane through the three linear axes
+// `plane_axes` (machine axis indices, e.g. X Y Z = 0 1 2) with unit `normal` (in those
+// axes' coordinates; (0,0,1) = the XY plane); `centre` is given in those three axes and
+// projected onto the plane through the start. ccw = counter-clockwise seen from +normal.
+// turns: extra full turns. The end's component along the normal, and every other axis,
+// move linearly along the arc (helix). The end must lie on the circle: |r_end − r_start|
+// ≤ max(Options::arc_tolerance, 1e-3·r) or append refuses it (ArcRadiusMismatch).
+struct Arc {
+  std::uint32_t id = 0;
+  Pose target{};
+  std::array<double, 3> centre{};
+  std::array<double, 3> normal{0, 0, 1};
+  std::array<std::int8_t, 3> plane_axes{0, 1, 2};
+  bool ccw = true;
+  int turns = 0;
+  double feed = 0;  // mm/s along the helix
+};
+
+struct Dwell {
+  std::uint32_t id = 0;
+  double seconds = 0;
+};
+
+// Sets a digital output when the motion before it has come to rest (exact stop).
+struct SetOutput {
+  std::uint32_t id = 0;
+  std::uint16_t output = 0;
+  double value = 0;
+};
+
+using Request = std::variant<Line, Arc, Dwell, SetOutput>;
+
+enum class SegmentKind : std::uint8_t { Line, Arc, Dwell, SetOutput };
+
+// The circle of an arc segment, in its three plane axes: point(f) = centre + r(f)·(cos θ·e1 +
+// sin θ·e2) + f·h·n with θ = f·φ, r(f) = r0 + f·(r1 − r0), f = s / L. The other axes move
+// linearly from start to end.
+struct ArcGeometry {
+  std::array<std::int8_t, 3> axes{0, 1, 2};
+  std::array<double, 3> centre{}, e1{}, e2{}, n{};
+  double r0 = 0, r1 = 0;  // start and end radius (equal within the tolerance)
+  double phi = 0;         // swept angle, radians, signed about n
+  double h = 0;           // travel along n (helix lead over the whole arc)
+};
+
+struct PlannedSegment {
+  std::uint32_t id = 0;
+  SegmentKind kind = SegmentKind::Line;
+  std::uint16_t output = 0;    // SetOutput
+  double output_value = 0;     // SetOutput
+  Pose start{}, end{};         // end of one segment == start of the next, bit for bit
+  ArcGeometry arc{};           // kind Arc
+  double length = 0;           // L, mm (deg for a rotary-only line)
+  double v0 = 0, vc = 0, v1 = 0, a = 0;           // the trapezoid
+  double t_acc = 0, t_cruise = 0, t_dec = 0;      // its phases, s (Dwell: t_cruise = seconds)
+  Profile profile{};           // s(t), what the sampler evaluates
+
+  double duration() const noexcept { return profile.duration; }
+};
+static_assert(std::is_trivially_copyable_v<PlannedSegment>);
+
+// The pose at path length s (0 ≤ s ≤ L; s ≥ L gives `end` exactly) and the derivative of
+// the pose along the path (axis units per unit of s; zero for a segment that does not move).
+void pose_at(const PlannedSegment& seg, double s, Pose& pose, Pose& dpose_ds) noexcept;
+
+}  // namespace imess::planner
