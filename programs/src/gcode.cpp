@@ -150,7 +150,7 @@ class GcodeTranslator {
       if (group < 0) fail(ErrorKind::UnsupportedCode, col, text, kGcodes);
     } else {
       const long r = std::lround(v);
-      if (std::fabs(v - static_cast<double>(r)) < 1e-9) {
+      if (std::fabs(v - static_cast<double>(r)) < 1e-9 && r >= 0 && r < 1000) {
         c = static_cast<int>(r);
         switch (c) {
           case 0: case 2: case 30: group = kStop; break;

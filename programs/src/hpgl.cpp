@@ -42,6 +42,9 @@ class HpglTranslator {
 
   std::vector<Item> run(std::string_view text) {
     text_ = text;
+    line_starts_.assign(1, 0);
+    for (std::size_t k = 0; k < text.size(); ++k)
+      if (text[k] == '\n') line_starts_.push_back(k + 1);
     std::size_t i = 0;
     for (;;) {
       while (i < text.size() && (is_space(text[i]) || text[i] == ';')) ++i;
@@ -74,12 +77,11 @@ class HpglTranslator {
       if (m_.axes[i].letter == letter) return i;
     return -1;
   }
+  // Line and column (1-based) of text offset `at`.
   std::pair<int, int> where(std::size_t at) const {
-    int line = 1;
-    std::size_t start = 0;
-    for (std::size_t k = 0; k < at && k < text_.size(); ++k)
-      if (text_[k] == '\n') ++line, start = k + 1;
-    return {line, static_cast<int>(at - start + 1)};
+    const auto next = std::upper_bound(line_starts_.begin(), line_starts_.end(), at);
+    const std::size_t line = static_cast<std::size_t>(next - line_starts_.begin());
+    return {static_cast<int>(line), static_cast<int>(at - line_starts_[line - 1] + 1)};
   }
   [[noreturn]] void fail(ErrorKind k, std::size_t at, std::string found, std::string accepted) const {
     const auto [line, col] = where(at);
@@ -171,6 +173,7 @@ class HpglTranslator {
   const HpglOptions& o_;
   const planner::Machine& m_;
   std::string_view text_;
+  std::vector<std::size_t> line_starts_;
   std::vector<Item> items_;
   std::uint32_t next_id_ = 0;
   int ix_ = -1, iy_ = -1, iz_ = -1;
