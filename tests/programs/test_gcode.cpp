@@ -204,3 +204,9 @@ TEST_CASE("gcode: axis words map to the machine's axes, any of X Y Z A B C U V W
   o.machine = make_machine("XY", -1000, 1000, 100, 1000);
   CHECK(run("G1 X1 Y1 F60", o) == Lines{"1 LINE X1 Y1 F1"});
 }
+
+TEST_CASE("gcode: the example in docs/programs.md") {
+  CHECK(run("G21 G90 G17\nG0 X10 Y5\nG1 Z-1 F600\nG2 X20 Y5 I5\nG4 P0.5\nM2\n") ==
+        Lines{"2 LINE rapid X10 Y5 Z0 F100", "3 LINE X10 Y5 Z-1 F10", "4 ARC cw X20 Y5 Z-1 C15,5,-1 N0,0,1 P0,1,2 T0 F10",
+              "5 DWELL 0.5", "6 END"});
+}
