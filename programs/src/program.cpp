@@ -94,8 +94,7 @@ std::string describe(const Item& item, const planner::Machine& m) {
   return s;
 }
 
-std::string canonical(const Item& item, const planner::Machine& m, const Pose& start) {
-  (void)start;
+std::string canonical(const Item& item, const planner::Machine& m) {
   if (const auto* l = std::get_if<planner::Line>(&item.step))
     return std::string(item.rapid ? "STRAIGHT_TRAVERSE(" : "STRAIGHT_FEED(") + xyzabc(l->target, m) + ")";
   if (const auto* p = std::get_if<Probe>(&item.step)) return "STRAIGHT_PROBE(" + xyzabc(p->target, m) + ")";

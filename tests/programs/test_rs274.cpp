@@ -65,9 +65,25 @@ TEST_CASE("rs274: canonical emission matches LinuxCNC's rs274 -g (skipped withou
     const auto t = translate_gcode(programs[k], o);
     REQUIRE(t.ok);
     std::string ours;
-    for (const auto& it : t.items) ours += canonical(it, o.machine, o.start) + "\n";
+    for (const auto& it : t.items) ours += canonical(it, o.machine) + "\n";
     INFO("program " << k << "\n" << programs[k] << "rs274:\n" << theirs << "ours:\n" << ours);
     CHECK(calls(ours) == calls(theirs));
   }
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("rs274: the form of our canonical calls (first, second, centre, rotation, axis end, A B C)") {
+  const GcodeOptions o;
+  const auto t = translate_gcode("G0 X1 Y2 Z3\nG1 X0 Y0 Z0 F60\nG18 G2 X10 I5\nG17 G3 I-5 P3\nG4 P2\nG38.2 Z-5\nM2\n", o);
+  REQUIRE(t.ok);
+  std::vector<std::string> got;
+  for (const auto& it : t.items) got.push_back(canonical(it, o.machine));
+  CHECK(got == std::vector<std::string>{
+                   "STRAIGHT_TRAVERSE(1.0000, 2.0000, 3.0000, 0.0000, 0.0000, 0.0000)",
+                   "STRAIGHT_FEED(0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+                   "ARC_FEED(0.0000, 10.0000, 0.0000, 5.0000, -1, 0.0000, 0.0000, 0.0000, 0.0000)",
+                   "ARC_FEED(10.0000, 0.0000, 5.0000, 0.0000, 3, 0.0000, 0.0000, 0.0000, 0.0000)",
+                   "DWELL(2.0000)",
+                   "STRAIGHT_PROBE(10.0000, 0.0000, -5.0000, 0.0000, 0.0000, 0.0000)",
+                   ""});
 }

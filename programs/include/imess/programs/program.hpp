@@ -94,7 +94,7 @@ std::string describe(const Item& item, const planner::Machine& machine);
 // The same item in LinuxCNC's canonical form as `rs274 -g` prints it (XYZABC, with a
 // STRAIGHT_TRAVERSE, STRAIGHT_FEED, ARC_FEED, DWELL, STRAIGHT_PROBE ...). Empty for items
 // rs274 does not print as one call (outputs, home, pause, end).
-std::string canonical(const Item& item, const planner::Machine& machine, const Pose& start);
+std::string canonical(const Item& item, const planner::Machine& machine);
 
 // The end pose of every motion item in turn, starting from `start` (Probe: its target).
 Pose end_pose(const std::vector<Item>& items, const Pose& start);
