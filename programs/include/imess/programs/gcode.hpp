@@ -1,0 +1,30 @@
+// G-code (DIN 66025 / RS274NGC subset, LinuxCNC's modal rules) → program items.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "imess/programs/program.hpp"
+
+namespace imess::programs {
+
+struct GcodeOptions {
+  planner::Machine machine = planner::make_machine("XYZ", -1000, 1000, 100, 1000);
+  Pose start{};                        // machine pose when the program starts
+  std::array<Pose, 6> work_offsets{};  // G54 … G59: machine = program + offset (mm, deg)
+  int work_offset = 0;                 // active at start: 0 = G54
+  Pose home{};                         // where G28 goes (machine pose)
+  double rapid_feed = 0;               // traverse feed, planner units; 0: the fastest axis' max_velocity
+  bool check_travel = true;            // refuse end points outside the axes' travel
+  // Outputs (planner SetOutput numbers). M3/M4 set spindle_output to S (1 when no S was
+  // given), M5 sets it 0; M3/M4 set spindle_ccw_output 0/1 when configured.
+  std::optional<std::uint16_t> spindle_output, spindle_ccw_output;
+  // M62/M64 P<n> set output digital_output_base + n to 1, M63/M65 to 0; n < digital_output_count.
+  std::uint16_t digital_output_base = 0;
+  std::uint16_t digital_output_count = 0;
+};
+
+Translation translate_gcode(std::string_view text, const GcodeOptions& options = {});
+
+}  // namespace imess::programs

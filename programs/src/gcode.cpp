@@ -1,0 +1,439 @@
+// G-code translator: one line at a time into words, LinuxCNC's modal groups and order of
+// execution (feed, spindle, outputs, dwell, modes, home, motion, stop), absolute machine
+// poses for the planner.
+#include "imess/programs/gcode.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "scanner.hpp"
+
+namespace imess::programs {
+
+namespace {
+using namespace detail;
+
+constexpr const char* kLetters = "N G M X Y Z A B C U V W I J K R F P S";
+constexpr const char* kGcodes = "G0 G1 G2 G3 G4 G17 G18 G19 G20 G21 G28 G38.2 G38.3 G53 G54 G55 G56 G57 G58 G59 G90 G91";
+constexpr const char* kMcodes = "M0 M2 M3 M4 M5 M30 M62 M63 M64 M65";
+constexpr double kInch = 25.4;
+
+struct Word {
+  char letter = 0;
+  double value = 0;
+  int column = 0;
+  bool given = false;
+};
+
+enum Group { kMotion, kPlane, kDistance, kUnits, kCoord, kNonModal, kStop, kSpindle, kIo, kGroups };
+constexpr const char* kGroupNames[kGroups] = {"motion (G0 G1 G2 G3 G38.2 G38.3)", "plane (G17 G18 G19)",
+                                              "distance (G90 G91)", "units (G20 G21)", "work offset (G54-G59)",
+                                              "non-modal (G4 G28 G53)", "stop (M0 M2 M30)", "spindle (M3 M4 M5)",
+                                              "output (M62 M63 M64 M65)"};
+
+// A G or M code on a line: code×10 for G (38.2 → 382), plain for M.
+struct Code {
+  int code = -1;
+  int column = 0;
+  std::string text;
+};
+
+std::string g_text(int code10) {
+  return "G" + std::to_string(code10 / 10) + (code10 % 10 ? "." + std::to_string(code10 % 10) : "");
+}
+
+class GcodeTranslator {
+ public:
+  explicit GcodeTranslator(const GcodeOptions& o) : o_(o), m_(o.machine) {
+    planner::validate(m_);
+    if (o.work_offset < 0 || o.work_offset > 5) throw std::invalid_argument("GcodeOptions::work_offset: 0..5 (G54..G59)");
+    pos_ = o.start;
+    coord_ = o.work_offset;
+    known_.fill(true);
+    rapid_ = o.rapid_feed;
+    if (!(rapid_ > 0))
+      for (int i = 0; i < m_.count; ++i) rapid_ = std::max(rapid_, m_.axes[i].max_velocity);
+  }
+
+  std::vector<Item> run(std::string_view text) {
+    const auto lines = split_lines(text);
+    for (std::size_t k = 0; k < lines.size() && !ended_; ++k) line(static_cast<int>(k + 1), lines[k]);
+    return std::move(items_);
+  }
+
+ private:
+  int axis_index(char letter) const {
+    for (int i = 0; i < m_.count; ++i)
+      if (m_.axes[i].letter == letter) return i;
+    return -1;
+  }
+  std::string machine_axes() const {
+    std::string s;
+    for (int i = 0; i < m_.count; ++i) s += std::string(i ? " " : "") + m_.axes[i].letter;
+    return s;
+  }
+  [[noreturn]] void fail(ErrorKind k, int col, std::string found, std::string accepted) const {
+    raise(k, line_, col, std::move(found), std::move(accepted));
+  }
+  void emit(Step step, bool rapid = false) {
+    std::visit(
+        [&](auto& x) {
+          if constexpr (requires { x.id; }) x.id = ++next_id_;
+        },
+        step);
+    items_.push_back(Item{line_, rapid, std::move(step)});
+  }
+  Word& word(char letter) { return words_[static_cast<std::size_t>(letter - 'A')]; }
+  std::string word_text(const Word& w) const { return std::string(1, w.letter) + num(w.value); }
+
+  void parse(std::string_view s) {
+    words_ = {};
+    for (auto& c : codes_) c = Code{};
+    bool first = true;
+    std::size_t i = 0;
+    for (;;) {
+      while (i < s.size() && is_blank(s[i])) ++i;
+      if (i >= s.size()) break;
+      const int col = static_cast<int>(i + 1);
+      const char c = s[i];
+      if (c == ';') break;
+      if (c == '(') {
+        const std::size_t close = s.find(')', i);
+        if (close == std::string_view::npos) fail(ErrorKind::UnterminatedComment, col, "'(' without ')'", "a comment closed by ')' on the same line");
+        i = close + 1;
+        continue;
+      }
+      if (c == '%' && first && s.find_first_not_of(" \t", i + 1) == std::string_view::npos) break;  // tape marker
+      if (!is_letter(c)) fail(ErrorKind::BadCharacter, col, char_text(s, i), std::string("words ") + kLetters + ", '(comment)', ';comment'");
+      const char L = upper(c);
+      if (std::string_view(kLetters).find(L) == std::string_view::npos || L == ' ')
+        fail(ErrorKind::UnsupportedWord, col, std::string(1, L), std::string("words ") + kLetters);
+      ++i;
+      double v = 0;
+      if (!scan_number(s, i, v)) {
+        while (i < s.size() && is_blank(s[i])) ++i;
+        fail(ErrorKind::BadNumber, col, std::string(1, L) + " followed by " + char_text(s, i), std::string("a decimal number after ") + L);
+      }
+      if (L == 'N') {
+        if (!first) fail(ErrorKind::WordNotAllowed, col, "N" + num(v) + " after other words", "N only as the first word of a line");
+      } else if (L == 'G' || L == 'M') {
+        code(L, v, col);
+      } else {
+        Word& w = word(L);
+        if (w.given) fail(ErrorKind::RepeatedWord, col, std::string(1, L) + num(v) + " after " + word_text(w) + " at column " + std::to_string(w.column), std::string("one ") + L + " word per line");
+        w = Word{L, v, col, true};
+      }
+      first = false;
+    }
+  }
+
+  void code(char L, double v, int col) {
+    const std::string text = std::string(1, L) + num(v);
+    int group = -1, c = -1;
+    if (L == 'G') {
+      const double t = v * 10;
+      const long r = std::lround(t);
+      if (std::fabs(t - static_cast<double>(r)) < 1e-6 && r >= 0 && r < 10000) {
+        c = static_cast<int>(r);
+        switch (c) {
+          case 0: case 10: case 20: case 30: case 382: case 383: group = kMotion; break;
+          case 170: case 180: case 190: group = kPlane; break;
+          case 200: case 210: group = kUnits; break;
+          case 900: case 910: group = kDistance; break;
+          case 540: case 550: case 560: case 570: case 580: case 590: group = kCoord; break;
+          case 40: case 280: case 530: group = kNonModal; break;
+          default: break;
+        }
+      }
+      if (group < 0) fail(ErrorKind::UnsupportedCode, col, text, kGcodes);
+    } else {
+      const long r = std::lround(v);
+      if (std::fabs(v - static_cast<double>(r)) < 1e-9 && r >= 0 && r < 1000) {
+        c = static_cast<int>(r);
+        switch (c) {
+          case 0: case 2: case 30: group = kStop; break;
+          case 3: case 4: case 5: group = kSpindle; break;
+          case 62: case 63: case 64: case 65: group = kIo; break;
+          default: break;
+        }
+      }
+      if (group < 0) fail(ErrorKind::UnsupportedCode, col, text, kMcodes);
+    }
+    Code& slot = codes_[group];
+    if (slot.code >= 0)
+      fail(ErrorKind::ModalConflict, col, text + " after " + slot.text + " at column " + std::to_string(slot.column),
+           std::string("one word of group ") + kGroupNames[group] + " per line");
+    slot = Code{c, col, text};
+  }
+
+  double unit() const { return inches_ ? kInch : 1.0; }
+
+  void line(int number, std::string_view s) {
+    line_ = number;
+    parse(s);
+    const Code& motion_code = codes_[kMotion];
+    const Code& nonmodal = codes_[kNonModal];
+    // Axis words must name machine axes.
+    bool any_axis = false;
+    int first_axis_col = 0;
+    for (char L : {'X', 'Y', 'Z', 'A', 'B', 'C', 'U', 'V', 'W'}) {
+      const Word& w = word(L);
+      if (!w.given) continue;
+      if (axis_index(L) < 0) fail(ErrorKind::AxisNotOnMachine, w.column, word_text(w), "axis words of this machine: " + machine_axes());
+      if (!any_axis) first_axis_col = w.column;
+      any_axis = true;
+    }
+    // 1. Feed and spindle speed.
+    if (const Word& f = word('F'); f.given) {
+      if (f.value < 0) fail(ErrorKind::BadValue, f.column, word_text(f), "F >= 0 (units per minute)");
+      feed_ = f.value;
+    }
+    if (const Word& sw = word('S'); sw.given) {
+      if (sw.value < 0) fail(ErrorKind::BadValue, sw.column, word_text(sw), "S >= 0");
+      speed_ = sw.value;
+      speed_set_ = true;
+    }
+    // P belongs to G4, M62-M65 or an arc (turns); exactly one of them.
+    const Word& p = word('P');
+    const bool arc_on_line = motion_code.code == 20 || motion_code.code == 30 ||
+                             ((motion_ == 20 || motion_ == 30) && motion_code.code < 0 && any_axis && nonmodal.code != 280);
+    {
+      int users = (nonmodal.code == 40) + (codes_[kIo].code >= 0) + arc_on_line;
+      if (p.given && users == 0) fail(ErrorKind::WordNotAllowed, p.column, word_text(p), "P only with G4, M62-M65 or G2/G3 (turns)");
+      if (p.given && users > 1) fail(ErrorKind::WordNotAllowed, p.column, word_text(p), "P for one of G4, M62-M65, G2/G3 per line");
+    }
+    // 2. Spindle.
+    if (const Code& sp = codes_[kSpindle]; sp.code >= 0) {
+      if (!o_.spindle_output) fail(ErrorKind::NotConfigured, sp.column, sp.text, "M3/M4/M5 only with a configured spindle output");
+      if (sp.code != 5 && o_.spindle_ccw_output) emit(planner::SetOutput{0, *o_.spindle_ccw_output, sp.code == 4 ? 1.0 : 0.0});
+      emit(planner::SetOutput{0, *o_.spindle_output, sp.code == 5 ? 0.0 : (speed_set_ ? speed_ : 1.0)});
+    }
+    // 3. Digital outputs.
+    if (const Code& io = codes_[kIo]; io.code >= 0) {
+      if (o_.digital_output_count == 0) fail(ErrorKind::NotConfigured, io.column, io.text, "M62-M65 only with configured digital outputs");
+      if (!p.given) fail(ErrorKind::MissingWord, io.column, io.text + " without P", "P<output number> with " + io.text);
+      const long n = std::lround(p.value);
+      if (std::fabs(p.value - static_cast<double>(n)) > 1e-9 || n < 0 || n >= o_.digital_output_count)
+        fail(ErrorKind::BadValue, p.column, word_text(p), "P0 ... P" + std::to_string(o_.digital_output_count - 1));
+      emit(planner::SetOutput{0, static_cast<std::uint16_t>(o_.digital_output_base + n), (io.code == 62 || io.code == 64) ? 1.0 : 0.0});
+    }
+    // 4. Dwell.
+    if (nonmodal.code == 40) {
+      if (!p.given) fail(ErrorKind::MissingWord, nonmodal.column, "G4 without P", "G4 P<seconds>");
+      if (p.value < 0) fail(ErrorKind::BadValue, p.column, word_text(p), "P >= 0 seconds");
+      emit(planner::Dwell{0, p.value});
+    }
+    // 5. Modes.
+    if (codes_[kPlane].code >= 0) plane_ = codes_[kPlane].code / 10;
+    if (codes_[kUnits].code >= 0) inches_ = codes_[kUnits].code == 200;
+    if (codes_[kCoord].code >= 0) coord_ = (codes_[kCoord].code - 540) / 10;
+    if (codes_[kDistance].code >= 0) absolute_ = codes_[kDistance].code == 900;
+    if (motion_code.code >= 0) motion_ = motion_code.code;
+    // I J K R only on arcs.
+    for (char L : {'I', 'J', 'K', 'R'}) {
+      const Word& w = word(L);
+      if (w.given && !(arc_on_line && nonmodal.code != 280))
+        fail(ErrorKind::WordNotAllowed, w.column, word_text(w), std::string(1, L) + " only with G2/G3");
+    }
+    // 6. Home.
+    if (nonmodal.code == 280) {
+      if (motion_code.code >= 0)
+        fail(ErrorKind::WordNotAllowed, motion_code.column, motion_code.text + " with G28", "G28 or a motion code on a line: both take the axis words");
+      if (any_axis) {
+        const Pose via = target(false, nonmodal.column);
+        emit(planner::Line{0, via, rapid_}, true);
+      }
+      emit(Home{o_.home});
+      pos_ = o_.home;
+      known_.fill(true);
+    } else if (nonmodal.code == 530) {
+      if (!(motion_ == 0 || motion_ == 10)) fail(ErrorKind::WordNotAllowed, nonmodal.column, "G53 with " + (motion_ < 0 ? std::string("no motion mode") : g_text(motion_)), "G53 with G0 or G1");
+      if (!absolute_) fail(ErrorKind::WordNotAllowed, nonmodal.column, "G53 in G91", "G53 in G90");
+      if (any_axis) move(target(true, first_axis_col));
+    } else if (any_axis || arc_on_line || motion_code.code == 382 || motion_code.code == 383) {
+      if (motion_ < 0) fail(ErrorKind::MissingWord, first_axis_col, "axis words without a motion mode", "G0 G1 G2 G3 G38.2 G38.3 before or on this line");
+      if (nonmodal.code == 40 && any_axis) fail(ErrorKind::WordNotAllowed, first_axis_col, "axis words with G4", "G4 P<seconds> alone");
+      const int col = motion_code.code >= 0 ? motion_code.column : first_axis_col;
+      if (motion_ == 382 || motion_ == 383) {
+        if (!any_axis) fail(ErrorKind::MissingWord, col, g_text(motion_) + " without axis words", "G38.2/G38.3 with the point to probe toward");
+        probe(target(false, col), col);
+      } else if (motion_ == 20 || motion_ == 30) {
+        arc(target(false, col), col);
+      } else {
+        move(target(false, col));
+      }
+    }
+    // 7. Stop.
+    if (const Code& st = codes_[kStop]; st.code >= 0) {
+      if (st.code == 0) {
+        emit(Pause{});
+      } else {
+        emit(End{});
+        ended_ = true;
+      }
+    }
+  }
+
+  // The absolute machine target of this line's axis words (G53: machine coordinates).
+  Pose target(bool machine_coords, int col) {
+    Pose t = pos_;
+    for (int i = 0; i < m_.count; ++i) {
+      const Word& w = word(m_.axes[i].letter);
+      const double scale = m_.axes[i].kind == planner::AxisKind::Linear ? unit() : 1.0;
+      if (!w.given) {
+        if (!known_[i])
+          fail(ErrorKind::PositionUnknown, col, std::string("no ") + m_.axes[i].letter + " word after the probe on line " + std::to_string(probe_line_),
+               std::string("every axis the probe moved named in G90 (or G53) before it moves again"));
+        continue;
+      }
+      if (machine_coords) {
+        t[i] = w.value * scale;
+        known_[i] = true;
+      } else if (absolute_) {
+        t[i] = w.value * scale + o_.work_offsets[static_cast<std::size_t>(coord_)][i];
+        known_[i] = true;
+      } else {
+        if (!known_[i])
+          fail(ErrorKind::PositionUnknown, w.column, word_text(w) + " in G91 after the probe on line " + std::to_string(probe_line_), std::string(1, w.letter) + " in G90 (or G53)");
+        t[i] = pos_[i] + w.value * scale;
+      }
+    }
+    if (o_.check_travel)
+      for (int i = 0; i < m_.count; ++i) {
+        const auto& a = m_.axes[i];
+        if (t[i] < a.travel_min || t[i] > a.travel_max) {
+          const Word& w = word(a.letter);
+          fail(ErrorKind::OutOfTravel, w.given ? w.column : col, std::string(1, a.letter) + " at " + num(t[i]) + " (machine)",
+               std::string(1, a.letter) + " within " + num(a.travel_min) + " ... " + num(a.travel_max));
+        }
+      }
+    return t;
+  }
+
+  // The planner feed for a move from pos_ to t: F in units/min → per second; inches apply
+  // only when a linear axis moves (F is deg/min for a rotary-only move).
+  double feed_for(const Pose& t, int col) const {
+    if (!(feed_ > 0)) fail(ErrorKind::NoFeed, col, g_text(motion_) + " with feed F0 (none set yet?)", "an F word > 0 on this or an earlier line");
+    bool linear = false;
+    for (int i = 0; i < m_.count; ++i)
+      if (m_.axes[i].kind == planner::AxisKind::Linear && t[i] != pos_[i]) linear = true;
+    return feed_ * (linear && inches_ ? kInch : 1.0) / 60.0;
+  }
+
+  void move(const Pose& t) {
+    const bool rapid = motion_ == 0;
+    const double f = rapid ? rapid_ : feed_for(t, codes_[kMotion].code >= 0 ? codes_[kMotion].column : 1);
+    emit(planner::Line{0, t, f}, rapid);
+    pos_ = t;
+  }
+
+  void probe(const Pose& t, int col) {
+    const double f = feed_for(t, col);
+    emit(Probe{t, f, motion_ == 382});
+    for (int i = 0; i < m_.count; ++i)  // where it trips is known at run time only
+      if (t[i] != pos_[i] || word(m_.axes[i].letter).given) known_[i] = false;
+    probe_line_ = line_;
+    pos_ = t;
+  }
+
+  void arc(const Pose& t, int col) {
+    const int ix = axis_index('X'), iy = axis_index('Y'), iz = axis_index('Z');
+    if (ix < 0 || iy < 0 || iz < 0 || m_.axes[ix].kind != planner::AxisKind::Linear ||
+        m_.axes[iy].kind != planner::AxisKind::Linear || m_.axes[iz].kind != planner::AxisKind::Linear)
+      fail(ErrorKind::AxisNotOnMachine, col, g_text(motion_) + " on a machine with axes " + machine_axes(), "arcs on machines with linear X, Y and Z");
+    // Plane coordinates (first, second) and the normal, as indices into X Y Z.
+    int a1 = 0, a2 = 1, an = 2;
+    if (plane_ == 18) a1 = 2, a2 = 0, an = 1;
+    if (plane_ == 19) a1 = 1, a2 = 2, an = 0;
+    const std::array<int, 3> idx{ix, iy, iz};
+    const char offset_letter[3] = {'I', 'J', 'K'};
+    const Word& r = word('R');
+    const Word& off_n = word(offset_letter[an]);
+    if (off_n.given) fail(ErrorKind::WordNotAllowed, off_n.column, word_text(off_n) + " in G" + std::to_string(plane_),
+                          std::string("centre offsets ") + offset_letter[a1] + " " + offset_letter[a2] + " in G" + std::to_string(plane_));
+    const Word& o1 = word(offset_letter[a1]);
+    const Word& o2 = word(offset_letter[a2]);
+    const bool ccw = motion_ == 30;
+    const double s1 = pos_[idx[a1]], s2 = pos_[idx[a2]], e1 = t[idx[a1]], e2 = t[idx[a2]];
+    if (!known_[idx[a1]] || !known_[idx[a2]] || !known_[idx[an]])
+      fail(ErrorKind::PositionUnknown, col, g_text(motion_) + " after the probe on line " + std::to_string(probe_line_), "a G0/G1 in G90 naming the probed axes first");
+    double c1 = 0, c2 = 0;
+    if (r.given) {
+      if (o1.given || o2.given) fail(ErrorKind::WordNotAllowed, r.column, word_text(r) + " with centre offsets", "either R or centre offsets");
+      const double R = r.value * unit();
+      const double d = std::hypot(e1 - s1, e2 - s2);
+      if (d < 1e-9) fail(ErrorKind::BadArc, r.column, word_text(r) + " with the end on the start", "R arcs with distinct ends (a full circle takes I/J/K)");
+      if (std::fabs(R) < d / 2 - 1e-6)
+        fail(ErrorKind::BadArc, r.column, word_text(r) + " for ends " + num(d) + " apart", "|R| >= half the distance between the ends");
+      const double h = std::sqrt(std::max(0.0, R * R - d * d / 4));
+      const double u1 = (e1 - s1) / d, u2 = (e2 - s2) / d;
+      const double side = (ccw ? 1.0 : -1.0) * (R > 0 ? 1.0 : -1.0);
+      c1 = (s1 + e1) / 2 - side * h * u2;
+      c2 = (s2 + e2) / 2 + side * h * u1;
+    } else {
+      if (!o1.given && !o2.given)
+        fail(ErrorKind::MissingWord, col, g_text(motion_) + " without centre", std::string(1, offset_letter[a1]) + "/" + offset_letter[a2] + " or R");
+      c1 = s1 + (o1.given ? o1.value * unit() : 0);
+      c2 = s2 + (o2.given ? o2.value * unit() : 0);
+      const double r0 = std::hypot(s1 - c1, s2 - c2), r1 = std::hypot(e1 - c1, e2 - c2);
+      if (r0 < 1e-9) fail(ErrorKind::BadArc, col, "centre on the start point", "a centre away from the start");
+      if (std::fabs(r1 - r0) > std::max(0.002, 1e-3 * r0))
+        fail(ErrorKind::BadArc, col, "end radius " + num(r1) + " vs start radius " + num(r0), "an end on the circle (within max(0.002 mm, 0.1 %))");
+    }
+    int turns = 0;
+    if (const Word& p = word('P'); p.given) {
+      const long n = std::lround(p.value);
+      if (std::fabs(p.value - static_cast<double>(n)) > 1e-9 || n < 1 || n > 10000) fail(ErrorKind::BadValue, p.column, word_text(p), "P1 ... P10000 (turns)");
+      turns = static_cast<int>(n - 1);
+    }
+    planner::Arc a;
+    a.target = t;
+    a.plane_axes = {static_cast<std::int8_t>(ix), static_cast<std::int8_t>(iy), static_cast<std::int8_t>(iz)};
+    a.centre = {pos_[ix], pos_[iy], pos_[iz]};
+    a.centre[a1] = c1;
+    a.centre[a2] = c2;
+    a.normal = {0, 0, 0};
+    a.normal[an] = 1;
+    a.ccw = ccw;
+    a.turns = turns;
+    a.feed = feed_for(t, col);
+    emit(a);
+    pos_ = t;
+  }
+
+  const GcodeOptions& o_;
+  const planner::Machine& m_;
+  std::vector<Item> items_;
+  std::uint32_t next_id_ = 0;
+  int line_ = 0;
+  std::array<Word, 26> words_{};
+  std::array<Code, kGroups> codes_{};
+  Pose pos_{};
+  std::array<bool, planner::kMaxAxes> known_{};
+  int probe_line_ = 0;
+  int motion_ = -1;  // code×10, -1: none yet
+  int plane_ = 17;
+  bool absolute_ = true, inches_ = false;
+  int coord_ = 0;
+  double feed_ = 0;  // as programmed, units/min (the units in force at each move)
+  double speed_ = 0;
+  bool speed_set_ = false;
+  double rapid_ = 0;
+  bool ended_ = false;
+};
+}  // namespace
+
+Translation translate_gcode(std::string_view text, const GcodeOptions& options) {
+  GcodeTranslator t(options);
+  try {
+    Translation r;
+    r.items = t.run(text);
+    return r;
+  } catch (const Failure& f) {
+    return fail(f.error.kind, f.error.line, f.error.column, f.error.found, f.error.accepted);
+  }
+}
+
+}  // namespace imess::programs
