@@ -1,8 +1,11 @@
-// Internal: starting values for the axial features (cylinder, cone) — candidate axis directions
-// and, for a given direction, the axis position and radius from a circle fit of the projection.
+// Internal: what the axial features (cylinder, cone) share before the solver — the input
+// check, candidate axis directions and, for a given direction, the axis position and radius
+// from a circle fit of the projection.
 #pragma once
 
 #include <optional>
+#include <span>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -23,5 +26,21 @@ struct AxisPosition {
 // Circle fit of the points projected onto the plane perpendicular to `axis` (unit); nullopt if
 // the projection is degenerate (collinear) or the circle fit fails.
 std::optional<AxisPosition> axis_position(const Eigen::Matrix3Xd& q, const Eigen::Vector3d& axis);
+
+// The count, finiteness and spread (in all three directions) of an axial feature's points;
+// fills pa on the way. nullopt when the points may be fitted.
+std::optional<FitError> check_axial_input(std::span<const Eigen::Vector3d> points, std::size_t min_points,
+                                          std::string_view feature, PrincipalAxes<3>& pa);
+
+// One starting state for each candidate axis whose projection gives a position:
+// make(axis position, axis direction) builds it. Starts on the subsample qs of the points.
+template <class State, class Make>
+std::vector<State> axial_starts(const Eigen::Matrix3Xd& qs, const PrincipalAxes<3>& pa, Make make) {
+  std::vector<State> starts;
+  for (const Eigen::Vector3d& axis : candidate_axes(qs, pa)) {
+    if (auto pos = axis_position(qs, axis)) starts.push_back(make(*pos, axis));
+  }
+  return starts;
+}
 
 }  // namespace imess::metrology::detail
