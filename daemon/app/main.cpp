@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
+#include <string>
 
 #include "cli.hpp"
 #include "config.hpp"
@@ -52,14 +54,9 @@ app::DaemonConfig configure(const app::CliOptions& cli) {
   return cfg;
 }
 
-// The daemon's life; main() around it turns any exception that escapes into a message and
-// exit status 2, so no input can end messd in an abort.
-int run(int argc, char** argv) {
-  auto logger = spdlog::stderr_color_mt("messd");
-  spdlog::set_default_logger(logger);
-  spdlog::set_pattern("%H:%M:%S.%e messd %^%l%$: %v");
-
-  app::CliOptions cli;
+// The command line into cli; the exit status when messd ends here (--help, --version, a
+// bad argument), nullopt when it goes on.
+std::optional<int> read_command_line(int argc, char** argv, app::CliOptions& cli) {
   try {
     cli = app::parse_cli(argc, argv);
   } catch (const std::exception& e) {
@@ -74,6 +71,54 @@ int run(int argc, char** argv) {
     std::cout << "messd " << kVersion << " (IMESS interactive measuring machine controller)\n";
     return 0;
   }
+  return std::nullopt;
+}
+
+// What the motion loop got: a warning when real-time scheduling was refused.
+void log_realtime(const std::string& rt) {
+  if (rt.find("not permitted") != std::string::npos)
+    spdlog::warn("{}", rt);
+  else
+    spdlog::info("{}", rt);
+}
+
+// Fewer clients when the descriptor limit cannot hold max_clients (a warning then).
+void fit_clients_to_fd_limit(net::ServerConfig& server) {
+  auto fds = app::fit_fd_limit(server.max_clients);
+  if (fds.message.empty()) return;
+  if (fds.lowered)
+    spdlog::warn("{}", fds.message);
+  else
+    spdlog::info("{}", fds.message);
+  server.max_clients = fds.max_clients;
+}
+
+void log_control_rules(const net::ServerConfig& server) {
+  const auto& rules = server.control;
+  spdlog::info("control from {}; observe from {}; forced take-over from {}; {} of {} slots kept for control hosts",
+               rules.hosts.to_string(), rules.observe_hosts.to_string(), rules.force_hosts.to_string(),
+               std::min(rules.reserved_slots, server.max_clients - 1), server.max_clients);
+}
+
+// At exit: every axis brakes with its configured deceleration, the loops open, the base
+// thread ends.
+void stop_machine(core::MotionCore& core, app::Machine& machine) {
+  hal::Vec3 decel;
+  for (int a = 0; a < core::kAxes; ++a) decel[a] = core.config().axes[a].max_accel;
+  machine.backend().stop(decel);
+  machine.backend().set_loops(false);
+  machine.stop_base_thread();
+}
+
+// The daemon's life; main() around it turns any exception that escapes into a message and
+// exit status 2, so no input can end messd in an abort.
+int run(int argc, char** argv) {
+  auto logger = spdlog::stderr_color_mt("messd");
+  spdlog::set_default_logger(logger);
+  spdlog::set_pattern("%H:%M:%S.%e messd %^%l%$: %v");
+
+  app::CliOptions cli;
+  if (auto status = read_command_line(argc, argv, cli)) return *status;
 
   app::DaemonConfig cfg;
   try {
@@ -110,25 +155,12 @@ int run(int argc, char** argv) {
   core.set_event_signal(&wake);
   core.start(clock.now());
   core::LoopRunner runner(core, clock, std::chrono::nanoseconds(static_cast<long>(cfg.period_us * 1000)));
-  std::string rt = runner.start(cfg.realtime);
-  if (rt.find("not permitted") != std::string::npos)
-    spdlog::warn("{}", rt);
-  else
-    spdlog::info("{}", rt);
+  log_realtime(runner.start(cfg.realtime));
 
   if (auto base = machine->start_base_thread(cfg.realtime); !base.empty()) spdlog::info("{}", base);
 
-  if (auto fds = app::fit_fd_limit(cfg.server.max_clients); !fds.message.empty()) {
-    if (fds.lowered)
-      spdlog::warn("{}", fds.message);
-    else
-      spdlog::info("{}", fds.message);
-    cfg.server.max_clients = fds.max_clients;
-  }
-  const auto& rules = cfg.server.control;
-  spdlog::info("control from {}; observe from {}; forced take-over from {}; {} of {} slots kept for control hosts",
-               rules.hosts.to_string(), rules.observe_hosts.to_string(), rules.force_hosts.to_string(),
-               std::min(rules.reserved_slots, cfg.server.max_clients - 1), cfg.server.max_clients);
+  fit_clients_to_fd_limit(cfg.server);
+  log_control_rules(cfg.server);
 
   boost::asio::io_context io;
   net::Server server(io, cfg.server, core, &runner, *hits, &wake);
@@ -154,11 +186,7 @@ int run(int argc, char** argv) {
   io.run();
 
   runner.stop();
-  hal::Vec3 decel;
-  for (int a = 0; a < core::kAxes; ++a) decel[a] = core.config().axes[a].max_accel;
-  machine->backend().stop(decel);
-  machine->backend().set_loops(false);
-  machine->stop_base_thread();
+  stop_machine(core, *machine);
   spdlog::info("motion stopped, loops open; bye");
   return 0;
 }
