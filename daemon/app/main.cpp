@@ -100,6 +100,61 @@ void log_control_rules(const net::ServerConfig& server) {
                std::min(rules.reserved_slots, server.max_clients - 1), server.max_clients);
 }
 
+// The configuration into cfg, its notes logged; false (logged) when it cannot be used.
+bool load_configuration(const app::CliOptions& cli, app::DaemonConfig& cfg) {
+  try {
+    cfg = configure(cli);
+  } catch (const std::exception& e) {  // ConfigError, and anything a reader did not foresee
+    spdlog::error("{}", e.what());
+    return false;
+  }
+  for (const auto& n : cfg.notes) spdlog::info("{}", n);
+  spdlog::info("TipRadius {:.3f} mm, SpeedLevel {:.3f}, TipReversed {}", cfg.core.params.tip_radius,
+               cfg.core.params.speed_level, cfg.card.tip_reversed ? "true" : "false");
+  return true;
+}
+
+// The hit journal, its start-up notes logged; nullptr (logged) when it cannot be opened.
+std::unique_ptr<journal::Journal> open_journal(const journal::JournalConfig& config) {
+  std::unique_ptr<journal::Journal> hits;
+  try {
+    hits = std::make_unique<journal::Journal>(config);
+  } catch (const journal::JournalError& e) {
+    spdlog::error("{}", e.what());
+    return nullptr;
+  }
+  for (const auto& n : hits->notes()) spdlog::info("{}", n);
+  return hits;
+}
+
+// The configured machine, initialised; nullptr (logged) when it does not start.
+std::unique_ptr<app::Machine> start_controller(const app::DaemonConfig& cfg, const hal::Clock& clock,
+                                               bool reboot) {
+  std::unique_ptr<app::Machine> machine;
+  try {
+    machine = app::make_machine(cfg, clock, reboot);
+  } catch (const std::exception& e) {
+    spdlog::error("controller start failed: {}", e.what());
+    return nullptr;
+  }
+  spdlog::info("controller: {}", machine->describe());
+  return machine;
+}
+
+// Says "OK, listening" on stdout (what scripts wait for) and runs the io thread until SIGINT
+// or SIGTERM.
+void serve_until_signal(boost::asio::io_context& io, net::Server& server, const net::ServerConfig& config) {
+  boost::asio::signal_set signals(io, SIGINT, SIGTERM);
+  signals.async_wait([&](boost::system::error_code, int sig) {
+    spdlog::info("signal {}: stopping", sig);
+    server.stop();
+    io.stop();
+  });
+  std::printf("messd: OK, listening on %s:%u\n", config.listen.c_str(), static_cast<unsigned>(server.port()));
+  std::fflush(stdout);
+  io.run();
+}
+
 // At exit: every axis brakes with its configured deceleration, the loops open, the base
 // thread ends.
 void stop_machine(core::MotionCore& core, app::Machine& machine) {
@@ -121,34 +176,12 @@ int run(int argc, char** argv) {
   if (auto status = read_command_line(argc, argv, cli)) return *status;
 
   app::DaemonConfig cfg;
-  try {
-    cfg = configure(cli);
-  } catch (const std::exception& e) {  // ConfigError, and anything a reader did not foresee
-    spdlog::error("{}", e.what());
-    return 2;
-  }
-  for (const auto& n : cfg.notes) spdlog::info("{}", n);
-  spdlog::info("TipRadius {:.3f} mm, SpeedLevel {:.3f}, TipReversed {}", cfg.core.params.tip_radius,
-               cfg.core.params.speed_level, cfg.card.tip_reversed ? "true" : "false");
-
-  std::unique_ptr<journal::Journal> hits;  // before the machine: every hit must have a place to go
-  try {
-    hits = std::make_unique<journal::Journal>(cfg.journal);
-  } catch (const journal::JournalError& e) {
-    spdlog::error("{}", e.what());
-    return 2;
-  }
-  for (const auto& n : hits->notes()) spdlog::info("{}", n);
-
+  if (!load_configuration(cli, cfg)) return 2;
+  auto hits = open_journal(cfg.journal);  // before the machine: every hit must have a place to go
+  if (!hits) return 2;
   core::MonotonicClock clock;
-  std::unique_ptr<app::Machine> machine;
-  try {
-    machine = app::make_machine(cfg, clock, cli.reboot);
-  } catch (const std::exception& e) {
-    spdlog::error("controller start failed: {}", e.what());
-    return 1;
-  }
-  spdlog::info("controller: {}", machine->describe());
+  auto machine = start_controller(cfg, clock, cli.reboot);
+  if (!machine) return 1;
 
   core::MotionCore core(machine->backend(), cfg.core, machine->sim_hooks());
   core::EventFd wake;  // the loop wakes the io thread through it when it pushed events
@@ -175,15 +208,7 @@ int run(int argc, char** argv) {
     spdlog::info("reference search requested at start");
     core.submit(core::Command{core::CommandKind::Home});
   }
-  boost::asio::signal_set signals(io, SIGINT, SIGTERM);
-  signals.async_wait([&](boost::system::error_code, int sig) {
-    spdlog::info("signal {}: stopping", sig);
-    server.stop();
-    io.stop();
-  });
-  std::printf("messd: OK, listening on %s:%u\n", cfg.server.listen.c_str(), static_cast<unsigned>(server.port()));
-  std::fflush(stdout);
-  io.run();
+  serve_until_signal(io, server, cfg.server);
 
   runner.stop();
   stop_machine(core, *machine);
