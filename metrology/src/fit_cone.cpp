@@ -42,11 +42,7 @@ class ConeProblem {
     const double cp = std::cos(st.phi);
     const double sp = std::sin(st.phi);
     for (Eigen::Index i = 0; i < q_.cols(); ++i) {
-      const Eigen::Vector3d d = q_.col(i) - st.c;
-      const double x = u.dot(d);
-      const double y = v.dot(d);
-      const double z = st.a.dot(d);
-      const double rho = std::hypot(x, y);
+      const auto [x, y, z, rho] = detail::axial_coordinates(u, v, st.a, q_.col(i) - st.c);
       res(i) = rho * cp - z * sp - st.s;
       if (J) {
         const double ex = rho > 0.0 ? x / rho : 0.0;
@@ -58,12 +54,8 @@ class ConeProblem {
   }
 
   State apply(const State& st, const Eigen::VectorXd& delta) const {
-    Eigen::Vector3d u;
-    Eigen::Vector3d v;
-    detail::perpendicular_basis(st.a, u, v);
     State n;
-    n.c = st.c + delta(0) * u + delta(1) * v;
-    n.a = (st.a + delta(2) * u + delta(3) * v).normalized();
+    detail::step_axis(st.c, st.a, delta, n.c, n.a);
     n.s = st.s + delta(4);
     n.phi = st.phi + delta(5);
     const double t = -n.c.dot(n.a);

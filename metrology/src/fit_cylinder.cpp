@@ -35,11 +35,7 @@ class CylinderProblem {
     Eigen::Vector3d v;
     detail::perpendicular_basis(s.a, u, v);
     for (Eigen::Index i = 0; i < q_.cols(); ++i) {
-      const Eigen::Vector3d d = q_.col(i) - s.c;
-      const double x = u.dot(d);
-      const double y = v.dot(d);
-      const double z = s.a.dot(d);
-      const double rho = std::hypot(x, y);
+      const auto [x, y, z, rho] = detail::axial_coordinates(u, v, s.a, q_.col(i) - s.c);
       res(i) = rho - s.r;
       if (J) {
         if (rho > 0.0) {
@@ -52,12 +48,8 @@ class CylinderProblem {
   }
 
   State apply(const State& s, const Eigen::VectorXd& delta) const {
-    Eigen::Vector3d u;
-    Eigen::Vector3d v;
-    detail::perpendicular_basis(s.a, u, v);
     State n;
-    n.c = s.c + delta(0) * u + delta(1) * v;
-    n.a = (s.a + delta(2) * u + delta(3) * v).normalized();
+    detail::step_axis(s.c, s.a, delta, n.c, n.a);
     n.r = s.r + delta(4);
     n.c -= n.c.dot(n.a) * n.a;
     return n;
