@@ -24,6 +24,241 @@
 #include "point_file.hpp"
 
 namespace imess::messcap {
+namespace {
+
+// Where the points go: the frame they are given in, the file, and for --append to a file that
+// keeps hit numbers the last one it holds (the capture continues after it, fetching the rest).
+struct CaptureOutput {
+  std::optional<metrology::Frame> frame;
+  std::unique_ptr<PointFile> file;
+  std::optional<std::uint64_t> last_kept;
+};
+
+// Loads the frame, opens the file; false (having said why) when either fails.
+bool open_output(const CaptureOptions& options, CaptureOutput& output) {
+  try {
+    if (options.out.frame) output.frame = load_named_frame(*options.out.frames_file, *options.out.frame);
+    exchange::ExportData base;
+    base.frame = options.out.frame.value_or("");
+    base.outer = options.out.outer;
+    if (options.out.output) output.file = std::make_unique<PointFile>(*options.out.output, options.out.mode, base);
+  } catch (const std::exception& e) {
+    std::cerr << "messcap: " << e.what() << "\n";
+    return false;
+  }
+  try {
+    if (output.file && options.out.mode == OpenMode::Append && keeps_hit_numbers(output.file->path()))
+      output.last_kept = last_hit_number(output.file->path());
+  } catch (const std::exception& e) {
+    std::cerr << "messcap: " << e.what() << "\n";
+    return false;
+  }
+  return true;
+}
+
+// One capture from connecting to the exit status.
+class Capture {
+ public:
+  Capture(const CaptureOptions& options, CaptureOutput& output)
+      : options_(options),
+        output_(output),
+        sequencer_(output.last_kept),
+        link_(options.endpoint, {std::chrono::milliseconds{500}, std::chrono::milliseconds{500}}) {}
+
+  int run() {
+    if (!connect()) return client::kExitFailure;
+    client::install_stop_signals({SIGINT, SIGTERM});
+    greet();
+    announce();
+    try {
+      receive_until_ended();
+    } catch (const std::exception& e) {  // a write error: the points so far are on disk
+      std::cerr << "messcap: " << e.what() << " (after " << received_ << " points)\n";
+      return client::kExitFailure;
+    }
+    if (auto* c = link_.connection()) c->finish();
+    report_received();
+    const FitOutcome fit = options_.out.fit ? fit_kept() : FitOutcome::Done;
+    if (fit == FitOutcome::NotWritten) return client::kExitFailure;
+    return exit_status(fit == FitOutcome::NotFitted);
+  }
+
+ private:
+  enum class FitOutcome { Done, NotFitted, NotWritten };
+
+  bool connect() {
+    try {
+      link_.adopt(client::Connection::open(options_.endpoint));
+      return true;
+    } catch (const client::ConnectError& e) {
+      if (output_.file) output_.file->discard_if_unused();
+      std::cerr << "messcap: " << e.what() << "\n";
+      return false;
+    }
+  }
+
+  void greet() {
+    link_.send_line("Hello messcap");
+    sequencer_.on_connected();
+  }
+
+  void announce() const {
+    std::cerr << "messcap: connected to " << options_.endpoint.to_string() << "; "
+              << (options_.count ? "waiting for " + std::to_string(*options_.count) + " points"
+                                 : std::string("capturing until Ctrl-C") +
+                                       (options_.reconnect ? "" : " or until messd closes the connection"))
+              << (output_.frame ? "; points in frame " + *options_.out.frame : std::string())
+              << (output_.last_kept ? "; continuing after hit " + std::to_string(*output_.last_kept) : std::string())
+              << "\n";
+  }
+
+  bool done() const { return options_.count && received_ >= *options_.count; }
+
+  // Reads lines until N points, Ctrl-C or (without --reconnect) the link closes; reconnects
+  // and asks for the Replays the sequencer wants.
+  void receive_until_ended() {
+    while (!done()) {
+      if (client::stop_requested()) {
+        ended_by_ = "interrupted";
+        return;
+      }
+      if (!link_.connected()) {
+        if (!link_.maintain()) {
+          std::this_thread::sleep_for(std::min(std::chrono::milliseconds{200}, link_.until_next_attempt()));
+          continue;
+        }
+        std::cerr << "messcap: reconnected to " << options_.endpoint.to_string() << "\n";
+        greet();
+      }
+      if (auto from = sequencer_.take_replay_request()) link_.send_line("Replay " + std::to_string(*from));
+      auto status = link_.connection() ? link_.connection()->poll_lines(std::chrono::milliseconds{200},
+                                                                        [this](std::string_view line) { on_line(line); })
+                                       : client::ReadStatus::Closed;
+      for (const auto& note : sequencer_.take_notes()) std::cerr << "messcap: " << note << "\n";
+      if (status == client::ReadStatus::Closed && !on_closed()) return;
+    }
+  }
+
+  // The link closed: false when that ends the capture (no --reconnect).
+  bool on_closed() {
+    link_.lost();  // keeps the connection's close reason
+    const std::string reason = link_.last_error().empty() ? "lost" : link_.last_error();
+    if (!options_.reconnect) {
+      ended_by_ = "connection " + reason;
+      link_lost_ = true;
+      return false;
+    }
+    std::cerr << "messcap: connection " << reason << "; reconnecting (Ctrl-C ends the capture)\n";
+    return true;
+  }
+
+  void on_line(std::string_view line) {
+    auto message = protocol::parse_message(line);
+    if (auto* hit = std::get_if<protocol::HitMsg>(&message)) {
+      hit_mode_ = true;
+      take_all(sequencer_.on_hit(*hit));
+    } else if (auto* point = std::get_if<protocol::MeasPtMsg>(&message)) {
+      if (!hit_mode_) take(point->p, std::nullopt);  // a messd without a journal
+    } else if (auto* ok = std::get_if<protocol::OkMsg>(&message); ok && ok->verb == "Replay") {
+      on_replay_ok(*ok);
+    } else if (auto* err = std::get_if<protocol::ErrMsg>(&message)) {
+      on_replay_err(*err, line);
+    }
+  }
+
+  // `Ok Replay <count> <newest>`.
+  void on_replay_ok(const protocol::OkMsg& ok) {
+    auto count = ok.args.size() == 2 ? protocol::parse_sequence_number(ok.args[0]) : std::nullopt;
+    auto newest = ok.args.size() == 2 ? protocol::parse_sequence_number(ok.args[1]) : std::nullopt;
+    if (!count || !newest) return;
+    if (*count > 0) std::cerr << "messcap: Replay gave " << *count << " journaled hits (up to " << *newest << ")\n";
+    take_all(sequencer_.on_replay_ok(*count, *newest));
+  }
+
+  // messcap sends only Hello (never refused) and Replay: an Err answers a Replay.
+  void on_replay_err(const protocol::ErrMsg& err, std::string_view line) {
+    auto oldest = protocol::parse_sequence_number(std::string_view(err.text).substr(err.text.rfind(' ') + 1));
+    if (err.code == static_cast<int>(protocol::ErrorCode::NotInJournal) && oldest) {
+      take_all(sequencer_.on_replay_gone(*oldest));
+    } else {
+      std::cerr << "messcap: messd refused Replay (" << line << "); points missed while away cannot be fetched\n";
+      take_all(sequencer_.on_replay_refused());
+    }
+  }
+
+  void take_all(const std::vector<protocol::HitMsg>& due) {
+    for (const auto& h : due) take(h.p, h.seq);
+  }
+
+  // One point: to disk first, then kept for --fit, then on the screen.
+  void take(const protocol::Xyz& at, std::optional<std::uint64_t> seq) {
+    if (done()) return;  // N reached: later points in the same read are not ours to take
+    ++received_;
+    Eigen::Vector3d p(at.x, at.y, at.z);
+    if (output_.frame) p = output_.frame->point_from_parent(p);
+    if (output_.file) output_.file->append(p, seq);
+    if (options_.out.fit) kept_.push_back(p);
+    std::string text = "point " + std::to_string(received_) + ":";
+    for (double v : {p.x(), p.y(), p.z()}) {
+      text.push_back(' ');
+      protocol::append_mm(text, v);
+    }
+    std::printf("%s\n", text.c_str());
+    std::fflush(stdout);
+  }
+
+  void report_received() const {
+    std::cerr << "messcap: " << received_ << (received_ == 1 ? " point" : " points");
+    if (output_.file) std::cerr << " written to " << output_.file->path();
+    if (!ended_by_.empty()) std::cerr << " (" << ended_by_ << ")";
+    std::cerr << "\n";
+  }
+
+  // --fit: the fit of the points taken, printed as JSON and written into the file.
+  FitOutcome fit_kept() {
+    auto fit = exchange::fit_points(*options_.out.fit, kept_);
+    if (!fit) {
+      std::cerr << "messcap: " << fit_failure_message(*options_.out.fit, kept_.size(), "this capture", fit.error())
+                << (output_.file ? " (the points are in " + output_.file->path() + ")" : std::string()) << "\n";
+      return FitOutcome::NotFitted;
+    }
+    std::printf("%s\n", exchange::to_json(*fit).c_str());
+    std::fflush(stdout);
+    try {
+      if (output_.file) output_.file->set_fit(*fit);
+    } catch (const std::exception& e) {
+      std::cerr << "messcap: " << e.what() << "\n";
+      return FitOutcome::NotWritten;
+    }
+    return FitOutcome::Done;
+  }
+
+  int exit_status(bool fit_failed) const {
+    if (link_lost_) {
+      std::cerr << "messcap: messd went away before the capture was ended (start messcap with --reconnect to wait "
+                   "for it)\n";
+      return client::kExitLinkLost;
+    }
+    if (options_.count && received_ < *options_.count) {
+      std::cerr << "messcap: stopped before all " << *options_.count << " points arrived\n";
+      return client::kExitIncomplete;
+    }
+    return fit_failed ? client::kExitFailure : client::kExitOk;
+  }
+
+  const CaptureOptions& options_;
+  CaptureOutput& output_;
+  HitSequencer sequencer_;
+  bool hit_mode_ = false;  // a Hit line was seen: MeasPt lines are the same points again
+  client::Reconnector link_;
+  int received_ = 0;
+  std::vector<Eigen::Vector3d> kept_;  // for --fit
+  std::string ended_by_;
+  bool link_lost_ = false;
+};
+
+}  // namespace
+
 int run_capture(int argc, const char* const argv[]) {
   CaptureOptions options;
   try {
@@ -36,170 +271,9 @@ int run_capture(int argc, const char* const argv[]) {
     std::cout << capture_usage();
     return client::kExitOk;
   }
-
-  std::optional<metrology::Frame> frame;
-  std::unique_ptr<PointFile> file;
-  try {
-    if (options.out.frame) frame = load_named_frame(*options.out.frames_file, *options.out.frame);
-    exchange::ExportData base;
-    base.frame = options.out.frame.value_or("");
-    base.outer = options.out.outer;
-    if (options.out.output) file = std::make_unique<PointFile>(*options.out.output, options.out.mode, base);
-  } catch (const std::exception& e) {
-    std::cerr << "messcap: " << e.what() << "\n";
-    return client::kExitFailure;
-  }
-  // --append to a file that keeps hit numbers: continue after its last one, fetching the rest.
-  std::optional<std::uint64_t> last_kept;
-  try {
-    if (file && options.out.mode == OpenMode::Append && keeps_hit_numbers(file->path()))
-      last_kept = last_hit_number(file->path());
-  } catch (const std::exception& e) {
-    std::cerr << "messcap: " << e.what() << "\n";
-    return client::kExitFailure;
-  }
-  HitSequencer sequencer(last_kept);
-  bool hit_mode = false;  // a Hit line was seen: MeasPt lines are the same points again
-
-  client::Reconnector link(options.endpoint, {std::chrono::milliseconds{500}, std::chrono::milliseconds{500}});
-  try {
-    link.adopt(client::Connection::open(options.endpoint));
-  } catch (const client::ConnectError& e) {
-    if (file) file->discard_if_unused();
-    std::cerr << "messcap: " << e.what() << "\n";
-    return client::kExitFailure;
-  }
-  client::install_stop_signals({SIGINT, SIGTERM});
-  auto greet = [&] {
-    link.send_line("Hello messcap");
-    sequencer.on_connected();
-  };
-  greet();
-  std::cerr << "messcap: connected to " << options.endpoint.to_string() << "; "
-            << (options.count ? "waiting for " + std::to_string(*options.count) + " points"
-                              : std::string("capturing until Ctrl-C") +
-                                    (options.reconnect ? "" : " or until messd closes the connection"))
-            << (frame ? "; points in frame " + *options.out.frame : std::string())
-            << (last_kept ? "; continuing after hit " + std::to_string(*last_kept) : std::string()) << "\n";
-
-  int received = 0;
-  std::vector<Eigen::Vector3d> kept;  // for --fit
-  auto done = [&] { return options.count && received >= *options.count; };
-  auto take = [&](const protocol::Xyz& at, std::optional<std::uint64_t> seq) {
-    if (done()) return;  // N reached: later points in the same read are not ours to take
-    ++received;
-    Eigen::Vector3d p(at.x, at.y, at.z);
-    if (frame) p = frame->point_from_parent(p);
-    if (file) file->append(p, seq);  // to disk first
-    if (options.out.fit) kept.push_back(p);
-    std::string text = "point " + std::to_string(received) + ":";
-    for (double v : {p.x(), p.y(), p.z()}) {
-      text.push_back(' ');
-      protocol::append_mm(text, v);
-    }
-    std::printf("%s\n", text.c_str());
-    std::fflush(stdout);
-  };
-  auto take_all = [&](const std::vector<protocol::HitMsg>& due) {
-    for (const auto& h : due) take(h.p, h.seq);
-  };
-  auto on_line = [&](std::string_view line) {
-    auto message = protocol::parse_message(line);
-    if (auto* hit = std::get_if<protocol::HitMsg>(&message)) {
-      hit_mode = true;
-      take_all(sequencer.on_hit(*hit));
-    } else if (auto* point = std::get_if<protocol::MeasPtMsg>(&message)) {
-      if (!hit_mode) take(point->p, std::nullopt);  // a messd without a journal
-    } else if (auto* ok = std::get_if<protocol::OkMsg>(&message); ok && ok->verb == "Replay") {
-      auto count = ok->args.size() == 2 ? protocol::parse_sequence_number(ok->args[0]) : std::nullopt;
-      auto newest = ok->args.size() == 2 ? protocol::parse_sequence_number(ok->args[1]) : std::nullopt;
-      if (count && newest) {
-        if (*count > 0) std::cerr << "messcap: Replay gave " << *count << " journaled hits (up to " << *newest << ")\n";
-        take_all(sequencer.on_replay_ok(*count, *newest));
-      }
-    } else if (auto* err = std::get_if<protocol::ErrMsg>(&message)) {
-      // messcap sends only Hello (never refused) and Replay: an Err answers a Replay.
-      auto oldest = protocol::parse_sequence_number(std::string_view(err->text).substr(err->text.rfind(' ') + 1));
-      if (err->code == static_cast<int>(protocol::ErrorCode::NotInJournal) && oldest) {
-        take_all(sequencer.on_replay_gone(*oldest));
-      } else {
-        std::cerr << "messcap: messd refused Replay (" << line << "); points missed while away cannot be fetched\n";
-        take_all(sequencer.on_replay_refused());
-      }
-    }
-  };
-
-  std::string ended_by;
-  bool link_lost = false;
-  try {
-    while (!done()) {
-      if (client::stop_requested()) {
-        ended_by = "interrupted";
-        break;
-      }
-      if (!link.connected()) {
-        if (link.maintain()) {
-          std::cerr << "messcap: reconnected to " << options.endpoint.to_string() << "\n";
-          greet();
-        } else {
-          std::this_thread::sleep_for(std::min(std::chrono::milliseconds{200}, link.until_next_attempt()));
-          continue;
-        }
-      }
-      if (auto from = sequencer.take_replay_request()) link.send_line("Replay " + std::to_string(*from));
-      auto status = link.connection() ? link.connection()->poll_lines(std::chrono::milliseconds{200}, on_line)
-                                      : client::ReadStatus::Closed;
-      for (const auto& note : sequencer.take_notes()) std::cerr << "messcap: " << note << "\n";
-      if (status == client::ReadStatus::Closed) {
-        link.lost();  // keeps the connection's close reason
-        const std::string reason = link.last_error().empty() ? "lost" : link.last_error();
-        if (!options.reconnect) {
-          ended_by = "connection " + reason;
-          link_lost = true;
-          break;
-        }
-        std::cerr << "messcap: connection " << reason << "; reconnecting (Ctrl-C ends the capture)\n";
-      }
-    }
-  } catch (const std::exception& e) {  // a write error: the points so far are on disk
-    std::cerr << "messcap: " << e.what() << " (after " << received << " points)\n";
-    return client::kExitFailure;
-  }
-
-  if (auto* c = link.connection()) c->finish();
-  std::cerr << "messcap: " << received << (received == 1 ? " point" : " points");
-  if (file) std::cerr << " written to " << file->path();
-  if (!ended_by.empty()) std::cerr << " (" << ended_by << ")";
-  std::cerr << "\n";
-
-  bool fit_failed = false;
-  if (options.out.fit) {
-    auto fit = exchange::fit_points(*options.out.fit, kept);
-    if (fit) {
-      std::printf("%s\n", exchange::to_json(*fit).c_str());
-      std::fflush(stdout);
-      try {
-        if (file) file->set_fit(*fit);
-      } catch (const std::exception& e) {
-        std::cerr << "messcap: " << e.what() << "\n";
-        return client::kExitFailure;
-      }
-    } else {
-      std::cerr << "messcap: " << fit_failure_message(*options.out.fit, kept.size(), "this capture", fit.error())
-                << (file ? " (the points are in " + file->path() + ")" : std::string()) << "\n";
-      fit_failed = true;
-    }
-  }
-  if (link_lost) {
-    std::cerr << "messcap: messd went away before the capture was ended (start messcap with --reconnect to wait "
-                 "for it)\n";
-    return client::kExitLinkLost;
-  }
-  if (options.count && received < *options.count) {
-    std::cerr << "messcap: stopped before all " << *options.count << " points arrived\n";
-    return client::kExitIncomplete;
-  }
-  return fit_failed ? client::kExitFailure : client::kExitOk;
+  CaptureOutput output;
+  if (!open_output(options, output)) return client::kExitFailure;
+  return Capture(options, output).run();
 }
 
 }  // namespace imess::messcap

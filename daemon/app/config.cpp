@@ -106,82 +106,102 @@ void load_json_config(const std::string& path, DaemonConfig& cfg) {
   load_config_text(read_config_file(path, "configuration file", "--config"), path, cfg);
 }
 
+namespace {
+
+void read_server_section(JsonObject& s, DaemonConfig& cfg) {
+  cfg.server.port = static_cast<std::uint16_t>(s.whole("port", cfg.server.port, 0, 65535));
+  cfg.server.listen = checked_address(s, "listen", cfg.server.listen);
+  read_param_keys(s, "server", cfg);  // report_hz: the ReportHz parameter
+  cfg.server.max_clients = static_cast<std::size_t>(s.whole("max_clients", static_cast<long long>(cfg.server.max_clients), 1, 10000));
+  cfg.server.event_backstop_ms = s.number("event_backstop_ms", cfg.server.event_backstop_ms, 1, 600000);
+  cfg.server.max_queue_bytes = static_cast<std::size_t>(
+      s.whole("max_queue_bytes", static_cast<long long>(cfg.server.max_queue_bytes), 4096, 1LL << 30));
+  s.finish();
+}
+
+void read_motion_section(JsonObject& m, DaemonConfig& cfg) {
+  read_param_keys(m, "motion", cfg);  // period_us, tip_radius, ...: the parameter registry's entries
+  cfg.realtime = m.boolean("realtime", cfg.realtime);
+  cfg.core.max_velocity = m.number("max_velocity", cfg.core.max_velocity, 0.1, 2000);
+  cfg.home_on_start = m.boolean("home_on_start", cfg.home_on_start);
+  m.finish();
+}
+
+// One axis of "axes"; its speed and acceleration default to the motion section's.
+void read_axis(JsonObject& ax, const DaemonConfig& cfg, core::AxisSettings& s) {
+  s.travel_min = ax.number("travel_min", s.travel_min, -1e5, 1e5);
+  s.travel_max = ax.number("travel_max", s.travel_max, -1e5, 1e5);
+  if (s.travel_max <= s.travel_min) ax.fail("travel_max", "greater than travel_min");
+  auto dir = ax.text("home_direction", s.home_direction < 0 ? "neg" : "pos", {"neg", "pos"});
+  s.home_direction = dir == "neg" ? -1 : 1;
+  s.home_position = ax.number("home_position", s.home_direction < 0 ? s.travel_min : s.travel_max, -1e5, 1e5);
+  if (s.home_position < s.travel_min || s.home_position > s.travel_max)
+    ax.fail("home_position", "a coordinate within the travel, from travel_min " + compact(s.travel_min) +
+                                 " to travel_max " + compact(s.travel_max));
+  s.max_velocity = ax.number("max_velocity", cfg.core.max_velocity, 0.1, 2000);
+  s.max_accel = ax.number("max_accel", cfg.core.params.max_accel, 1, 20000);
+  ax.finish();
+}
+
+void read_axes_section(JsonObject& axes, DaemonConfig& cfg) {
+  for (int a = 0; a < core::kAxes; ++a) {
+    auto ax = axes.object(std::string(1, hal::kAxisNames[a]));
+    if (ax) read_axis(*ax, cfg, cfg.core.axes[a]);
+  }
+  axes.finish();
+}
+
+void read_backend_section(JsonObject& b, DaemonConfig& cfg) {
+  cfg.backend = b.text("type", cfg.backend, backend_types());
+  cfg.card.tip_reversed = b.boolean("tip_reversed", cfg.card.tip_reversed);
+  load_backend_section(b, cfg);  // the type's own keys: backend_registry.hpp, backends/<name>.cpp
+  b.finish();
+}
+
+// The hit journal.
+void read_journal_section(JsonObject& jn, DaemonConfig& cfg) {
+  cfg.journal.dir = jn.text("dir", cfg.journal.dir);
+  cfg.journal.fsync_interval = std::chrono::milliseconds(
+      static_cast<long>(jn.number("fsync_ms", double(cfg.journal.fsync_interval.count()), 0, 10000)));
+  cfg.journal.max_bytes = static_cast<std::uint64_t>(jn.number("max_bytes", double(cfg.journal.max_bytes), 4096, 1 << 30));
+  cfg.journal.files = static_cast<std::size_t>(jn.number("files", double(cfg.journal.files), 1, 10000));
+  jn.finish();
+}
+
+void read_sim_section(JsonObject& s, DaemonConfig& cfg) {
+  auto& m = cfg.sim.mechanics;
+  m.start = s.vec3("start", m.start, 1e5);
+  cfg.sim.card.absolute_scales = s.boolean("absolute_scales", cfg.sim.card.absolute_scales);
+  cfg.sim.card.firmware = s.text("firmware", cfg.sim.card.firmware);
+  if (auto pr = s.object("probe")) {
+    m.probe.ball_radius = pr->number("ball_radius", m.probe.ball_radius, 0, 50);
+    m.probe.pretravel = pr->number("pretravel", m.probe.pretravel, 0, 5);
+    m.probe.overtravel = pr->number("overtravel", m.probe.overtravel, 0.1, 50);
+    if (pr->has("normally_closed")) cfg.sim_probe_nc_set = true;
+    m.probe.normally_closed = pr->boolean("normally_closed", m.probe.normally_closed);
+    pr->finish();
+  }
+  if (auto scene = s.objects("scene")) {
+    std::vector<sim::Solid> solids;
+    for (auto& o : *scene) solids.push_back(read_solid(o));
+    cfg.sim.scene = sim::Scene(std::move(solids));
+  }
+  s.finish();
+}
+
+}  // namespace
+
 void load_config_text(const std::string& text, const std::string& path, DaemonConfig& cfg) {
   const nlohmann::json j = parse_json_text(text, path);
   JsonObject top(j, path, "");
   top.text("_comment", "");  // free text for people
-  if (auto s = top.object("server")) {
-    cfg.server.port = static_cast<std::uint16_t>(s->whole("port", cfg.server.port, 0, 65535));
-    cfg.server.listen = checked_address(*s, "listen", cfg.server.listen);
-    read_param_keys(*s, "server", cfg);  // report_hz: the ReportHz parameter
-    cfg.server.max_clients = static_cast<std::size_t>(s->whole("max_clients", static_cast<long long>(cfg.server.max_clients), 1, 10000));
-    cfg.server.event_backstop_ms = s->number("event_backstop_ms", cfg.server.event_backstop_ms, 1, 600000);
-    cfg.server.max_queue_bytes = static_cast<std::size_t>(
-        s->whole("max_queue_bytes", static_cast<long long>(cfg.server.max_queue_bytes), 4096, 1LL << 30));
-    s->finish();
-  }
+  if (auto s = top.object("server")) read_server_section(*s, cfg);
   if (auto c = top.object("control")) read_control(*c, path, cfg.server.control);
-  if (auto m = top.object("motion")) {
-    read_param_keys(*m, "motion", cfg);  // period_us, tip_radius, ...: the parameter registry's entries
-    cfg.realtime = m->boolean("realtime", cfg.realtime);
-    cfg.core.max_velocity = m->number("max_velocity", cfg.core.max_velocity, 0.1, 2000);
-    cfg.home_on_start = m->boolean("home_on_start", cfg.home_on_start);
-    m->finish();
-  }
-  if (auto axes = top.object("axes")) {
-    for (int a = 0; a < core::kAxes; ++a) {
-      auto ax = axes->object(std::string(1, hal::kAxisNames[a]));
-      if (!ax) continue;
-      auto& s = cfg.core.axes[a];
-      s.travel_min = ax->number("travel_min", s.travel_min, -1e5, 1e5);
-      s.travel_max = ax->number("travel_max", s.travel_max, -1e5, 1e5);
-      if (s.travel_max <= s.travel_min) ax->fail("travel_max", "greater than travel_min");
-      auto dir = ax->text("home_direction", s.home_direction < 0 ? "neg" : "pos", {"neg", "pos"});
-      s.home_direction = dir == "neg" ? -1 : 1;
-      s.home_position = ax->number("home_position", s.home_direction < 0 ? s.travel_min : s.travel_max, -1e5, 1e5);
-      if (s.home_position < s.travel_min || s.home_position > s.travel_max)
-        ax->fail("home_position", "a coordinate within the travel, from travel_min " + compact(s.travel_min) +
-                                      " to travel_max " + compact(s.travel_max));
-      s.max_velocity = ax->number("max_velocity", cfg.core.max_velocity, 0.1, 2000);
-      s.max_accel = ax->number("max_accel", cfg.core.params.max_accel, 1, 20000);
-      ax->finish();
-    }
-    axes->finish();
-  }
-  if (auto b = top.object("backend")) {
-    cfg.backend = b->text("type", cfg.backend, backend_types());
-    cfg.card.tip_reversed = b->boolean("tip_reversed", cfg.card.tip_reversed);
-    load_backend_section(*b, cfg);  // the type's own keys: backend_registry.hpp, backends/<name>.cpp
-    b->finish();
-  }
-  if (auto jn = top.object("journal")) {  // the hit journal
-    cfg.journal.dir = jn->text("dir", cfg.journal.dir);
-    cfg.journal.fsync_interval = std::chrono::milliseconds(
-        static_cast<long>(jn->number("fsync_ms", double(cfg.journal.fsync_interval.count()), 0, 10000)));
-    cfg.journal.max_bytes = static_cast<std::uint64_t>(jn->number("max_bytes", double(cfg.journal.max_bytes), 4096, 1 << 30));
-    cfg.journal.files = static_cast<std::size_t>(jn->number("files", double(cfg.journal.files), 1, 10000));
-    jn->finish();
-  }
-  if (auto s = top.object("sim")) {
-    auto& m = cfg.sim.mechanics;
-    m.start = s->vec3("start", m.start, 1e5);
-    cfg.sim.card.absolute_scales = s->boolean("absolute_scales", cfg.sim.card.absolute_scales);
-    cfg.sim.card.firmware = s->text("firmware", cfg.sim.card.firmware);
-    if (auto pr = s->object("probe")) {
-      m.probe.ball_radius = pr->number("ball_radius", m.probe.ball_radius, 0, 50);
-      m.probe.pretravel = pr->number("pretravel", m.probe.pretravel, 0, 5);
-      m.probe.overtravel = pr->number("overtravel", m.probe.overtravel, 0.1, 50);
-      if (pr->has("normally_closed")) cfg.sim_probe_nc_set = true;
-      m.probe.normally_closed = pr->boolean("normally_closed", m.probe.normally_closed);
-      pr->finish();
-    }
-    if (auto scene = s->objects("scene")) {
-      std::vector<sim::Solid> solids;
-      for (auto& o : *scene) solids.push_back(read_solid(o));
-      cfg.sim.scene = sim::Scene(std::move(solids));
-    }
-    s->finish();
-  }
+  if (auto m = top.object("motion")) read_motion_section(*m, cfg);
+  if (auto axes = top.object("axes")) read_axes_section(*axes, cfg);
+  if (auto b = top.object("backend")) read_backend_section(*b, cfg);
+  if (auto jn = top.object("journal")) read_journal_section(*jn, cfg);
+  if (auto s = top.object("sim")) read_sim_section(*s, cfg);
   top.finish();
   cfg.notes.push_back("configuration read from " + path);
 }

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
+#include <string>
 
 #include "cli.hpp"
 #include "config.hpp"
@@ -50,14 +52,9 @@ app::DaemonConfig configure(const app::CliOptions& cli) {
   return cfg;
 }
 
-// The daemon's life; main() around it turns any exception that escapes into a message and
-// exit status 2, so no input can end messd in an abort.
-int run(int argc, char** argv) {
-  auto logger = spdlog::stderr_color_mt("messd");
-  spdlog::set_default_logger(logger);
-  spdlog::set_pattern("%H:%M:%S.%e messd %^%l%$: %v");
-
-  app::CliOptions cli;
+// The command line into cli; the exit status when messd ends here (--help, --version, a
+// bad argument), nullopt when it goes on.
+std::optional<int> read_command_line(int argc, char** argv, app::CliOptions& cli) {
   try {
     cli = app::parse_cli(argc, argv);
   } catch (const std::exception& e) {
@@ -72,64 +69,136 @@ int run(int argc, char** argv) {
     std::cout << "messd " << app::kVersion << " (IMESS interactive measuring machine controller)\n";
     return 0;
   }
+  return std::nullopt;
+}
 
-  app::DaemonConfig cfg;
+// What the motion loop got: a warning when real-time scheduling was refused.
+void log_realtime(const std::string& rt) {
+  if (rt.find("not permitted") != std::string::npos)
+    spdlog::warn("{}", rt);
+  else
+    spdlog::info("{}", rt);
+}
+
+// Fewer clients when the descriptor limit cannot hold max_clients (a warning then).
+void fit_clients_to_fd_limit(net::ServerConfig& server) {
+  auto fds = app::fit_fd_limit(server.max_clients);
+  if (fds.message.empty()) return;
+  if (fds.lowered)
+    spdlog::warn("{}", fds.message);
+  else
+    spdlog::info("{}", fds.message);
+  server.max_clients = fds.max_clients;
+}
+
+void log_control_rules(const net::ServerConfig& server) {
+  const auto& rules = server.control;
+  spdlog::info("control from {}; observe from {}; forced take-over from {}; {} of {} slots kept for control hosts",
+               rules.hosts.to_string(), rules.observe_hosts.to_string(), rules.force_hosts.to_string(),
+               std::min(rules.reserved_slots, server.max_clients - 1), server.max_clients);
+}
+
+// The configuration into cfg, its notes logged; false (logged) when it cannot be used.
+bool load_configuration(const app::CliOptions& cli, app::DaemonConfig& cfg) {
   try {
     cfg = configure(cli);
   } catch (const std::exception& e) {  // ConfigError, and anything a reader did not foresee
     spdlog::error("{}", e.what());
-    return 2;
+    return false;
   }
   for (const auto& n : cfg.notes) spdlog::info("{}", n);
   spdlog::info("TipRadius {:.3f} mm, SpeedLevel {:.3f}, TipReversed {}", cfg.core.params.tip_radius,
                cfg.core.params.speed_level, cfg.card.tip_reversed ? "true" : "false");
+  return true;
+}
 
-  std::unique_ptr<journal::Journal> hits;  // before the machine: every hit must have a place to go
+// The hit journal, its start-up notes logged; nullptr (logged) when it cannot be opened.
+std::unique_ptr<journal::Journal> open_journal(const journal::JournalConfig& config) {
+  std::unique_ptr<journal::Journal> hits;
   try {
-    hits = std::make_unique<journal::Journal>(cfg.journal);
+    hits = std::make_unique<journal::Journal>(config);
   } catch (const journal::JournalError& e) {
     spdlog::error("{}", e.what());
-    return 2;
+    return nullptr;
   }
   for (const auto& n : hits->notes()) spdlog::info("{}", n);
+  return hits;
+}
 
-  core::MonotonicClock clock;
+// The configured machine, initialised; nullptr (logged) when it does not start, with the
+// exit status: 2 for settings the backend cannot run (a configuration error), else 1.
+std::unique_ptr<app::Machine> start_controller(const app::DaemonConfig& cfg, const hal::Clock& clock,
+                                               bool reboot, int& exit_status) {
   std::unique_ptr<app::Machine> machine;
   try {
-    machine = app::make_machine(cfg, clock, cli.reboot);
+    machine = app::make_machine(cfg, clock, reboot);
   } catch (const app::ConfigError& e) {  // settings the backend cannot run: fix the file first
     spdlog::error("controller start failed: {}", e.what());
-    return 2;
+    exit_status = 2;
+    return nullptr;
   } catch (const std::exception& e) {
     spdlog::error("controller start failed: {}", e.what());
-    return 1;
+    exit_status = 1;
+    return nullptr;
   }
   spdlog::info("controller: {}", machine->describe());
+  return machine;
+}
+
+// Says "OK, listening" on stdout (what scripts wait for) and runs the io thread until SIGINT
+// or SIGTERM.
+void serve_until_signal(boost::asio::io_context& io, net::Server& server, const net::ServerConfig& config) {
+  boost::asio::signal_set signals(io, SIGINT, SIGTERM);
+  signals.async_wait([&](boost::system::error_code, int sig) {
+    spdlog::info("signal {}: stopping", sig);
+    server.stop();
+    io.stop();
+  });
+  std::printf("messd: OK, listening on %s:%u\n", config.listen.c_str(), static_cast<unsigned>(server.port()));
+  std::fflush(stdout);
+  io.run();
+}
+
+// At exit: every axis brakes with its configured deceleration, the loops open, the base
+// thread ends.
+void stop_machine(core::MotionCore& core, app::Machine& machine) {
+  hal::Vec3 decel;
+  for (int a = 0; a < core::kAxes; ++a) decel[a] = core.config().axes[a].max_accel;
+  machine.backend().stop(decel);
+  machine.backend().set_loops(false);
+  machine.stop_base_thread();
+}
+
+// The daemon's life; main() around it turns any exception that escapes into a message and
+// exit status 2, so no input can end messd in an abort.
+int run(int argc, char** argv) {
+  auto logger = spdlog::stderr_color_mt("messd");
+  spdlog::set_default_logger(logger);
+  spdlog::set_pattern("%H:%M:%S.%e messd %^%l%$: %v");
+
+  app::CliOptions cli;
+  if (auto status = read_command_line(argc, argv, cli)) return *status;
+
+  app::DaemonConfig cfg;
+  if (!load_configuration(cli, cfg)) return 2;
+  auto hits = open_journal(cfg.journal);  // before the machine: every hit must have a place to go
+  if (!hits) return 2;
+  core::MonotonicClock clock;
+  int failed = 1;
+  auto machine = start_controller(cfg, clock, cli.reboot, failed);
+  if (!machine) return failed;
 
   core::MotionCore core(machine->backend(), cfg.core, machine->sim_hooks());
   core::EventFd wake;  // the loop wakes the io thread through it when it pushed events
   core.set_event_signal(&wake);
   core.start(clock.now());
   core::LoopRunner runner(core, clock, std::chrono::nanoseconds(static_cast<long>(cfg.period_us * 1000)));
-  std::string rt = runner.start(cfg.realtime);
-  if (rt.find("not permitted") != std::string::npos)
-    spdlog::warn("{}", rt);
-  else
-    spdlog::info("{}", rt);
+  log_realtime(runner.start(cfg.realtime));
 
   if (auto base = machine->start_base_thread(cfg.realtime); !base.empty()) spdlog::info("{}", base);
 
-  if (auto fds = app::fit_fd_limit(cfg.server.max_clients); !fds.message.empty()) {
-    if (fds.lowered)
-      spdlog::warn("{}", fds.message);
-    else
-      spdlog::info("{}", fds.message);
-    cfg.server.max_clients = fds.max_clients;
-  }
-  const auto& rules = cfg.server.control;
-  spdlog::info("control from {}; observe from {}; forced take-over from {}; {} of {} slots kept for control hosts",
-               rules.hosts.to_string(), rules.observe_hosts.to_string(), rules.force_hosts.to_string(),
-               std::min(rules.reserved_slots, cfg.server.max_clients - 1), cfg.server.max_clients);
+  fit_clients_to_fd_limit(cfg.server);
+  log_control_rules(cfg.server);
 
   boost::asio::io_context io;
   net::Server server(io, cfg.server, core, &runner, *hits, &wake);
@@ -144,22 +213,10 @@ int run(int argc, char** argv) {
     spdlog::info("reference search requested at start");
     core.submit(core::Command{core::CommandKind::Home});
   }
-  boost::asio::signal_set signals(io, SIGINT, SIGTERM);
-  signals.async_wait([&](boost::system::error_code, int sig) {
-    spdlog::info("signal {}: stopping", sig);
-    server.stop();
-    io.stop();
-  });
-  std::printf("messd: OK, listening on %s:%u\n", cfg.server.listen.c_str(), static_cast<unsigned>(server.port()));
-  std::fflush(stdout);
-  io.run();
+  serve_until_signal(io, server, cfg.server);
 
   runner.stop();
-  hal::Vec3 decel;
-  for (int a = 0; a < core::kAxes; ++a) decel[a] = core.config().axes[a].max_accel;
-  machine->backend().stop(decel);
-  machine->backend().set_loops(false);
-  machine->stop_base_thread();
+  stop_machine(core, *machine);
   spdlog::info("motion stopped, loops open; bye");
   return 0;
 }

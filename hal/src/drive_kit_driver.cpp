@@ -13,6 +13,12 @@ namespace imess::hal {
 namespace {
 constexpr std::array<std::uint32_t, 4> kSafetyStatus{status::kSafetyInput1, status::kSafetyInput2, status::kSafetyInput3,
                                                      status::kSafetyInput4};
+
+// Counts moved since the last 16-bit read (the signed difference: a counter never moves half
+// its range between two reads).
+std::int16_t counts_since(std::uint16_t raw, std::uint16_t last_raw) noexcept {
+  return static_cast<std::int16_t>(static_cast<std::uint16_t>(raw - last_raw));
+}
 }  // namespace
 
 std::optional<DriveKitConfig> named_drive_kit_map(std::string_view name) {
@@ -86,7 +92,7 @@ void DriveKitDriver::initialise(bool) {
     // Place the 16 bits read nearest to where the machine is said to stand.
     std::uint16_t raw = port_.in16(ax.position_port);
     auto near = static_cast<std::int64_t>(std::llround(config_.initial_position[a] / ax.position_unit_mm));
-    axes_[a].count = near + static_cast<std::int16_t>(static_cast<std::uint16_t>(raw - static_cast<std::uint16_t>(near)));
+    axes_[a].count = near + counts_since(raw, static_cast<std::uint16_t>(near));
     axes_[a].last_raw = raw;
     axes_[a].profile.reset(position(a));
   }
@@ -133,36 +139,61 @@ void DriveKitDriver::safe_state(std::uint16_t outputs) noexcept {
   loops_closed_ = false;
 }
 
+// ------------------------------------------------------------------ one servo period
+
 bool DriveKitDriver::read_state(MachineState& out) noexcept {
-  Nanos now = clock_.now();
-  double dt = servo_started_ ? seconds(now - last_servo_) : 0.0;
-  dt = std::clamp(dt, 0.0, 0.1);
-  last_servo_ = now;
-  servo_started_ = true;
-
+  const double dt = servo_interval_.next(clock_.now());
   const std::uint16_t in = port_.in16(config_.inputs_port);
-  // Safety first: a normally-closed input reading open stops everything this period.
-  std::uint32_t tripped = 0;
-  for (int i = 0; i < 4; ++i)
-    if (config_.safety_bits[i] && !(in & config_.safety_bits[i])) tripped |= kSafetyStatus[i];
-  if (tripped & ~safety_faults_) safe_state(config_.safe_outputs);
-  safety_faults_ |= tripped;
-
-  // Counters: 16 bits widened by the signed difference since the last read.
-  for (int a = 0; a < kAxes; ++a) {
-    std::uint16_t raw = port_.in16(config_.axes[a].position_port);
-    axes_[a].count += static_cast<std::int16_t>(static_cast<std::uint16_t>(raw - axes_[a].last_raw));
-    axes_[a].last_raw = raw;
-  }
-  // Probe: the counters' latch, or the input sampled now.
+  trip_safety_inputs(in);  // safety first
+  widen_counters();
   const bool raw_probe = (in & config_.probe_bit) != 0;
   const bool contact = config_.tip_reversed ? !raw_probe : raw_probe;
+  latch_probe(contact);
+  bool following_fault = false;
+  for (int a = 0; a < kAxes; ++a) {
+    out.inputs[a] = sample_inputs(a, in, raw_probe);
+    following_fault |= servo_axis(a, out.input(a, input::kLimitNeg), out.input(a, input::kLimitPos), dt);
+  }
+  if (following_fault) safe_state(config_.safe_outputs);
+  if (config_.sync_port) port_.out16(config_.sync_port, ++strobe_);
+  for (int a = 0; a < kAxes; ++a) {
+    out.status[a] = axis_status(a, out);
+    out.position[a] = position(a);
+  }
+  out.tip_touched = contact;
+  return port_.errors() == 0;
+}
+
+std::uint32_t DriveKitDriver::open_safety_inputs(std::uint16_t in) const noexcept {
+  std::uint32_t open = 0;
+  for (int i = 0; i < 4; ++i)
+    if (config_.safety_bits[i] && !(in & config_.safety_bits[i])) open |= kSafetyStatus[i];
+  return open;
+}
+
+// A normally-closed input reading open stops everything this period.
+void DriveKitDriver::trip_safety_inputs(std::uint16_t in) noexcept {
+  const std::uint32_t tripped = open_safety_inputs(in);
+  if (tripped & ~safety_faults_) safe_state(config_.safe_outputs);
+  safety_faults_ |= tripped;
+}
+
+// Counters: 16 bits widened by the signed difference since the last read.
+void DriveKitDriver::widen_counters() noexcept {
+  for (int a = 0; a < kAxes; ++a) {
+    std::uint16_t raw = port_.in16(config_.axes[a].position_port);
+    axes_[a].count += counts_since(raw, axes_[a].last_raw);
+    axes_[a].last_raw = raw;
+  }
+}
+
+// Probe: the counters' latch, or the input sampled now.
+void DriveKitDriver::latch_probe(bool contact) noexcept {
   if (config_.latch_status_port) {
     if (!latch_valid_ && (port_.in16(config_.latch_status_port) & 1)) {
       for (int a = 0; a < kAxes; ++a) {
         const auto& ax = config_.axes[a];
-        std::uint16_t raw = port_.in16(ax.latch_port);
-        std::int64_t c = axes_[a].count + static_cast<std::int16_t>(static_cast<std::uint16_t>(raw - axes_[a].last_raw));
+        std::int64_t c = axes_[a].count + counts_since(port_.in16(ax.latch_port), axes_[a].last_raw);
         latched_[a] = static_cast<double>(c) * ax.position_unit_mm - axes_[a].offset;
       }
       latch_valid_ = true;
@@ -172,65 +203,67 @@ bool DriveKitDriver::read_state(MachineState& out) noexcept {
     latch_valid_ = true;
   }
   last_contact_ = contact;
+}
 
+// The axis' input bits in the card's layout; notes where the home switch released (the
+// synthesised index counts from there).
+std::uint8_t DriveKitDriver::sample_inputs(int a, std::uint16_t in, bool raw_probe) noexcept {
+  const auto& ax = config_.axes[a];
+  Axis& s = axes_[a];
+  const bool home = ax.home_bit && (in & ax.home_bit);
+  if (s.last_home && !home) s.release_count = s.count;
+  s.last_home = home;
+  bool index = false;
+  if (ax.index_pitch_mm > 0) {
+    auto pitch = static_cast<std::int64_t>(std::llround(ax.index_pitch_mm / ax.position_unit_mm));
+    auto width = std::max<std::int64_t>(1, std::llround(ax.index_width_mm / ax.position_unit_mm));
+    index = in_index_window(s.count - s.release_count, pitch, width);
+  }
+  return input_bits({.limit_neg = ax.limit_neg_bit && (in & ax.limit_neg_bit),
+                     .limit_pos = ax.limit_pos_bit && (in & ax.limit_pos_bit),
+                     .tip = raw_probe,
+                     .home = home,
+                     .index = index});
+}
+
+// Steps the set point (braking into a closed limit switch) and writes the PID output with
+// velocity feed-forward; true when the following error is beyond the axis' maximum.
+bool DriveKitDriver::servo_axis(int a, bool lim_neg, bool lim_pos, double dt) noexcept {
+  const auto& ax = config_.axes[a];
+  Axis& s = axes_[a];
+  const double pos = position(a);
+  TrapezoidPlanner& p = s.profile;
+  if (!loops_closed_) {
+    p.reset(pos);
+    s.integral = s.last_error = 0;
+    return false;
+  }
+  p.brake_into_limits(lim_neg, lim_pos, ax.max_accel);
+  p.step(dt);
+  double e = p.position() - pos;
+  s.max_error = std::max(s.max_error, std::abs(e));
   bool following_fault = false;
-  for (int a = 0; a < kAxes; ++a) {
-    const auto& ax = config_.axes[a];
-    Axis& s = axes_[a];
-    const bool lim_neg = ax.limit_neg_bit && (in & ax.limit_neg_bit);
-    const bool lim_pos = ax.limit_pos_bit && (in & ax.limit_pos_bit);
-    const bool home = ax.home_bit && (in & ax.home_bit);
-    if (s.last_home && !home) s.release_count = s.count;
-    s.last_home = home;
-    std::uint8_t bits = 0;
-    if (lim_pos) bits |= input::kLimitPos;
-    if (lim_neg) bits |= input::kLimitNeg;
-    if (raw_probe) bits |= input::kTip;
-    if (home) bits |= input::kHome;
-    if (ax.index_pitch_mm > 0) {
-      auto pitch = static_cast<std::int64_t>(std::llround(ax.index_pitch_mm / ax.position_unit_mm));
-      auto width = std::max<std::int64_t>(1, std::llround(ax.index_width_mm / ax.position_unit_mm));
-      if (in_index_window(s.count - s.release_count, pitch, width)) bits |= input::kIndex;
-    }
-    out.inputs[a] = bits;
-
-    const double pos = position(a);
-    TrapezoidPlanner& p = s.profile;
-    if (!loops_closed_) {
-      p.reset(pos);
-      s.integral = s.last_error = 0;
-    } else {
-      p.brake_into_limits(lim_neg, lim_pos, ax.max_accel);
-      p.step(dt);
-      double e = p.position() - pos;
-      s.max_error = std::max(s.max_error, std::abs(e));
-      if (std::abs(e) > ax.max_following_error) {
-        s.faults |= status::kFollowingError;
-        following_fault = true;
-      }
-      double de = dt > 0 ? (e - s.last_error) / dt : 0.0;
-      s.last_error = e;
-      double u = ax.feed_forward * p.velocity() + ax.kp * e + ax.ki * s.integral + ax.kd * de;
-      // Anti-windup: integrate only while the command is not saturated in the error's direction.
-      double u_max = config_.mode == 1 ? config_.dac_limit_mv / ax.mv_per_mm_s : ax.max_speed * 1.5;
-      if (std::abs(u) < u_max || (u > 0) != (e > 0)) s.integral += e * dt;
-      write_command(a, std::clamp(u, -u_max, u_max));
-    }
+  if (std::abs(e) > ax.max_following_error) {
+    s.faults |= status::kFollowingError;
+    following_fault = true;
   }
-  if (following_fault) safe_state(config_.safe_outputs);
-  if (config_.sync_port) port_.out16(config_.sync_port, ++strobe_);
+  double de = dt > 0 ? (e - s.last_error) / dt : 0.0;
+  s.last_error = e;
+  double u = ax.feed_forward * p.velocity() + ax.kp * e + ax.ki * s.integral + ax.kd * de;
+  // Anti-windup: integrate only while the command is not saturated in the error's direction.
+  double u_max = config_.mode == 1 ? config_.dac_limit_mv / ax.mv_per_mm_s : ax.max_speed * 1.5;
+  if (std::abs(u) < u_max || (u > 0) != (e > 0)) s.integral += e * dt;
+  write_command(a, std::clamp(u, -u_max, u_max));
+  return following_fault;
+}
 
-  for (int a = 0; a < kAxes; ++a) {
-    const auto& ax = config_.axes[a];
-    const Axis& s = axes_[a];
-    const bool done = s.profile.done();
-    out.status[a] = status_word({out.input(a, input::kLimitNeg), out.input(a, input::kLimitPos), done, loops_closed_,
-                                 done && std::abs(s.profile.position() - position(a)) < ax.in_position_mm, latch_valid_},
-                                s.faults | safety_faults_);
-    out.position[a] = position(a);
-  }
-  out.tip_touched = contact;
-  return port_.errors() == 0;
+std::uint32_t DriveKitDriver::axis_status(int a, const MachineState& out) const noexcept {
+  const Axis& s = axes_[a];
+  const bool done = s.profile.done();
+  return status_word({out.input(a, input::kLimitNeg), out.input(a, input::kLimitPos), done, loops_closed_,
+                      done && std::abs(s.profile.position() - position(a)) < config_.axes[a].in_position_mm,
+                      latch_valid_},
+                     s.faults | safety_faults_);
 }
 
 bool DriveKitDriver::read_latch(Vec3& latched) noexcept {
@@ -284,11 +317,7 @@ bool DriveKitDriver::set_position(int axis, double value) noexcept {
 }
 
 bool DriveKitDriver::reset_faults() noexcept {
-  const std::uint16_t in = port_.in16(config_.inputs_port);
-  std::uint32_t still = 0;
-  for (int i = 0; i < 4; ++i)
-    if (config_.safety_bits[i] && !(in & config_.safety_bits[i])) still |= kSafetyStatus[i];
-  safety_faults_ = still;  // an input still open keeps its fault
+  safety_faults_ = open_safety_inputs(port_.in16(config_.inputs_port));  // an input still open keeps its fault
   for (auto& s : axes_) s.faults = 0;
   set_loops(false);
   return true;

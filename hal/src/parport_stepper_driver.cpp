@@ -109,12 +109,7 @@ void ParportStepperDriver::base_tick() noexcept {
 // ------------------------------------------------------------------ servo rate
 
 bool ParportStepperDriver::read_state(MachineState& out) noexcept {
-  Nanos now = clock_.now();
-  double dt = servo_started_ ? seconds(now - last_servo_) : 0.0;
-  if (dt < 0) dt = 0;
-  if (dt > 0.1) dt = 0.1;  // a stalled caller does not make the profile jump
-  last_servo_ = now;
-  servo_started_ = true;
+  const double dt = servo_interval_.next(clock_.now());
 
   const std::uint8_t st = status_.load(std::memory_order_acquire);
   const bool halted = halted_.load(std::memory_order_relaxed);
@@ -128,14 +123,13 @@ bool ParportStepperDriver::read_state(MachineState& out) noexcept {
     bool lim_neg = active(st, pins_.limit_neg[a]) || (endref && ax.home_direction < 0);
     bool lim_pos = active(st, pins_.limit_pos[a]) || (endref && ax.home_direction > 0);
     bool home = endref || active(st, pins_.home[a]);
-    std::uint8_t in = 0;
-    if (lim_pos) in |= input::kLimitPos;
-    if (lim_neg) in |= input::kLimitNeg;
-    if (raw_probe) in |= input::kTip;
-    if (home) in |= input::kHome;
-    if (in_index_window(count - release_count_[a].load(std::memory_order_relaxed), index_pitch_[a], index_width_[a]))
-      in |= input::kIndex;
-    out.inputs[a] = in;
+    out.inputs[a] = input_bits(
+        {.limit_neg = lim_neg,
+         .limit_pos = lim_pos,
+         .tip = raw_probe,
+         .home = home,
+         .index = in_index_window(count - release_count_[a].load(std::memory_order_relaxed), index_pitch_[a],
+                                  index_width_[a])});
 
     TrapezoidPlanner& p = profile_[a];
     if (halted || !loops_closed_) {

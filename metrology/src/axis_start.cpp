@@ -1,4 +1,5 @@
-// Starting axes for cylinder and cone fits: principal axes, quadric axis, projected circle.
+// Starting axes for cylinder and cone fits: input check, principal axes, quadric axis,
+// projected circle.
 #include "axis_start.hpp"
 
 #include <cmath>
@@ -63,6 +64,13 @@ std::optional<AxisPosition> axis_position(const Eigen::Matrix3Xd& q, const Eigen
   pos.point = u * circle->center.x() + v * circle->center.y();
   pos.radius = circle->radius;
   return pos;
+}
+
+std::optional<FitError> check_axial_input(std::span<const Eigen::Vector3d> points, std::size_t min_points,
+                                          std::string_view feature, PrincipalAxes<3>& pa) {
+  if (auto e = check_input<3>(points, min_points, feature)) return e;
+  pa = principal_axes<3>(points);
+  return check_spread<3>(pa, points.size(), 3, feature);
 }
 
 }  // namespace imess::metrology::detail

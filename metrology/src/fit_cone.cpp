@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 
 #include <Eigen/QR>
 
@@ -43,11 +42,7 @@ class ConeProblem {
     const double cp = std::cos(st.phi);
     const double sp = std::sin(st.phi);
     for (Eigen::Index i = 0; i < q_.cols(); ++i) {
-      const Eigen::Vector3d d = q_.col(i) - st.c;
-      const double x = u.dot(d);
-      const double y = v.dot(d);
-      const double z = st.a.dot(d);
-      const double rho = std::hypot(x, y);
+      const auto [x, y, z, rho] = detail::axial_coordinates(u, v, st.a, q_.col(i) - st.c);
       res(i) = rho * cp - z * sp - st.s;
       if (J) {
         const double ex = rho > 0.0 ? x / rho : 0.0;
@@ -59,12 +54,8 @@ class ConeProblem {
   }
 
   State apply(const State& st, const Eigen::VectorXd& delta) const {
-    Eigen::Vector3d u;
-    Eigen::Vector3d v;
-    detail::perpendicular_basis(st.a, u, v);
     State n;
-    n.c = st.c + delta(0) * u + delta(1) * v;
-    n.a = (st.a + delta(2) * u + delta(3) * v).normalized();
+    detail::step_axis(st.c, st.a, delta, n.c, n.a);
     n.s = st.s + delta(4);
     n.phi = st.phi + delta(5);
     const double t = -n.c.dot(n.a);
@@ -111,26 +102,8 @@ Fit<Cone> refine(std::span<const Eigen::Vector3d> points, const detail::Principa
                  const FitOptions& options, bool sample_starts) {
   const ConeProblem pb(q, detail::rms_spread<3>(q));
   const auto valid = [](const ConeProblem::State& st) { return std::abs(st.phi) < 0.5 * std::numbers::pi; };
-  // Large clouds: compare the starts on a subsample, then refine the winner on every point.
-  std::vector<ConeProblem::State> full_starts = starts;
-  if (sample_starts && q.cols() > detail::kStartSample) {
-    const Eigen::Matrix3Xd qs = detail::start_sample(q);
-    const ConeProblem ps(qs, detail::rms_spread<3>(qs));
-    const auto pick = detail::multi_start(ps, starts, options, valid);
-    if (pick.state) full_starts = {*pick.state};
-  }
-  const auto best = detail::multi_start(pb, full_starts, options, valid);
-  if (!best.state) {
-    std::ostringstream os;
-    if (!best.any_converged) {
-      os << "no convergence within " << options.max_iterations << " iterations from any of "
-         << starts.size() << " starting axes";
-      return detail::make_error(FitErrorCode::NotConverged, kName, os.str());
-    }
-    os << "the " << points.size() << " points do not determine a cone (Jacobian condition "
-       << best.worst_condition << ")";
-    return detail::make_error(FitErrorCode::IllConditioned, kName, os.str());
-  }
+  const auto best = detail::best_start(pb, q, starts, options, sample_starts, valid);
+  if (!best.state) return detail::no_solution_error(best, options, starts.size(), points.size(), kName);
   ConeProblem::State st = *best.state;
   if (st.phi < 0.0) {  // orient the axis toward increasing radius
     st.a = -st.a;
@@ -141,39 +114,28 @@ Fit<Cone> refine(std::span<const Eigen::Vector3d> points, const detail::Principa
   cone.direction = st.a;
   cone.distance = st.s;
   cone.apex_angle_rad = 2.0 * st.phi;
-  Eigen::VectorXd res(q.cols());
-  pb.evaluate(st, res, nullptr);
-  cone.stats = detail::make_stats(res, best.outcome.iterations);
+  cone.stats = detail::solution_stats(pb, st, best.outcome.iterations);
   return cone;
-}
-
-std::optional<FitError> check_cone_input(std::span<const Eigen::Vector3d> points,
-                                         detail::PrincipalAxes<3>& pa) {
-  if (auto e = detail::check_input<3>(points, kMinPointsCone, kName)) return e;
-  pa = detail::principal_axes<3>(points);
-  return detail::check_spread<3>(pa, points.size(), 3, kName);
 }
 
 }  // namespace
 
 Fit<Cone> fit_cone(std::span<const Eigen::Vector3d> points, const FitOptions& options) {
   detail::PrincipalAxes<3> pa;
-  if (auto e = check_cone_input(points, pa)) return *e;
+  if (auto e = detail::check_axial_input(points, kMinPointsCone, kName, pa)) return *e;
   const Eigen::Matrix3Xd q = detail::centred<3>(points, pa.centroid);
   const Eigen::Matrix3Xd qs = detail::start_sample(q);
-  std::vector<ConeProblem::State> starts;
-  for (const Eigen::Vector3d& axis : detail::candidate_axes(qs, pa)) {
-    if (auto pos = detail::axis_position(qs, axis)) starts.push_back(start_on_axis(qs, pos->point, axis));
-  }
-  if (starts.empty())
-    return detail::make_error(FitErrorCode::IllConditioned, kName,
-                              "no starting axis found (every projection is degenerate)");
+  const auto starts = detail::axial_starts<ConeProblem::State>(
+      qs, pa, [&qs](const detail::AxisPosition& pos, const Eigen::Vector3d& axis) {
+        return start_on_axis(qs, pos.point, axis);
+      });
+  if (starts.empty()) return detail::no_start_error(kName);
   return refine(points, pa, q, starts, options, true);
 }
 
 Fit<Cone> fit_cone(std::span<const Eigen::Vector3d> points, const Cone& start, const FitOptions& options) {
   detail::PrincipalAxes<3> pa;
-  if (auto e = check_cone_input(points, pa)) return *e;
+  if (auto e = detail::check_axial_input(points, kMinPointsCone, kName, pa)) return *e;
   if (!start.point.allFinite() || !start.direction.allFinite() || !std::isfinite(start.distance) ||
       !std::isfinite(start.apex_angle_rad) || start.direction.norm() == 0.0 ||
       !(start.apex_angle_rad > -std::numbers::pi && start.apex_angle_rad < std::numbers::pi))

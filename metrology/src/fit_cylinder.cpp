@@ -2,7 +2,6 @@
 // (distance from the axis) - r; the smallest sum of squares wins.
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "axis_start.hpp"
 #include "fit_common.hpp"
@@ -36,11 +35,7 @@ class CylinderProblem {
     Eigen::Vector3d v;
     detail::perpendicular_basis(s.a, u, v);
     for (Eigen::Index i = 0; i < q_.cols(); ++i) {
-      const Eigen::Vector3d d = q_.col(i) - s.c;
-      const double x = u.dot(d);
-      const double y = v.dot(d);
-      const double z = s.a.dot(d);
-      const double rho = std::hypot(x, y);
+      const auto [x, y, z, rho] = detail::axial_coordinates(u, v, s.a, q_.col(i) - s.c);
       res(i) = rho - s.r;
       if (J) {
         if (rho > 0.0) {
@@ -53,12 +48,8 @@ class CylinderProblem {
   }
 
   State apply(const State& s, const Eigen::VectorXd& delta) const {
-    Eigen::Vector3d u;
-    Eigen::Vector3d v;
-    detail::perpendicular_basis(s.a, u, v);
     State n;
-    n.c = s.c + delta(0) * u + delta(1) * v;
-    n.a = (s.a + delta(2) * u + delta(3) * v).normalized();
+    detail::step_axis(s.c, s.a, delta, n.c, n.a);
     n.r = s.r + delta(4);
     n.c -= n.c.dot(n.a) * n.a;
     return n;
@@ -81,64 +72,34 @@ Fit<Cylinder> refine(std::span<const Eigen::Vector3d> points, const detail::Prin
                      const FitOptions& options, bool sample_starts) {
   const CylinderProblem pb(q, detail::rms_spread<3>(q));
   const auto valid = [](const CylinderProblem::State& st) { return st.r > 0.0; };
-  // Large clouds: compare the starts on a subsample, then refine the winner on every point.
-  std::vector<CylinderProblem::State> full_starts = starts;
-  if (sample_starts && q.cols() > detail::kStartSample) {
-    const Eigen::Matrix3Xd qs = detail::start_sample(q);
-    const CylinderProblem ps(qs, detail::rms_spread<3>(qs));
-    const auto pick = detail::multi_start(ps, starts, options, valid);
-    if (pick.state) full_starts = {*pick.state};
-  }
-  const auto best = detail::multi_start(pb, full_starts, options, valid);
-  if (!best.state) {
-    std::ostringstream os;
-    if (!best.any_converged) {
-      os << "no convergence within " << options.max_iterations << " iterations from any of "
-         << starts.size() << " starting axes";
-      return detail::make_error(FitErrorCode::NotConverged, kName, os.str());
-    }
-    os << "the " << points.size() << " points do not determine a cylinder (Jacobian condition "
-       << best.worst_condition << ")";
-    return detail::make_error(FitErrorCode::IllConditioned, kName, os.str());
-  }
+  const auto best = detail::best_start(pb, q, starts, options, sample_starts, valid);
+  if (!best.state) return detail::no_solution_error(best, options, starts.size(), points.size(), kName);
   Cylinder cyl;
   cyl.point = pa.centroid + best.state->c;
   cyl.direction = detail::canonical_sign(best.state->a);
   cyl.diameter = 2.0 * best.state->r;
-  Eigen::VectorXd res(q.cols());
-  pb.evaluate(*best.state, res, nullptr);
-  cyl.stats = detail::make_stats(res, best.outcome.iterations);
+  cyl.stats = detail::solution_stats(pb, *best.state, best.outcome.iterations);
   return cyl;
-}
-
-std::optional<FitError> check_cylinder_input(std::span<const Eigen::Vector3d> points,
-                                             detail::PrincipalAxes<3>& pa) {
-  if (auto e = detail::check_input<3>(points, kMinPointsCylinder, kName)) return e;
-  pa = detail::principal_axes<3>(points);
-  return detail::check_spread<3>(pa, points.size(), 3, kName);
 }
 
 }  // namespace
 
 Fit<Cylinder> fit_cylinder(std::span<const Eigen::Vector3d> points, const FitOptions& options) {
   detail::PrincipalAxes<3> pa;
-  if (auto e = check_cylinder_input(points, pa)) return *e;
+  if (auto e = detail::check_axial_input(points, kMinPointsCylinder, kName, pa)) return *e;
   const Eigen::Matrix3Xd q = detail::centred<3>(points, pa.centroid);
-  const Eigen::Matrix3Xd qs = detail::start_sample(q);
-  std::vector<CylinderProblem::State> starts;
-  for (const Eigen::Vector3d& axis : detail::candidate_axes(qs, pa)) {
-    if (auto pos = detail::axis_position(qs, axis)) starts.push_back({pos->point, axis, pos->radius});
-  }
-  if (starts.empty())
-    return detail::make_error(FitErrorCode::IllConditioned, kName,
-                              "no starting axis found (every projection is degenerate)");
+  const auto starts = detail::axial_starts<CylinderProblem::State>(
+      detail::start_sample(q), pa, [](const detail::AxisPosition& pos, const Eigen::Vector3d& axis) {
+        return CylinderProblem::State{pos.point, axis, pos.radius};
+      });
+  if (starts.empty()) return detail::no_start_error(kName);
   return refine(points, pa, q, starts, options, true);
 }
 
 Fit<Cylinder> fit_cylinder(std::span<const Eigen::Vector3d> points, const Cylinder& start,
                            const FitOptions& options) {
   detail::PrincipalAxes<3> pa;
-  if (auto e = check_cylinder_input(points, pa)) return *e;
+  if (auto e = detail::check_axial_input(points, kMinPointsCylinder, kName, pa)) return *e;
   if (!start.point.allFinite() || !start.direction.allFinite() || !std::isfinite(start.diameter) ||
       start.direction.norm() == 0.0 || !(start.diameter > 0.0))
     return detail::make_error(FitErrorCode::InvalidArgument, kName,

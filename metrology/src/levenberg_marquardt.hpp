@@ -37,6 +37,42 @@ inline double max_gradient_cosine(const Eigen::MatrixXd& J, const Eigen::VectorX
   return worst;
 }
 
+// Condition number of J with its columns scaled to unit norm (infinite when rank-deficient).
+inline double scaled_condition(const Eigen::MatrixXd& J) {
+  const Eigen::Index n = J.cols();
+  Eigen::MatrixXd js = J;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double cn = js.col(k).norm();
+    if (cn > 0.0) js.col(k) /= cn;
+  }
+  const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(js).singularValues();
+  return sv(n - 1) > 0.0 ? sv(0) / sv(n - 1) : std::numeric_limits<double>::infinity();
+}
+
+// The step d minimising |J d + r|^2 + lambda |D d|^2 (D = diag), by QR of the stacked matrix
+// [J; sqrt(lambda) D] (a and rhs: the caller's storage for it).
+inline Eigen::VectorXd damped_step(const Eigen::MatrixXd& J, const Eigen::VectorXd& r, const Eigen::VectorXd& diag,
+                                   double lambda, Eigen::MatrixXd& a, Eigen::VectorXd& rhs) {
+  const Eigen::Index m = J.rows();
+  const Eigen::Index n = J.cols();
+  a.topRows(m) = J;
+  a.bottomRows(n).setZero();
+  a.bottomRows(n).diagonal() = std::sqrt(lambda) * diag;
+  rhs.head(m) = -r;
+  rhs.tail(n).setZero();
+  return a.colPivHouseholderQr().solve(rhs);
+}
+
+// Whether the change from ssq to ssq_new (m residuals, parameters of typical size L) is
+// rounding. Rounding of a residual is about eps * L since it is a difference of lengths
+// (e.g. |p - c| - r), so the rounding of the sum of squares is about 2 |r| eps L.
+inline bool ssq_change_is_rounding(double ssq, double ssq_new, double length_scale, Eigen::Index m) {
+  constexpr double kRoundingFactor = 64.0;  // safety factor on the rounding estimate
+  const double ssq_rounding = kRoundingFactor * std::numeric_limits<double>::epsilon() *
+                              (length_scale * std::sqrt(static_cast<double>(m) * ssq) + ssq);
+  return std::abs(ssq - ssq_new) <= ssq_rounding;
+}
+
 // Problem requirements:
 //   using State = ...;
 //   Eigen::Index residual_count() const;  Eigen::Index parameter_count() const;
@@ -66,7 +102,6 @@ LmOutcome levenberg_marquardt(const Problem& pb, typename Problem::State& x, con
   double lambda = 0.0;
   LmOutcome out;
   int flat_steps = 0;
-  constexpr double kRoundingFactor = 64.0;  // safety factor on the rounding estimate below
 
   Eigen::MatrixXd a(m + n, n);
   Eigen::VectorXd rhs(m + n);
@@ -78,13 +113,7 @@ LmOutcome levenberg_marquardt(const Problem& pb, typename Problem::State& x, con
     out.reason = why;
     out.ssq = ssq;
     out.gradient_cosine = max_gradient_cosine(J, r);
-    Eigen::MatrixXd js = J;
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const double cn = js.col(k).norm();
-      if (cn > 0.0) js.col(k) /= cn;
-    }
-    const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(js).singularValues();
-    out.condition = sv(n - 1) > 0.0 ? sv(0) / sv(n - 1) : std::numeric_limits<double>::infinity();
+    out.condition = scaled_condition(J);
     return out;
   };
 
@@ -93,12 +122,7 @@ LmOutcome levenberg_marquardt(const Problem& pb, typename Problem::State& x, con
     if (max_gradient_cosine(J, r) <= opt.gradient_tolerance) return finish(true, "gradient");
 
     diag = diag.cwiseMax(J.colwise().norm().transpose());
-    a.topRows(m) = J;
-    a.bottomRows(n).setZero();
-    a.bottomRows(n).diagonal() = std::sqrt(lambda) * diag;
-    rhs.head(m) = -r;
-    rhs.tail(n).setZero();
-    const Eigen::VectorXd delta = a.colPivHouseholderQr().solve(rhs);
+    const Eigen::VectorXd delta = damped_step(J, r, diag, lambda, a, rhs);
     out.iterations = it + 1;
 
     const Eigen::VectorXd sc = pb.scales(x);
@@ -113,12 +137,8 @@ LmOutcome levenberg_marquardt(const Problem& pb, typename Problem::State& x, con
     const double actual_rel = (ssq - ssq_new) / ssq;
     // Near the minimum the sum of squares stops resolving the step (its change is rounding),
     // while the step itself, computed from the residuals and J, is still accurate: take it.
-    // Rounding of a residual is about eps * (length scale) since it is a difference of lengths
-    // (e.g. |p - c| - r), so the rounding of the sum of squares is about 2 |r| eps L.
-    const double ssq_rounding = kRoundingFactor * std::numeric_limits<double>::epsilon() *
-                                (sc.maxCoeff() * std::sqrt(static_cast<double>(m) * ssq) + ssq);
     const bool rounding_level = std::isfinite(ssq_new) && predicted_rel <= opt.ssq_tolerance &&
-                                std::abs(ssq - ssq_new) <= ssq_rounding;
+                                ssq_change_is_rounding(ssq, ssq_new, sc.maxCoeff(), m);
     if (std::isfinite(ssq_new) && (ssq_new < ssq || rounding_level)) {
       x = candidate;
       r = r_new;

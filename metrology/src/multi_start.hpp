@@ -1,13 +1,17 @@
 // Internal: runs Levenberg–Marquardt from several starting states and keeps the best solution
-// (cylinder and cone fits), and picks an evenly strided subsample for the start search.
+// (cylinder and cone fits), picks an evenly strided subsample for the start search, and says
+// why no start gave the feature.
 #pragma once
 
 #include <algorithm>
 #include <optional>
+#include <sstream>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "fit_common.hpp"
 #include "levenberg_marquardt.hpp"
 
 namespace imess::metrology::detail {
@@ -60,6 +64,52 @@ inline Eigen::Matrix3Xd start_sample(const Eigen::Matrix3Xd& q) {
   Eigen::Matrix3Xd s(3, (q.cols() + stride - 1) / stride);
   for (Eigen::Index i = 0, k = 0; i < q.cols(); i += stride, ++k) s.col(k) = q.col(i);
   return s;
+}
+
+// The best solution on all of pb's points (centred points q). With sample_starts and a large
+// cloud, the starts are compared on a subsample first and only the winner is refined on every
+// point (the losing starts may each run to the iteration cap). Problem(q, scale) builds the
+// problem on a point set.
+template <class Problem, class Valid>
+MultiStart<Problem> best_start(const Problem& pb, const Eigen::Matrix3Xd& q,
+                               const std::vector<typename Problem::State>& starts, const FitOptions& options,
+                               bool sample_starts, Valid valid) {
+  std::vector<typename Problem::State> full_starts = starts;
+  if (sample_starts && q.cols() > kStartSample) {
+    const Eigen::Matrix3Xd qs = start_sample(q);
+    const Problem ps(qs, rms_spread<3>(qs));
+    const auto pick = multi_start(ps, starts, options, valid);
+    if (pick.state) full_starts = {*pick.state};
+  }
+  return multi_start(pb, full_starts, options, valid);
+}
+
+// Why best_start found no solution: no start converged, or none determined the feature.
+template <class Problem>
+FitError no_solution_error(const MultiStart<Problem>& best, const FitOptions& options, std::size_t starts,
+                           std::size_t points, std::string_view feature) {
+  std::ostringstream os;
+  if (!best.any_converged) {
+    os << "no convergence within " << options.max_iterations << " iterations from any of " << starts
+       << " starting axes";
+    return make_error(FitErrorCode::NotConverged, feature, os.str());
+  }
+  os << "the " << points << " points do not determine a " << feature << " (Jacobian condition "
+     << best.worst_condition << ")";
+  return make_error(FitErrorCode::IllConditioned, feature, os.str());
+}
+
+// Residual statistics of the solution s on all of pb's points.
+template <class Problem>
+FitStats solution_stats(const Problem& pb, const typename Problem::State& s, int iterations) {
+  Eigen::VectorXd res(pb.residual_count());
+  pb.evaluate(s, res, nullptr);
+  return make_stats(res, iterations);
+}
+
+// The error of an axial fit whose candidate axes all had degenerate projections.
+inline FitError no_start_error(std::string_view feature) {
+  return make_error(FitErrorCode::IllConditioned, feature, "no starting axis found (every projection is degenerate)");
 }
 
 }  // namespace imess::metrology::detail

@@ -1,12 +1,11 @@
 // The emulated card's firmware (per tick) and its link request handler.
 #include "imess/sim/emulated_card.hpp"
 
-#include "imess/hal/axis_status.hpp"
-
+#include <algorithm>
+#include <array>
 #include <cmath>
 
-#include "imess/hal/link_codec.hpp"
-#include "imess/hal/servo_card_protocol.hpp"
+#include "imess/hal/axis_status.hpp"
 
 namespace imess::sim {
 
@@ -15,7 +14,6 @@ using hal::LinkReader;
 using hal::card::Op;
 using hal::card::Status;
 namespace st = hal::status;
-namespace in = hal::input;
 
 namespace {
 constexpr double kMaxCatchUp = 0.5;  // s; a stalled caller does not make the card spin for ages
@@ -95,13 +93,11 @@ void EmulatedCard::tick() noexcept {
 }
 
 std::uint8_t EmulatedCard::inputs(int a) const noexcept {
-  std::uint8_t bits = 0;
-  if (machine_.limit_pos(a)) bits |= in::kLimitPos;
-  if (machine_.limit_neg(a)) bits |= in::kLimitNeg;
-  if (machine_.tip_signal()) bits |= in::kTip;
-  if (machine_.home_switch(a)) bits |= in::kHome;
-  if (machine_.index_mark(a)) bits |= in::kIndex;
-  return bits;
+  return hal::input_bits({.limit_neg = machine_.limit_neg(a),
+                          .limit_pos = machine_.limit_pos(a),
+                          .tip = machine_.tip_signal(),
+                          .home = machine_.home_switch(a),
+                          .index = machine_.index_mark(a)});
 }
 
 std::uint32_t EmulatedCard::status_word(int a) const noexcept {
@@ -113,181 +109,212 @@ std::uint32_t EmulatedCard::status_word(int a) const noexcept {
                           ax.faults);
 }
 
+// ------------------------------------------------------------------ link requests
+
+namespace {
+
+bool named(unsigned mask, int a) noexcept { return (mask & (1u << a)) != 0; }
+
+// Axis table {count, axis...}: the mask of the axes named, each at most once.
+Status read_axis_table(LinkReader& r, unsigned& mask) noexcept {
+  std::uint8_t count = r.u8();
+  if (!r.ok()) return Status::BadLength;
+  if (count == 0 || count > kAxes) return Status::BadAxis;
+  mask = 0;
+  for (int i = 0; i < count; ++i) {
+    std::uint8_t a = r.u8();
+    if (!r.ok()) return Status::BadLength;
+    if (a >= kAxes || named(mask, a)) return Status::BadAxis;
+    mask |= 1u << a;
+  }
+  return Status::Ok;
+}
+
+// N f64 values for each axis of the table, in axis order; the frame must end after them.
+template <std::size_t N>
+Status read_axis_values(LinkReader& r, unsigned mask, hal::AxisArray<std::array<double, N>>& values) noexcept {
+  for (int a = 0; a < kAxes; ++a)
+    if (named(mask, a))
+      for (double& v : values[a]) v = r.f64();
+  return r.ok() && r.at_end() ? Status::Ok : Status::BadLength;
+}
+
+}  // namespace
+
 int EmulatedCard::handle(std::span<const std::uint8_t> request, std::span<std::uint8_t> reply) noexcept {
-  ++requests_;
   hal::LinkWriter out;
-  auto finish = [&](Status s) -> int {
-    // A failure reply is the status byte alone.
-    if (s != Status::Ok) {
-      out.clear();
-      out.u8(static_cast<std::uint8_t>(s));
-    }
-    auto bytes = out.bytes();
-    if (bytes.size() > reply.size()) return -1;
-    for (std::size_t i = 0; i < bytes.size(); ++i) reply[i] = bytes[i];
-    return static_cast<int>(bytes.size());
-  };
   out.u8(static_cast<std::uint8_t>(Status::Ok));
   LinkReader r(request);
   auto op = static_cast<Op>(r.u8());
-  if (!r.ok()) return finish(Status::BadLength);
+  const Status s = r.ok() ? answer(op, r, out) : Status::BadLength;
+  // A failure reply is the status byte alone.
+  if (s != Status::Ok) {
+    out.clear();
+    out.u8(static_cast<std::uint8_t>(s));
+  }
+  auto bytes = out.bytes();
+  if (bytes.size() > reply.size()) return -1;
+  for (std::size_t i = 0; i < bytes.size(); ++i) reply[i] = bytes[i];
+  return static_cast<int>(bytes.size());
+}
 
-  // Axis table {count, axis...}; mask of the axes named.
-  auto read_table = [&](unsigned& mask) -> Status {
-    std::uint8_t count = r.u8();
-    if (!r.ok()) return Status::BadLength;
-    if (count == 0 || count > kAxes) return Status::BadAxis;
-    mask = 0;
-    for (int i = 0; i < count; ++i) {
-      std::uint8_t a = r.u8();
-      if (!r.ok()) return Status::BadLength;
-      if (a >= kAxes || (mask & (1u << a))) return Status::BadAxis;
-      mask |= 1u << a;
-    }
-    return Status::Ok;
-  };
-  auto ready = [&] { return booted_ && params_; };
-  unsigned mask = 0;
-
+Status EmulatedCard::answer(Op op, LinkReader& r, hal::LinkWriter& out) noexcept {
   switch (op) {
-    case Op::ReadInfo: {
-      if (!r.at_end()) return finish(Status::BadLength);
-      out.u8(kAxes).u8(booted_ ? 1 : 0).u8(params_ ? 1 : 0);
-      std::string_view rev = booted_ ? std::string_view(config_.firmware) : std::string_view("BOOTLOADER");
-      out.u8(static_cast<std::uint8_t>(rev.size()));
-      for (char c : rev) out.u8(static_cast<std::uint8_t>(c));
-      return finish(Status::Ok);
-    }
-    case Op::Boot: {
-      std::uint8_t len = r.u8();
-      char name[255];
-      for (int i = 0; i < len; ++i) name[i] = static_cast<char>(r.u8());
-      if (!r.ok() || !r.at_end()) return finish(Status::BadLength);
-      if (std::string_view(name, len) != config_.firmware) return finish(Status::WrongFirmware);
-      booted_ = true;
-      params_ = false;
-      open_all();
-      return finish(Status::Ok);
-    }
-    case Op::LoadParams: {
-      if (!booted_) return finish(Status::NotReady);
-      std::uint8_t falling = r.u8();
-      if (auto s = read_table(mask); s != Status::Ok) return finish(s);
-      double values[kAxes][3];
-      for (int a = 0; a < kAxes; ++a)
-        if (mask & (1u << a))
-          for (double& v : values[a]) v = r.f64();
-      if (!r.ok() || !r.at_end()) return finish(Status::BadLength);
-      for (int a = 0; a < kAxes; ++a)
-        if (mask & (1u << a))
-          for (double v : values[a])
-            if (!std::isfinite(v) || v <= 0) return finish(Status::BadValue);
-      latch_on_falling_ = falling != 0;
-      for (int a = 0; a < kAxes; ++a)
-        if (mask & (1u << a)) {
-          axes_[a].vmax = values[a][0];
-          axes_[a].amax = values[a][1];
-          axes_[a].max_following_error = values[a][2];
-        }
-      params_ = true;
-      return finish(Status::Ok);
-    }
+    case Op::ReadInfo: return read_info(r, out);
+    case Op::Boot: return boot(r);
+    case Op::LoadParams: return load_params(r);
     case Op::ResetAxes:
     case Op::CloseLoops:
-    case Op::OpenLoops: {
-      if (!ready()) return finish(Status::NotReady);
-      if (auto s = read_table(mask); s != Status::Ok) return finish(s);
-      if (!r.at_end()) return finish(Status::BadLength);
-      for (int a = 0; a < kAxes; ++a) {
-        if (!(mask & (1u << a))) continue;
-        Axis& ax = axes_[a];
-        if (op == Op::ResetAxes) ax.faults = 0;
-        bool close = op == Op::CloseLoops && !(ax.faults & st::kFaultMask);
-        if (close && !ax.closed) ax.profile.reset(encoder(a));
-        ax.closed = close;
-        machine_.set_driven(a, close);
-        if (close) machine_.set_motor_velocity(a, 0);
-      }
-      return finish(Status::Ok);
-    }
-    case Op::JogAbsolute: {
-      if (!ready()) return finish(Status::NotReady);
-      if (auto s = read_table(mask); s != Status::Ok) return finish(s);
-      double v[kAxes][3];
-      for (int a = 0; a < kAxes; ++a)
-        if (mask & (1u << a))
-          for (double& x : v[a]) x = r.f64();
-      if (!r.ok() || !r.at_end()) return finish(Status::BadLength);
-      for (int a = 0; a < kAxes; ++a)
-        if ((mask & (1u << a)) && (!std::isfinite(v[a][0]) || !(v[a][1] > 0) || !(v[a][2] > 0)))
-          return finish(Status::BadValue);
-      for (int a = 0; a < kAxes; ++a)
-        if ((mask & (1u << a)) && axes_[a].closed)
-          axes_[a].profile.start(v[a][0], std::min(v[a][1], axes_[a].vmax), std::min(v[a][2], axes_[a].amax));
-      return finish(Status::Ok);
-    }
-    case Op::JogStop: {
-      if (!ready()) return finish(Status::NotReady);
-      if (auto s = read_table(mask); s != Status::Ok) return finish(s);
-      double d[kAxes] = {0, 0, 0};
-      for (int a = 0; a < kAxes; ++a)
-        if (mask & (1u << a)) d[a] = r.f64();
-      if (!r.ok() || !r.at_end()) return finish(Status::BadLength);
-      for (int a = 0; a < kAxes; ++a)
-        if (mask & (1u << a)) {
-          if (!(d[a] > 0) || !std::isfinite(d[a])) return finish(Status::BadValue);
-          axes_[a].profile.stop(std::min(d[a], axes_[a].amax));
-        }
-      return finish(Status::Ok);
-    }
-    case Op::SetPosition: {
-      if (!ready()) return finish(Status::NotReady);
-      if (auto s = read_table(mask); s != Status::Ok) return finish(s);
-      double val[kAxes] = {0, 0, 0};
-      for (int a = 0; a < kAxes; ++a)
-        if (mask & (1u << a)) val[a] = r.f64();
-      if (!r.ok() || !r.at_end()) return finish(Status::BadLength);
-      for (int a = 0; a < kAxes; ++a)
-        if (mask & (1u << a)) {
-          if (!std::isfinite(val[a])) return finish(Status::BadValue);
-          double old_offset = axes_[a].offset;
-          axes_[a].offset = machine_.carriage()[a] - val[a];
-          axes_[a].profile.shift(old_offset - axes_[a].offset);
-        }
-      return finish(Status::Ok);
-    }
-    case Op::ReadState: {
-      if (!ready()) return finish(Status::NotReady);
-      if (auto s = read_table(mask); s != Status::Ok) return finish(s);
-      if (!r.at_end()) return finish(Status::BadLength);
-      for (int a = 0; a < kAxes; ++a)
-        if (mask & (1u << a)) out.f64(encoder(a)).u32(status_word(a)).u8(inputs(a));
-      return finish(Status::Ok);
-    }
-    case Op::ReadLatch: {
-      if (!ready()) return finish(Status::NotReady);
-      if (auto s = read_table(mask); s != Status::Ok) return finish(s);
-      if (!r.at_end()) return finish(Status::BadLength);
-      for (int a = 0; a < kAxes; ++a)
-        if (mask & (1u << a)) {
-          out.f64(axes_[a].latched);
-          axes_[a].latch_valid = false;
-        }
-      return finish(Status::Ok);
-    }
-    case Op::WriteOutputs: {
-      if (!ready()) return finish(Status::NotReady);
-      if (auto s = read_table(mask); s != Status::Ok) return finish(s);
-      std::uint8_t bits[kAxes] = {0, 0, 0};
-      for (int a = 0; a < kAxes; ++a)
-        if (mask & (1u << a)) bits[a] = r.u8();
-      if (!r.ok() || !r.at_end()) return finish(Status::BadLength);
-      for (int a = 0; a < kAxes; ++a)
-        if (mask & (1u << a)) axes_[a].outputs = bits[a];
-      return finish(Status::Ok);
-    }
+    case Op::OpenLoops: return set_loops(op, r);
+    case Op::JogAbsolute: return jog_absolute(r);
+    case Op::JogStop: return jog_stop(r);
+    case Op::SetPosition: return set_position(r);
+    case Op::ReadState: return read_state(r, out);
+    case Op::ReadLatch: return read_latch(r, out);
+    case Op::WriteOutputs: return write_outputs(r);
   }
-  return finish(Status::BadOpcode);
+  return Status::BadOpcode;
+}
+
+Status EmulatedCard::ready_axis_table(LinkReader& r, unsigned& mask) const noexcept {
+  if (!booted_ || !params_) return Status::NotReady;
+  return read_axis_table(r, mask);
+}
+
+Status EmulatedCard::read_info(LinkReader& r, hal::LinkWriter& out) const noexcept {
+  if (!r.at_end()) return Status::BadLength;
+  out.u8(kAxes).u8(booted_ ? 1 : 0).u8(params_ ? 1 : 0);
+  std::string_view rev = booted_ ? std::string_view(config_.firmware) : std::string_view("BOOTLOADER");
+  out.u8(static_cast<std::uint8_t>(rev.size()));
+  for (char c : rev) out.u8(static_cast<std::uint8_t>(c));
+  return Status::Ok;
+}
+
+Status EmulatedCard::boot(LinkReader& r) noexcept {
+  std::uint8_t len = r.u8();
+  char name[255];
+  for (int i = 0; i < len; ++i) name[i] = static_cast<char>(r.u8());
+  if (!r.ok() || !r.at_end()) return Status::BadLength;
+  if (std::string_view(name, len) != config_.firmware) return Status::WrongFirmware;
+  booted_ = true;
+  params_ = false;
+  open_all();
+  return Status::Ok;
+}
+
+Status EmulatedCard::load_params(LinkReader& r) noexcept {
+  if (!booted_) return Status::NotReady;
+  std::uint8_t falling = r.u8();
+  unsigned mask = 0;
+  if (auto s = read_axis_table(r, mask); s != Status::Ok) return s;
+  hal::AxisArray<std::array<double, 3>> values{};  // vmax, amax, max following error
+  if (auto s = read_axis_values(r, mask, values); s != Status::Ok) return s;
+  for (int a = 0; a < kAxes; ++a)
+    if (named(mask, a))
+      for (double v : values[a])
+        if (!std::isfinite(v) || v <= 0) return Status::BadValue;
+  latch_on_falling_ = falling != 0;
+  for (int a = 0; a < kAxes; ++a)
+    if (named(mask, a)) {
+      axes_[a].vmax = values[a][0];
+      axes_[a].amax = values[a][1];
+      axes_[a].max_following_error = values[a][2];
+    }
+  params_ = true;
+  return Status::Ok;
+}
+
+// ResetAxes (clears the faults, opens), CloseLoops (a faulted axis stays open), OpenLoops.
+Status EmulatedCard::set_loops(Op op, LinkReader& r) noexcept {
+  unsigned mask = 0;
+  if (auto s = ready_axis_table(r, mask); s != Status::Ok) return s;
+  if (!r.at_end()) return Status::BadLength;
+  for (int a = 0; a < kAxes; ++a) {
+    if (!named(mask, a)) continue;
+    Axis& ax = axes_[a];
+    if (op == Op::ResetAxes) ax.faults = 0;
+    bool close = op == Op::CloseLoops && !(ax.faults & st::kFaultMask);
+    if (close && !ax.closed) ax.profile.reset(encoder(a));
+    ax.closed = close;
+    machine_.set_driven(a, close);
+    if (close) machine_.set_motor_velocity(a, 0);
+  }
+  return Status::Ok;
+}
+
+Status EmulatedCard::jog_absolute(LinkReader& r) noexcept {
+  unsigned mask = 0;
+  if (auto s = ready_axis_table(r, mask); s != Status::Ok) return s;
+  hal::AxisArray<std::array<double, 3>> v{};  // target, velocity, acceleration
+  if (auto s = read_axis_values(r, mask, v); s != Status::Ok) return s;
+  for (int a = 0; a < kAxes; ++a)
+    if (named(mask, a) && (!std::isfinite(v[a][0]) || !(v[a][1] > 0) || !(v[a][2] > 0))) return Status::BadValue;
+  for (int a = 0; a < kAxes; ++a)
+    if (named(mask, a) && axes_[a].closed)
+      axes_[a].profile.start(v[a][0], std::min(v[a][1], axes_[a].vmax), std::min(v[a][2], axes_[a].amax));
+  return Status::Ok;
+}
+
+Status EmulatedCard::jog_stop(LinkReader& r) noexcept {
+  unsigned mask = 0;
+  if (auto s = ready_axis_table(r, mask); s != Status::Ok) return s;
+  hal::AxisArray<std::array<double, 1>> decel{};
+  if (auto s = read_axis_values(r, mask, decel); s != Status::Ok) return s;
+  for (int a = 0; a < kAxes; ++a)
+    if (named(mask, a)) {
+      const double d = decel[a][0];
+      if (!(d > 0) || !std::isfinite(d)) return Status::BadValue;
+      axes_[a].profile.stop(std::min(d, axes_[a].amax));
+    }
+  return Status::Ok;
+}
+
+Status EmulatedCard::set_position(LinkReader& r) noexcept {
+  unsigned mask = 0;
+  if (auto s = ready_axis_table(r, mask); s != Status::Ok) return s;
+  hal::AxisArray<std::array<double, 1>> value{};
+  if (auto s = read_axis_values(r, mask, value); s != Status::Ok) return s;
+  for (int a = 0; a < kAxes; ++a)
+    if (named(mask, a)) {
+      if (!std::isfinite(value[a][0])) return Status::BadValue;
+      double old_offset = axes_[a].offset;
+      axes_[a].offset = machine_.carriage()[a] - value[a][0];
+      axes_[a].profile.shift(old_offset - axes_[a].offset);
+    }
+  return Status::Ok;
+}
+
+Status EmulatedCard::read_state(LinkReader& r, hal::LinkWriter& out) const noexcept {
+  unsigned mask = 0;
+  if (auto s = ready_axis_table(r, mask); s != Status::Ok) return s;
+  if (!r.at_end()) return Status::BadLength;
+  for (int a = 0; a < kAxes; ++a)
+    if (named(mask, a)) out.f64(encoder(a)).u32(status_word(a)).u8(inputs(a));
+  return Status::Ok;
+}
+
+Status EmulatedCard::read_latch(LinkReader& r, hal::LinkWriter& out) noexcept {
+  unsigned mask = 0;
+  if (auto s = ready_axis_table(r, mask); s != Status::Ok) return s;
+  if (!r.at_end()) return Status::BadLength;
+  for (int a = 0; a < kAxes; ++a)
+    if (named(mask, a)) {
+      out.f64(axes_[a].latched);
+      axes_[a].latch_valid = false;
+    }
+  return Status::Ok;
+}
+
+Status EmulatedCard::write_outputs(LinkReader& r) noexcept {
+  unsigned mask = 0;
+  if (auto s = ready_axis_table(r, mask); s != Status::Ok) return s;
+  hal::AxisArray<std::uint8_t> bits{};
+  for (int a = 0; a < kAxes; ++a)
+    if (named(mask, a)) bits[a] = r.u8();
+  if (!r.ok() || !r.at_end()) return Status::BadLength;
+  for (int a = 0; a < kAxes; ++a)
+    if (named(mask, a)) axes_[a].outputs = bits[a];
+  return Status::Ok;
 }
 
 }  // namespace imess::sim

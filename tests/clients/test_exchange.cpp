@@ -148,7 +148,7 @@ TEST_CASE("STEP: every #reference is defined, points in one GEOMETRIC_CURVE_SET"
   CHECK(std::regex_search(text, std::regex(R"(GEOMETRIC_CURVE_SET\('measured points',\(#\d+,#\d+,#\d+,#\d+,#\d+\)\))")));
 }
 
-TEST_CASE("DMIS: points as POINT features; with a fit F, MEAS with every point, FA") {
+TEST_CASE("DMIS: points as POINT features, and with a fit F, MEAS with every point, FA") {
   auto d = sample(3);
   auto plain = write(".dmi", d);
   CHECK_THAT(plain, Catch::StartsWith("DMISMN/'") && Catch::Contains("UNITS/MM,ANGDEC") &&

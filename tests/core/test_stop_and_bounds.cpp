@@ -160,7 +160,7 @@ TEST_CASE("a Set sent before a motion command applies to it") {
 // The 1996 jog panel's own sequence: press (StartMv 0 0 -20), the probe hits, the button is
 // released (StopMv) 0-200 ms after the hit, pressed again. The retract must finish and leave
 // the tip free, and the second press must move the machine.
-TEST_CASE("the 1996 panel: a release during the retract lets it finish; the next press moves") {
+TEST_CASE("the 1996 panel: a release during the retract lets it finish, then the next press moves") {
   for (int delay_ms = 0; delay_ms <= 200; delay_ms += 10) {
     INFO("StopMv " << delay_ms << " ms after the hit");
     CoreRig rig;

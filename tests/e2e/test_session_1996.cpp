@@ -53,7 +53,7 @@ TEST_CASE("CurrCor is sent only when the position changed") {
   CHECK_FALSE(c.until_prefix("CurrCor", 1.2));
 }
 
-TEST_CASE("while the tip is touched, StartMv toward or along the part gets Err 200; away from it moves") {
+TEST_CASE("while the tip is touched, StartMv toward or along the part gets Err 200, and away from it moves") {
   DaemonProcess messd;
   LineClient c(messd.port());
   REQUIRE(c.request("HandMv 0 0 -18.5 20") == std::optional<std::string>("Ok HandMv"));

@@ -126,7 +126,7 @@ TEST_CASE("circle3d recovers known circles (plane, project, 2-D circle)", "[fit]
   }
 }
 
-TEST_CASE("circle3d through three points is exact; collinear points are rejected", "[fit][circle]") {
+TEST_CASE("circle3d through three points is exact, and collinear points are rejected", "[fit][circle]") {
   const std::vector<Eigen::Vector3d> pts{{1, 0, 5}, {0, 1, 5}, {-1, 0, 5}};
   const auto fit = fit_circle3d(pts);
   REQUIRE(fit.ok());

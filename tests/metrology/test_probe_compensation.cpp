@@ -96,7 +96,7 @@ TEST_CASE("circle: bore gets radius + r, shaft radius - r", "[compensation][circ
   CHECK(bore->diameter == Approx(20.0).epsilon(1e-13));
 }
 
-TEST_CASE("sphere: ball and hollow sphere; effective tip radius from a reference sphere",
+TEST_CASE("sphere: ball and hollow sphere, and the effective tip radius from a reference sphere",
           "[compensation][sphere]") {
   Rng rng(72);
   const Eigen::Vector3d c(-5, 7, 100);

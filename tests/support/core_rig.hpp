@@ -1,7 +1,8 @@
-// CoreRig: the motion core on the simulated CMM in virtual time — step the loop, send
-// commands, collect events. No threads, no sleeping: deterministic and fast.
+// MotionRig: the motion core in virtual time — step the loop, send commands, collect events.
+// No threads, no sleeping: deterministic and fast. CoreRig: on the simulated servo-card CMM.
 #pragma once
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -39,30 +40,23 @@ inline RigOptions default_options() {
   return o;
 }
 
-class CoreRig {
+// The motion core driving any MotionBackend in virtual time: step the loop, send commands,
+// collect events. The rigs below (and the port backends' rigs in port_rigs.hpp) build a
+// machine and its backend, then the core on it.
+class MotionRig {
  public:
   static constexpr hal::Nanos kPeriod{1'000'000};
+  virtual ~MotionRig() = default;
 
-  explicit CoreRig(RigOptions options = default_options())
-      : options_(options),
-        cmm_(options.sim, clock_),
-        driver_(cmm_.link(), card_config(options)),
-        core_(driver_, options.core, &cmm_.mechanics()) {
-    driver_.initialise(false);
-    core_.start(clock_.now());
+  void start_core(core::CoreConfig config, hal::SimHooks* hooks = nullptr) {
+    core_ = std::make_unique<core::MotionCore>(backend(), config, hooks);
+    core_->start(clock_.now());
   }
-
-  static hal::ServoCardConfig card_config(const RigOptions& o) {
-    hal::ServoCardConfig c;
-    c.firmware = o.sim.card.firmware;
-    c.tip_reversed = o.tip_reversed;
-    return c;
-  }
-
   void step() {
     clock_.advance(kPeriod);
-    core_.cycle(clock_.now());
-    drain();
+    core_->cycle(clock_.now());
+    core::Event e;
+    while (core_->events().pop(e)) events_.push_back(e);
   }
   void run(double seconds) {
     for (long i = 0, n = static_cast<long>(seconds * 1000 + 0.5); i < n; ++i) step();
@@ -80,7 +74,7 @@ class CoreRig {
   core::Refusal send(Command c) {
     c.client = 1;
     c.seq = ++seq_;
-    core_.submit(c);
+    core_->submit(c);
     step();
     for (auto& e : events_)
       if (e.kind == EventKind::Reply && e.seq == c.seq) return e.refusal;
@@ -92,11 +86,11 @@ class CoreRig {
   core::Refusal simple(CommandKind k) { return send({k}); }
   // The stop lane (StopMv) and the parameter lane (Set), as the io thread uses them.
   void stop() {
-    core_.request_stop();
+    core_->request_stop();
     step();
   }
   void set(core::ParamId id, double value) {
-    core_.set_param(id, value);
+    core_->set_param(id, value);
     step();
   }
 
@@ -109,26 +103,44 @@ class CoreRig {
   const std::vector<Event>& events() const { return events_; }
   void clear_events() { events_.clear(); }
 
-  Mode mode() const { return core_.mode(); }
-  Vec3 position() const { return core_.machine().position; }
-  sim::Mechanics& mechanics() { return cmm_.mechanics(); }
-  core::MotionCore& core() { return core_; }
+  Mode mode() const { return core_->mode(); }
+  Vec3 position() const { return core_->machine().position; }
+  core::MotionCore& core() { return *core_; }
   VirtualClock& clock() { return clock_; }
+  virtual hal::MotionBackend& backend() = 0;
+
+ protected:
+  VirtualClock clock_;
+  std::unique_ptr<core::MotionCore> core_;
+  std::vector<Event> events_;
+  std::uint32_t seq_ = 0;
+};
+
+// The motion core on the simulated servo-card CMM.
+class CoreRig final : public MotionRig {
+ public:
+  explicit CoreRig(RigOptions options = default_options())
+      : options_(options), cmm_(options.sim, clock_), driver_(cmm_.link(), card_config(options)) {
+    core_ = std::make_unique<core::MotionCore>(driver_, options.core, &cmm_.mechanics());
+    driver_.initialise(false);
+    core_->start(clock_.now());
+  }
+
+  static hal::ServoCardConfig card_config(const RigOptions& o) {
+    hal::ServoCardConfig c;
+    c.firmware = o.sim.card.firmware;
+    c.tip_reversed = o.tip_reversed;
+    return c;
+  }
+
+  hal::MotionBackend& backend() override { return driver_; }
+  sim::Mechanics& mechanics() { return cmm_.mechanics(); }
   const RigOptions& options() const { return options_; }
 
  private:
-  void drain() {
-    Event e;
-    while (core_.events().pop(e)) events_.push_back(e);
-  }
-
   RigOptions options_;
-  VirtualClock clock_;
   sim::SimulatedCmm cmm_;
   hal::ServoCardDriver driver_;
-  core::MotionCore core_;
-  std::vector<Event> events_;
-  std::uint32_t seq_ = 0;
 };
 
 }  // namespace imess::test

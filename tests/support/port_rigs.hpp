@@ -1,6 +1,6 @@
 // Rigs for the port backends in virtual time: the simulated machine behind a private port
 // space, the real hal driver on it, the base routine pumped tick by tick (no threads, no
-// sleeping), and optionally the MotionCore on top with the CoreRig's API.
+// sleeping), and optionally the MotionCore on top (MotionRig, core_rig.hpp).
 #pragma once
 #include <functional>
 #include <memory>
@@ -13,72 +13,6 @@
 #include "imess/sim/simulated_port_cmm.hpp"
 
 namespace imess::test {
-
-// Motion core driving any MotionBackend in virtual time (the CoreRig API).
-class MotionRig {
- public:
-  static constexpr hal::Nanos kPeriod{1'000'000};
-  virtual ~MotionRig() = default;
-
-  void start_core(core::CoreConfig config, hal::SimHooks* hooks = nullptr) {
-    core_ = std::make_unique<core::MotionCore>(backend(), config, hooks);
-    core_->start(clock_.now());
-  }
-  void step() {
-    clock_.advance(kPeriod);
-    core_->cycle(clock_.now());
-    core::Event e;
-    while (core_->events().pop(e)) events_.push_back(e);
-  }
-  void run(double seconds) {
-    for (long i = 0, n = static_cast<long>(seconds * 1000 + 0.5); i < n; ++i) step();
-  }
-  bool run_until(const std::function<bool()>& pred, double max_seconds) {
-    for (long i = 0, n = static_cast<long>(max_seconds * 1000); i < n; ++i) {
-      if (pred()) return true;
-      step();
-    }
-    return pred();
-  }
-  core::Refusal send(Command c) {
-    c.client = 1;
-    c.seq = ++seq_;
-    core_->submit(c);
-    step();
-    for (auto& e : events_)
-      if (e.kind == EventKind::Reply && e.seq == c.seq) return e.refusal;
-    return core::Refusal::Hardware;
-  }
-  core::Refusal start_mv(Vec3 percent) { return send({CommandKind::StartMv, 0, 0, percent}); }
-  core::Refusal go_to(Vec3 target, double speed = 0) { return send({CommandKind::GoTo, 0, 0, target, speed}); }
-  core::Refusal simple(CommandKind k) { return send({k}); }
-  // The stop lane (StopMv) and the parameter lane (Set), as the io thread uses them.
-  void stop() {
-    core_->request_stop();
-    step();
-  }
-  void set(core::ParamId id, double value) {
-    core_->set_param(id, value);
-    step();
-  }
-  std::vector<Event> take(EventKind kind) {
-    std::vector<Event> out, keep;
-    for (auto& e : events_) (e.kind == kind ? out : keep).push_back(e);
-    events_.swap(keep);
-    return out;
-  }
-  Mode mode() const { return core_->mode(); }
-  Vec3 position() const { return core_->machine().position; }
-  core::MotionCore& core() { return *core_; }
-  VirtualClock& clock() { return clock_; }
-  virtual hal::MotionBackend& backend() = 0;
-
- protected:
-  VirtualClock clock_;
-  std::unique_ptr<core::MotionCore> core_;
-  std::vector<Event> events_;
-  std::uint32_t seq_ = 0;
-};
 
 struct StepperRigOptions {
   sim::SimulatedStepperCmmConfig sim;

@@ -217,12 +217,7 @@ Refusal MotionCore::start_jog(const Vec3& percent, Nanos now) noexcept {
   const auto& p = config_.params;
   Vec3 v = percent / 100.0 * p.max_speed * p.speed_level;
   if (percent.isZero()) {  // all speeds zero: the machine stands
-    pending_ = Pending::None;
-    if (mode_ == Mode::Jog || mode_ == Mode::Move) {
-      stop_motion();
-      stopped_from_ = mode_;
-      enter(Mode::Stopping, now);
-    }
+    stand_still(now);
     return Refusal::None;
   }
   for (int a = 0; a < kAxes; ++a)
@@ -234,14 +229,7 @@ Refusal MotionCore::start_jog(const Vec3& percent, Nanos now) noexcept {
     return Refusal::None;
   }
   if (ms_.tip_touched && !away_from_touch(v.normalized())) return Refusal::TipTouched;
-  for (int a = 0; a < kAxes; ++a) {
-    int s = sign(v[a]);
-    if (s == 0) continue;
-    bool in_limit = ms_.input(a, s < 0 ? in::kLimitNeg : in::kLimitPos);
-    bool at_soft = referenced_ && (s < 0 ? ms_.position[a] <= config_.axes[a].travel_min + 1e-3
-                                         : ms_.position[a] >= config_.axes[a].travel_max - 1e-3);
-    if (in_limit || at_soft) v[a] = 0;  // only moves away from a limit
-  }
+  drop_axes_into_limits(v);
   if (v.isZero()) return Refusal::IntoLimit;
   if (mode_ == Mode::Jog || mode_ == Mode::Move) {
     if (!ms_.motion_done() || state_stale_) {
@@ -255,6 +243,39 @@ Refusal MotionCore::start_jog(const Vec3& percent, Nanos now) noexcept {
   pending_ = Pending::None;
   const double speed = v.norm();
   Vec3 u = v.normalized();
+  const Vec3 target = jog_target(u);
+  for (int a = 0; a < kAxes; ++a) started_in_limit_[a] = ms_.limit_side(a);
+  if (!ms_.loops_closed() && !hw_.set_loops(true)) return Refusal::Hardware;
+  if (!hw_.move(straight_moves(target, u, speed), moving_axes(u))) return Refusal::Hardware;
+  motion_dir_ = u;
+  enter(Mode::Jog, now);
+  return Refusal::None;
+}
+
+// A jog of all-zero speeds: nothing waits, a running jog or move brakes.
+void MotionCore::stand_still(Nanos now) noexcept {
+  pending_ = Pending::None;
+  if (mode_ == Mode::Jog || mode_ == Mode::Move) {
+    stop_motion();
+    stopped_from_ = mode_;
+    enter(Mode::Stopping, now);
+  }
+}
+
+// An axis only moves away from a closed limit switch or, once referenced, a soft limit.
+void MotionCore::drop_axes_into_limits(Vec3& v) const noexcept {
+  for (int a = 0; a < kAxes; ++a) {
+    int s = sign(v[a]);
+    if (s == 0) continue;
+    bool in_limit = ms_.input(a, s < 0 ? in::kLimitNeg : in::kLimitPos);
+    bool at_soft = referenced_ && (s < 0 ? ms_.position[a] <= config_.axes[a].travel_min + 1e-3
+                                         : ms_.position[a] >= config_.axes[a].travel_max - 1e-3);
+    if (in_limit || at_soft) v[a] = 0;
+  }
+}
+
+// Where a jog in direction u runs: the end of the travel once referenced, else far away.
+Vec3 MotionCore::jog_target(const Vec3& u) const noexcept {
   Vec3 target;
   for (int a = 0; a < kAxes; ++a) {
     if (u[a] == 0)
@@ -263,13 +284,8 @@ Refusal MotionCore::start_jog(const Vec3& percent, Nanos now) noexcept {
       target[a] = u[a] > 0 ? config_.axes[a].travel_max : config_.axes[a].travel_min;
     else
       target[a] = ms_.position[a] + sign(u[a]) * kFar;
-    started_in_limit_[a] = ms_.limit_side(a);
   }
-  if (!ms_.loops_closed() && !hw_.set_loops(true)) return Refusal::Hardware;
-  if (!hw_.move(straight_moves(target, u, speed), moving_axes(u))) return Refusal::Hardware;
-  motion_dir_ = u;
-  enter(Mode::Jog, now);
-  return Refusal::None;
+  return target;
 }
 
 Refusal MotionCore::go_to(const Vec3& target, double speed, Nanos now) noexcept {
@@ -455,52 +471,61 @@ void MotionCore::update_mode(Nanos now) noexcept {
       else if (ms_.motion_done() && ms_.all(st::kInPosition)) enter(Mode::Idle, now);
       break;
     case Mode::Stopping:
-      if (ms_.motion_done() && ms_.all(st::kInPosition)) {  // every axis at rest
-        if (pending_ != Pending::None) launch_pending(now);
-        else enter(Mode::Idle, now);
-      }
+      if (ms_.motion_done() && ms_.all(st::kInPosition)) launch_pending_or_idle(now);  // every axis at rest
       break;
-    case Mode::Retract:
-      if (ms_.motion_done() && ms_.all(st::kInPosition) && !ms_.tip_touched) {
-        if (pending_ != Pending::None) launch_pending(now);
-        else enter(Mode::Idle, now);
-      } else if (in_mode > p.retract_timeout) {
-        if (pending_ != Pending::None) warn(Warning::MoveRefused, ms_.position, now);
-        pending_ = Pending::None;
-        warn(Warning::TipNotFree, ms_.position, now);
-        stop_motion();
-        if (!hw_.set_loops(false)) ++hardware_errors_;
-        enter(Mode::Free, now);
-      }
-      break;
+    case Mode::Retract: update_retract(in_mode, now); break;
     case Mode::Idle:
       if (in_mode >= p.idle_open_time) {
         if (!hw_.set_loops(false)) ++hardware_errors_;
         enter(Mode::Free, now);
       }
       break;
-    case Mode::Home:
-      switch (homing_.step(ms_, hw_, now)) {
-        case Homing::Result::Running: break;
-        case Homing::Result::Done: {
-          homed_ = referenced_ = true;
-          Event e;
-          e.kind = EventKind::Homed;
-          e.time = now;
-          emit(e);
-          enter(Mode::Idle, now);
-          break;
-        }
-        case Homing::Result::Failed:
-          warn(Warning::HomingFailed, ms_.position, now, homing_.failure());
-          stop_motion();
-          stopped_from_ = Mode::Home;
-          enter(Mode::Stopping, now);
-          break;
-      }
-      break;
+    case Mode::Home: update_homing(now); break;
     case Mode::Free: hand_.update(ms_.position); break;
     case Mode::Fault: break;
+  }
+}
+
+// At rest: the motion that waited for it, or idle.
+void MotionCore::launch_pending_or_idle(Nanos now) noexcept {
+  if (pending_ != Pending::None) launch_pending(now);
+  else enter(Mode::Idle, now);
+}
+
+// The retract ends in position with the tip free; a tip still touched after retract_timeout
+// opens the loops (free), and a motion that waited for the retract is refused.
+void MotionCore::update_retract(double in_mode, Nanos now) noexcept {
+  if (ms_.motion_done() && ms_.all(st::kInPosition) && !ms_.tip_touched) {
+    launch_pending_or_idle(now);
+  } else if (in_mode > config_.params.retract_timeout) {
+    if (pending_ != Pending::None) warn(Warning::MoveRefused, ms_.position, now);
+    pending_ = Pending::None;
+    warn(Warning::TipNotFree, ms_.position, now);
+    stop_motion();
+    if (!hw_.set_loops(false)) ++hardware_errors_;
+    enter(Mode::Free, now);
+  }
+}
+
+// One step of the reference search: referenced and idle when done, braking when it failed.
+void MotionCore::update_homing(Nanos now) noexcept {
+  switch (homing_.step(ms_, hw_, now)) {
+    case Homing::Result::Running: break;
+    case Homing::Result::Done: {
+      homed_ = referenced_ = true;
+      Event e;
+      e.kind = EventKind::Homed;
+      e.time = now;
+      emit(e);
+      enter(Mode::Idle, now);
+      break;
+    }
+    case Homing::Result::Failed:
+      warn(Warning::HomingFailed, ms_.position, now, homing_.failure());
+      stop_motion();
+      stopped_from_ = Mode::Home;
+      enter(Mode::Stopping, now);
+      break;
   }
 }
 

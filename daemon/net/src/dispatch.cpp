@@ -93,62 +93,12 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Free&) { to_core(s, slot, {CommandKind::Free}); },
           [&](const protocol::Reset&) { to_core(s, slot, {CommandKind::Reset}); },
           [&](const protocol::HandMv& c) { to_core(s, slot, {CommandKind::HandMv, 0, 0, vec(c.delta), c.speed.value_or(0)}); },
-          [&](const protocol::Hello& c) {
-            if (!c.client.empty()) {
-              log_limited(spdlog::level::info, "hello", "client " + std::to_string(s.id()) + " is '" + c.client + "'");
-              s.info().name = c.client;
-              const bool owner = control_.owner() && control_.owner()->session == s.id();
-              control_.rename(s.id(), controller_name(s.id(), c.client));
-              if (owner) announce_control();  // everyone sees the owner under its new name
-            }
-            const bool sim = core_.snapshot().simulated;
-            reply(s, slot, format_ok("Hello", "IMESS 1 messd " + config_.version + " Caps jog goto home probe hand stats journal" +
-                                           (sim ? " sim" : "")));
-          },
-          [&](const protocol::Help&) {
-            std::string lines;
-            for (const auto& v : protocol::verb_table()) lines += protocol::help_line(v) + "\n";
-            reply(s, slot, lines + format_ok("Help"));
-          },
+          [&](const protocol::Hello& c) { hello(s, slot, c); },
+          [&](const protocol::Help&) { help(s, slot); },
           [&](const protocol::Status&) { reply(s, slot, format_ok("Status", status_line())); },
           [&](const protocol::Stats&) { reply(s, slot, format_ok("Stats", stats_line())); },
-          [&](const protocol::Get& c) {
-            ParamPlaces at{core_, config_.report_hz, config_.period_us, config_.backend};
-            if (c.name.empty()) {
-              std::string all;
-              for (const auto& p : param_table()) all += (all.empty() ? "" : " ") + std::string(p.name) + " " + param_text(p, at);
-              reply(s, slot, format_ok("Get", all));
-              return;
-            }
-            const ParamSpec* p = find_param(c.name);
-            if (!p) {
-              reply(s, slot, format_err(ErrorCode::UnknownParameter, "no parameter '" + c.name + "'; Get alone lists them all"));
-              return;
-            }
-            reply(s, slot, format_ok("Get", std::string(p->name) + " " + param_text(*p, at)));
-          },
-          [&](const protocol::Set& c) {
-            const ParamSpec* p = find_param(c.name);
-            if (!p) {
-              reply(s, slot, format_err(ErrorCode::UnknownParameter, "no parameter '" + c.name + "'; Get alone lists them all"));
-              return;
-            }
-            if (p->read_only) {
-              reply(s, slot, format_err(ErrorCode::ReadOnlyParameter, std::string(p->name) + " can be read but not set: " +
-                                                                          std::string(p->help) + "; Get reads it"));
-              return;
-            }
-            std::string error;
-            auto v = parse_param_value(*p, c.value, error);
-            if (!v) {  // not a number at all is BadNumber, a number out of range BadValue
-              reply(s, slot, format_err(protocol::parse_number(c.value) ? ErrorCode::BadValue : ErrorCode::BadNumber, error));
-              return;
-            }
-            spdlog::debug("client {} sets {} to {}", s.id(), p->name, *v);  // debug: a flood must not fill the disk
-            ParamPlaces at{core_, config_.report_hz, config_.period_us, config_.backend};
-            store_param(*p, at, *v);
-            reply(s, slot, format_ok("Set"));
-          },
+          [&](const protocol::Get& c) { get_param(s, slot, c); },
+          [&](const protocol::Set& c) { set_param(s, slot, c); },
           [&](const protocol::Replay& c) { on_replay(s, slot, c.from); },
           [&](const protocol::Quit&) {
             reply(s, slot, format_ok("Quit"));
@@ -164,6 +114,73 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Version&) { reply(s, slot, format_ok("Version", config_.version)); },
       },
       cmd);
+}
+
+// Hello [name]: the client's name (the control event shows the owner under it), then the
+// daemon's capabilities.
+void Server::hello(Session& s, std::uint32_t slot, const protocol::Hello& c) {
+  if (!c.client.empty()) {
+    log_limited(spdlog::level::info, "hello", "client " + std::to_string(s.id()) + " is '" + c.client + "'");
+    s.info().name = c.client;
+    const bool owner = control_.owner() && control_.owner()->session == s.id();
+    control_.rename(s.id(), controller_name(s.id(), c.client));
+    if (owner) announce_control();  // everyone sees the owner under its new name
+  }
+  const bool sim = core_.snapshot().simulated;
+  reply(s, slot, format_ok("Hello", "IMESS 1 messd " + config_.version + " Caps jog goto home probe hand stats journal" +
+                                 (sim ? " sim" : "")));
+}
+
+void Server::help(Session& s, std::uint32_t slot) {
+  std::string lines;
+  for (const auto& v : protocol::verb_table()) lines += protocol::help_line(v) + "\n";
+  reply(s, slot, lines + format_ok("Help"));
+}
+
+namespace {
+std::string unknown_param(const std::string& name) {
+  return format_err(ErrorCode::UnknownParameter, "no parameter '" + name + "'; Get alone lists them all");
+}
+}  // namespace
+
+// Get [name]: one parameter, or all of them in one line.
+void Server::get_param(Session& s, std::uint32_t slot, const protocol::Get& c) {
+  ParamPlaces at{core_, config_.report_hz, config_.period_us, config_.backend};
+  if (c.name.empty()) {
+    std::string all;
+    for (const auto& p : param_table()) all += (all.empty() ? "" : " ") + std::string(p.name) + " " + param_text(p, at);
+    reply(s, slot, format_ok("Get", all));
+    return;
+  }
+  const ParamSpec* p = find_param(c.name);
+  if (!p) {
+    reply(s, slot, unknown_param(c.name));
+    return;
+  }
+  reply(s, slot, format_ok("Get", std::string(p->name) + " " + param_text(*p, at)));
+}
+
+void Server::set_param(Session& s, std::uint32_t slot, const protocol::Set& c) {
+  const ParamSpec* p = find_param(c.name);
+  if (!p) {
+    reply(s, slot, unknown_param(c.name));
+    return;
+  }
+  if (p->read_only) {
+    reply(s, slot, format_err(ErrorCode::ReadOnlyParameter, std::string(p->name) + " can be read but not set: " +
+                                                                std::string(p->help) + "; Get reads it"));
+    return;
+  }
+  std::string error;
+  auto v = parse_param_value(*p, c.value, error);
+  if (!v) {  // not a number at all is BadNumber, a number out of range BadValue
+    reply(s, slot, format_err(protocol::parse_number(c.value) ? ErrorCode::BadValue : ErrorCode::BadNumber, error));
+    return;
+  }
+  spdlog::debug("client {} sets {} to {}", s.id(), p->name, *v);  // debug: a flood must not fill the disk
+  ParamPlaces at{core_, config_.report_hz, config_.period_us, config_.backend};
+  store_param(*p, at, *v);
+  reply(s, slot, format_ok("Set"));
 }
 
 std::string Server::status_line() {

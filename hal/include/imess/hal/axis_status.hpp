@@ -1,5 +1,6 @@
-// The axis status word in the card's layout, built from what every backend knows about an
-// axis, and the encoder-index window of the port backends (counts since the home switch).
+// The axis status word and input bits in the card's layout, built from what every backend
+// knows about an axis, and the encoder-index window of the port backends (counts since the
+// home switch).
 #pragma once
 #include <cstdint>
 
@@ -21,6 +22,20 @@ constexpr std::uint32_t status_word(const AxisFlags& f, std::uint32_t faults = 0
   if (f.in_position) s |= status::kInPosition;
   if (f.latch_valid) s |= status::kLatchValid;
   return s;
+}
+
+struct AxisInputs {
+  bool limit_neg = false, limit_pos = false, tip = false, home = false, index = false;
+};
+
+constexpr std::uint8_t input_bits(const AxisInputs& i) noexcept {
+  std::uint8_t bits = 0;
+  if (i.limit_pos) bits |= input::kLimitPos;
+  if (i.limit_neg) bits |= input::kLimitNeg;
+  if (i.tip) bits |= input::kTip;
+  if (i.home) bits |= input::kHome;
+  if (i.index) bits |= input::kIndex;
+  return bits;
 }
 
 // The index mark repeats every pitch counts after the home switch released, width counts

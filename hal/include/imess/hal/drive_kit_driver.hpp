@@ -11,6 +11,7 @@
 
 #include "imess/hal/motion_backend.hpp"
 #include "imess/hal/port_io.hpp"
+#include "imess/hal/servo_interval.hpp"
 #include "imess/hal/trapezoid_planner.hpp"
 
 namespace imess::hal {
@@ -75,8 +76,6 @@ class DriveKitDriver final : public MotionBackend {
   double max_following_error_seen(int axis) const noexcept { return axes_[axis].max_error; }
   unsigned long handshake_misses() const noexcept { return handshake_misses_; }
   std::int64_t counts(int axis) const noexcept { return axes_[axis].count; }
-  // DAC resolution in mm/s per mV step (mode 1).
-  double speed_resolution(int axis) const noexcept { return 1.0 / config_.axes[axis].mv_per_mm_s; }
 
  private:
   struct Axis {
@@ -93,14 +92,22 @@ class DriveKitDriver final : public MotionBackend {
   void write_command(int a, double velocity) noexcept;
   void safe_state(std::uint16_t outputs) noexcept;
   std::uint16_t enable_bits() const noexcept;
+  // The steps of read_state, in their order.
+  std::uint32_t open_safety_inputs(std::uint16_t in) const noexcept;
+  void trip_safety_inputs(std::uint16_t in) noexcept;
+  void widen_counters() noexcept;
+  void latch_probe(bool contact) noexcept;
+  std::uint8_t sample_inputs(int a, std::uint16_t in, bool raw_probe) noexcept;
+  bool servo_axis(int a, bool lim_neg, bool lim_pos, double dt) noexcept;
+  std::uint32_t axis_status(int a, const MachineState& out) const noexcept;
 
   PortIo& port_;
   const Clock& clock_;
   DriveKitConfig config_;
   AxisArray<Axis> axes_{};
-  bool loops_closed_ = false, latch_valid_ = false, servo_started_ = false, last_contact_ = false;
+  bool loops_closed_ = false, latch_valid_ = false, last_contact_ = false;
   Vec3 latched_ = Vec3::Zero();
-  Nanos last_servo_{0};
+  ServoInterval servo_interval_;
   std::uint16_t strobe_ = 0, outputs_ = 0;
   std::uint32_t safety_faults_ = 0;
   unsigned long handshake_misses_ = 0;

@@ -10,6 +10,7 @@
 #include "imess/hal/base_rate.hpp"
 #include "imess/hal/motion_backend.hpp"
 #include "imess/hal/port_io.hpp"
+#include "imess/hal/servo_interval.hpp"
 #include "imess/hal/step_generator.hpp"
 #include "imess/hal/trapezoid_planner.hpp"
 
@@ -59,10 +60,8 @@ class ParportStepperDriver final : public MotionBackend, public BaseRateDriver {
   double max_step_rate() const noexcept;
   const StepTiming& timing() const noexcept { return gen_.timing(); }
   std::int64_t step_count(int axis) const noexcept { return gen_.count(axis); }
-  std::int64_t zero_offset(int axis) const noexcept { return zero_[axis]; }
   // Step count for an absolute coordinate: round(mm × steps/mm) + zero offset (BRIEF §4).
   std::int64_t steps_for(int axis, double mm) const noexcept;
-  bool stopped_by_input() const noexcept { return halted_.load(std::memory_order_relaxed); }
 
  private:
   std::uint16_t data_port() const noexcept { return config_.base; }
@@ -96,8 +95,7 @@ class ParportStepperDriver final : public MotionBackend, public BaseRateDriver {
   AxisArray<double> vmax_{}, amax_{};  // steps/s, steps/s²
   AxisArray<std::int64_t> index_pitch_{}, index_width_{};
   bool loops_closed_ = false;
-  Nanos last_servo_{0};
-  bool servo_started_ = false;
+  ServoInterval servo_interval_;
 };
 
 }  // namespace imess::hal

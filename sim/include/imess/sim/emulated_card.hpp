@@ -7,6 +7,8 @@
 #include <string>
 
 #include "imess/hal/link.hpp"
+#include "imess/hal/link_codec.hpp"
+#include "imess/hal/servo_card_protocol.hpp"
 #include "imess/sim/mechanics.hpp"
 #include "imess/hal/trapezoid_planner.hpp"
 
@@ -28,12 +30,8 @@ class EmulatedCard {
 
   // Runs the firmware and the machine up to time t (seconds since power-on).
   void advance_to(double t) noexcept;
-  // Handles one link request; returns the reply length.
+  // Handles one link request; returns the reply length (-1: the reply does not fit).
   int handle(std::span<const std::uint8_t> request, std::span<std::uint8_t> reply) noexcept;
-
-  double time() const noexcept { return time_; }
-  Mechanics& machine() noexcept { return machine_; }
-  unsigned long requests() const noexcept { return requests_; }
 
  private:
   struct Axis {
@@ -54,13 +52,29 @@ class EmulatedCard {
   std::uint8_t inputs(int a) const noexcept;
   void open_all() noexcept;
 
+  // The link operations (hal/servo_card_protocol.hpp), one each: read the request's
+  // arguments from r, act, append the reply's data to out; Status::Ok or the refusal.
+  using Op = hal::card::Op;
+  using Status = hal::card::Status;
+  Status answer(Op op, hal::LinkReader& r, hal::LinkWriter& out) noexcept;
+  Status ready_axis_table(hal::LinkReader& r, unsigned& mask) const noexcept;
+  Status read_info(hal::LinkReader& r, hal::LinkWriter& out) const noexcept;
+  Status boot(hal::LinkReader& r) noexcept;
+  Status load_params(hal::LinkReader& r) noexcept;
+  Status set_loops(Op op, hal::LinkReader& r) noexcept;
+  Status jog_absolute(hal::LinkReader& r) noexcept;
+  Status jog_stop(hal::LinkReader& r) noexcept;
+  Status set_position(hal::LinkReader& r) noexcept;
+  Status read_state(hal::LinkReader& r, hal::LinkWriter& out) const noexcept;
+  Status read_latch(hal::LinkReader& r, hal::LinkWriter& out) noexcept;
+  Status write_outputs(hal::LinkReader& r) noexcept;
+
   CardConfig config_;
   Mechanics& machine_;
   hal::AxisArray<Axis> axes_{};
   double time_ = 0;
   bool running_ = false;  // time_ set by the first advance_to
   bool booted_ = false, params_ = false, latch_on_falling_ = false;
-  unsigned long requests_ = 0;
 };
 
 // The transport to the emulated card: brings the card up to the clock's time, then lets

@@ -66,6 +66,12 @@ class MotionCore {
   void retract_from(const Vec3& latched, const Vec3& dir, Nanos now) noexcept;
   void check_limits(Nanos now) noexcept;
   void update_mode(Nanos now) noexcept;
+  void stand_still(Nanos now) noexcept;
+  void drop_axes_into_limits(Vec3& v) const noexcept;
+  Vec3 jog_target(const Vec3& u) const noexcept;
+  void launch_pending_or_idle(Nanos now) noexcept;
+  void update_retract(double in_mode, Nanos now) noexcept;
+  void update_homing(Nanos now) noexcept;
   void enter(Mode m, Nanos now) noexcept;
   void fault(FaultKind f, Nanos now) noexcept;
   void emit(const Event& e) noexcept;

@@ -103,6 +103,10 @@ class Server {
   void on_command(Session& s, std::uint32_t slot, const protocol::Command& cmd);
   bool to_core(Session& s, std::uint32_t slot, core::Command c);
   void stop_request(Session& s, std::uint32_t slot);
+  void hello(Session& s, std::uint32_t slot, const protocol::Hello& c);
+  void help(Session& s, std::uint32_t slot);
+  void get_param(Session& s, std::uint32_t slot, const protocol::Get& c);
+  void set_param(Session& s, std::uint32_t slot, const protocol::Set& c);
   std::string status_line();
   std::string stats_line();
   // hits.cpp, replay.cpp
