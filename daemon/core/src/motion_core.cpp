@@ -243,12 +243,17 @@ Refusal MotionCore::start_jog(const Vec3& percent, Nanos now) noexcept {
   pending_ = Pending::None;
   const double speed = v.norm();
   Vec3 u = v.normalized();
-  const Vec3 target = jog_target(u);
+  return start_straight(jog_target(u), u, speed, Mode::Jog, now);
+}
+
+// A jog or move along the line u toward target at path speed speed: notes which limit
+// switches it started in, closes the loops, starts every axis.
+Refusal MotionCore::start_straight(const Vec3& target, const Vec3& u, double speed, Mode mode, Nanos now) noexcept {
   for (int a = 0; a < kAxes; ++a) started_in_limit_[a] = ms_.limit_side(a);
   if (!ms_.loops_closed() && !hw_.set_loops(true)) return Refusal::Hardware;
   if (!hw_.move(straight_moves(target, u, speed), moving_axes(u))) return Refusal::Hardware;
   motion_dir_ = u;
-  enter(Mode::Jog, now);
+  enter(mode, now);
   return Refusal::None;
 }
 
@@ -317,13 +322,7 @@ Refusal MotionCore::go_to(const Vec3& target, double speed, Nanos now) noexcept 
   if (d.isZero()) return Refusal::None;
   Vec3 u = d.normalized();
   if (ms_.tip_touched && !away_from_touch(u)) return Refusal::TipTouched;
-  for (int a = 0; a < kAxes; ++a)
-    started_in_limit_[a] = ms_.limit_side(a);
-  if (!ms_.loops_closed() && !hw_.set_loops(true)) return Refusal::Hardware;
-  if (!hw_.move(straight_moves(target, u, v), moving_axes(u))) return Refusal::Hardware;
-  motion_dir_ = u;
-  enter(Mode::Move, now);
-  return Refusal::None;
+  return start_straight(target, u, v, Mode::Move, now);
 }
 
 Refusal MotionCore::start_homing(Nanos now) noexcept {

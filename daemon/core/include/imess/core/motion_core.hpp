@@ -69,6 +69,7 @@ class MotionCore {
   void stand_still(Nanos now) noexcept;
   void drop_axes_into_limits(Vec3& v) const noexcept;
   Vec3 jog_target(const Vec3& u) const noexcept;
+  Refusal start_straight(const Vec3& target, const Vec3& u, double speed, Mode mode, Nanos now) noexcept;
   void launch_pending_or_idle(Nanos now) noexcept;
   void update_retract(double in_mode, Nanos now) noexcept;
   void update_homing(Nanos now) noexcept;
