@@ -49,6 +49,15 @@ struct MachineState {
   bool faulted() const { return any(status::kFaultMask); }
 };
 
+// One servo period of a planned path (the motion core samples the planner's segments every
+// cycle): where every axis must be at the end of this period, mm, and how fast it moves
+// there, mm/s (the feed-forward). Consecutive setpoints are continuous and within the axes'
+// speed and acceleration limits: the planner made them so.
+struct Setpoint {
+  Vec3 position = Vec3::Zero();
+  Vec3 velocity = Vec3::Zero();
+};
+
 struct AxisMove {
   double target = 0;    // mm, absolute
   double velocity = 0;  // mm/s, > 0
@@ -71,6 +80,14 @@ class MotionBackend {
   virtual bool set_loops(bool closed) noexcept = 0;
   // Starts a trapezoid move on the axes whose bit is set in axis_mask; others keep going.
   virtual bool move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept = 0;
+  // Follows a planned path: called once per cycle while the core runs queued segments, each
+  // call the next servo period's setpoint for every axis (a per-axis trapezoid started by
+  // move() is replaced). stop() ends following and brakes as always. Backends that cannot
+  // follow a path keep this default and return false (the core refuses queued motion).
+  virtual bool follow(const Setpoint& sp) noexcept {
+    (void)sp;
+    return false;
+  }
   // Decelerates every axis to rest with the given per-axis deceleration (mm/s²).
   virtual bool stop(const Vec3& decel) noexcept = 0;
   // Redefines the current position of one axis (homing: the index becomes value).
