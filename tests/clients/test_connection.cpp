@@ -2,6 +2,12 @@
 // both ways (also split across reads), loss detection, and reconnecting after a restart.
 #include <catch2/catch.hpp>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <thread>
 
 #include "fake_daemon.hpp"
@@ -153,4 +159,31 @@ TEST_CASE("Connection::finish: the last line arrives and the link ends without a
     REQUIRE(daemon.wait_for_gone(1));
     CHECK(daemon.resets() == 1);
   }
+}
+
+TEST_CASE("Connection: a daemon closing with our line unread (a reset) reads as closed by messd") {
+  // A bare listener that accepts, lets the client's line arrive unread and closes: the
+  // kernel answers with a reset instead of an orderly end.
+  int listener = ::socket(AF_INET, SOCK_STREAM, 0);
+  REQUIRE(listener >= 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t len = sizeof addr;
+  REQUIRE(::bind(listener, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0);
+  REQUIRE(::listen(listener, 1) == 0);
+  REQUIRE(::getsockname(listener, reinterpret_cast<sockaddr*>(&addr), &len) == 0);
+
+  auto c = Connection::open(Endpoint{"127.0.0.1", ntohs(addr.sin_port)});
+  int peer = ::accept(listener, nullptr, nullptr);
+  REQUIRE(peer >= 0);
+  REQUIRE(c.send_line("Hello unread"));
+  pollfd p{peer, POLLIN, 0};
+  REQUIRE(::poll(&p, 1, 3000) == 1);  // the line sits in the daemon's socket, unread
+  ::close(peer);
+  ::close(listener);
+
+  std::vector<std::string> lines;
+  CHECK(collect(c, lines, 1) == ReadStatus::Closed);
+  CHECK(c.close_reason() == "closed by messd (connection reset)");
 }

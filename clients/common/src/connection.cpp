@@ -191,7 +191,9 @@ ReadStatus Connection::receive(const LineHandler& on_line) {
     }
     if (errno == EINTR) continue;
     if (errno == EAGAIN || errno == EWOULDBLOCK) return any ? ReadStatus::Lines : ReadStatus::Idle;
-    lost(error_text(errno));
+    // A daemon that closes while our last lines are still unread in its socket resets the
+    // connection instead of ending it: for the user that is the same event.
+    lost(errno == ECONNRESET ? "closed by messd (connection reset)" : error_text(errno));
     return ReadStatus::Closed;
   }
 }
