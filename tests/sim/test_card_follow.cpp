@@ -182,3 +182,36 @@ TEST_CASE("card follow: a host that stops sending setpoints mid-path gets a brak
   CHECK(rest.motion_done());
   CHECK(rest.all(st::kCommTimeout));
 }
+
+TEST_CASE("card follow: the motion core reading the Follow replies faults CommLost on a lost frame") {
+  CardFollowRig rig;
+  core::CoreConfig config = default_options().core;
+  config.params.idle_open_time = 60;  // the loops stay closed while the test feeds the card
+  core::MotionCore core(rig.driver(), config, &rig.mechanics());
+  core.start(rig.clock().now());
+  REQUIRE(core.mode() == Mode::Idle);
+  std::vector<Event> events;
+  auto cycle = [&] {
+    core.cycle(rig.clock().now());  // its read_state() takes the Follow reply: no frame of its own
+    Event e;
+    while (core.events().pop(e)) events.push_back(e);
+  };
+  const auto path = rig.sampled_path(corner_and_arc_path());
+  const long frames = rig.link().transactions;
+  for (std::size_t i = 0; i < 250; ++i) {
+    REQUIRE(rig.driver().follow(path[i]));
+    cycle();
+    REQUIRE(core.mode() == Mode::Idle);
+    rig.tick();
+  }
+  CHECK(rig.link().transactions - frames == 250);
+  rig.link().inject(Fault::LoseRequest);
+  CHECK_FALSE(rig.driver().follow(path[250]));
+  cycle();
+  CHECK(core.mode() == Mode::Fault);
+  bool comm_lost = false;
+  for (const auto& e : events) comm_lost = comm_lost || (e.kind == EventKind::Fault && e.fault == core::FaultKind::CommLost);
+  CHECK(comm_lost);
+  const auto card = rig.card_status();
+  for (int a = 0; a < 3; ++a) CHECK((card[a] & st::kClosedLoop) == 0);  // the core opened the loops
+}
