@@ -73,6 +73,7 @@ void ServoCardDriver::set_up_call(const char* what) {
 }
 
 void ServoCardDriver::initialise(bool force_reboot) {
+  comm_lost_ = have_followed_ = false;
   // 1. Firmware: boot when missing, wrong, or forced (-r); retry a wrong revision.
   for (int attempt = 0;; ++attempt) {
     begin(Op::ReadInfo);
@@ -119,10 +120,32 @@ void ServoCardDriver::initialise(bool force_reboot) {
 std::string ServoCardDriver::describe() const { return "servo card, firmware '" + revision_ + "'"; }
 
 bool ServoCardDriver::read_state(MachineState& out) noexcept {
-  begin(Op::ReadState);
+  if (have_followed_) {  // the Follow reply of this cycle: no second round trip
+    have_followed_ = false;
+    out = followed_;
+  } else {
+    begin(Op::ReadState);
+    table(kAllAxes);
+    std::span<const std::uint8_t> payload;
+    if (!exchange(payload) || !parse_state(payload, out)) return false;
+  }
+  if (comm_lost_)
+    for (auto& s : out.status) s |= status::kCommTimeout;
+  return true;
+}
+
+bool ServoCardDriver::follow(const Setpoint& sp) noexcept {
+  // Measured on the link (tests/sim/test_card_follow.cpp): 53 bytes out, 40 back.
+  begin(Op::Follow);
   table(kAllAxes);
+  for (int a = 0; a < kAxes; ++a) writer_.f64(sp.position[a]).f64(sp.velocity[a]);
   std::span<const std::uint8_t> payload;
-  if (!exchange(payload)) return false;
+  have_followed_ = exchange(payload) && parse_state(payload, followed_);
+  if (!have_followed_) comm_lost_ = true;
+  return have_followed_;
+}
+
+bool ServoCardDriver::parse_state(std::span<const std::uint8_t> payload, MachineState& out) noexcept {
   LinkReader r(payload);
   for (int a = 0; a < kAxes; ++a) {
     out.position[a] = r.f64();
@@ -182,7 +205,9 @@ bool ServoCardDriver::set_position(int axis, double value) noexcept {
 bool ServoCardDriver::reset_faults() noexcept {
   begin(Op::ResetAxes);
   table(kAllAxes);
-  return simple();
+  if (!simple()) return false;
+  comm_lost_ = have_followed_ = false;
+  return true;
 }
 
 }  // namespace imess::hal

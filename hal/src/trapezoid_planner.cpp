@@ -20,6 +20,13 @@ void TrapezoidPlanner::start(double target, double vmax, double amax) noexcept {
   done_ = false;
 }
 
+void TrapezoidPlanner::track(double position, double velocity) noexcept {
+  pos_ = target_ = position;
+  vel_ = velocity;
+  vmax_ = std::max(std::abs(velocity), 1e-9);
+  done_ = false;
+}
+
 void TrapezoidPlanner::stop(double decel) noexcept {
   if (done_) return;
   amax_ = decel;

@@ -17,9 +17,18 @@ namespace st = hal::status;
 
 namespace {
 constexpr double kMaxCatchUp = 0.5;  // s; a stalled caller does not make the card spin for ages
+// Following: the setpoints stopped coming when none arrived for this many host periods (one
+// lost frame is enough: a gap in a per-period setpoint stream cannot be made up).
+constexpr double kFollowWatchdogPeriods = 1.5;
+// Follow frames that the firmware refuses as implausible: faster than this many times vmax,
+// or farther from the command than that speed covers in two periods.
+constexpr double kFollowSpeedMargin = 1.1;
+// Weight of one measured frame interval in the averaged host period.
+constexpr double kSpanAveraging = 1.0 / 8;
 }
 
 EmulatedCard::EmulatedCard(CardConfig config, Mechanics& machine) : config_(std::move(config)), machine_(machine) {
+  follow_span_ = config_.follow_period;
   for (int a = 0; a < kAxes; ++a) {
     axes_[a].offset = config_.absolute_scales ? 0.0 : machine_.carriage()[a];
     axes_[a].profile.reset(encoder(a));
@@ -34,8 +43,10 @@ double EmulatedCard::quantise(double mm) const noexcept {
 double EmulatedCard::encoder(int a) const noexcept { return quantise(machine_.carriage()[a] - axes_[a].offset); }
 
 void EmulatedCard::open_all() noexcept {
+  following_ = false;
   for (int a = 0; a < kAxes; ++a) {
     axes_[a].closed = false;
+    axes_[a].following = false;
     machine_.set_driven(a, false);
   }
 }
@@ -53,17 +64,70 @@ void EmulatedCard::advance_to(double t) noexcept {
   }
 }
 
+void EmulatedCard::end_following(bool brake) noexcept {
+  following_ = false;
+  for (auto& ax : axes_) {
+    if (!ax.following) continue;
+    ax.following = false;
+    if (brake) ax.profile.stop(ax.amax);  // from the tracked command's velocity
+  }
+}
+
+void EmulatedCard::follow_tick() noexcept {
+  if (!following_) return;
+  follow_age_ += config_.tick;
+  const double span = follow_span_;
+  bool moving = false, into_limit = false;
+  for (int a = 0; a < kAxes; ++a) {
+    const Axis& ax = axes_[a];
+    if (!ax.following) continue;
+    moving = moving || ax.v1 != 0;
+    const double v = ax.profile.velocity();
+    if ((ax.outputs & hal::card::output::kLimitSwitchesOn) &&
+        ((v < 0 && machine_.limit_neg(a)) || (v > 0 && machine_.limit_pos(a))))
+      into_limit = true;
+  }
+  if (into_limit) return end_following(true);  // firmware limit protection, as for profiles
+  if (!moving && follow_age_ >= span - 0.5 * config_.tick) {
+    // Arrived at a setpoint at rest: the path ended (or pauses); done until the next frame.
+    for (auto& ax : axes_)
+      if (ax.following) ax.profile.reset(ax.p1);
+    following_ = false;
+    for (auto& ax : axes_) ax.following = false;
+    return;
+  }
+  if (follow_age_ > kFollowWatchdogPeriods * span) {
+    // The setpoints stopped coming: brake on the card, report a communication timeout.
+    for (auto& ax : axes_) ax.faults |= st::kCommTimeout;
+    return end_following(true);
+  }
+  // Cubic Hermite from (p0, v0) to (p1, v1) over the span; a late frame: on at v1.
+  const double s = std::min(follow_age_ / span, 1.0), late = std::max(0.0, follow_age_ - span);
+  const double s2 = s * s, s3 = s2 * s;
+  for (auto& ax : axes_) {
+    if (!ax.following) continue;
+    const double p = (2 * s3 - 3 * s2 + 1) * ax.p0 + (s3 - 2 * s2 + s) * span * ax.v0 + (3 * s2 - 2 * s3) * ax.p1 +
+                     (s3 - s2) * span * ax.v1 + late * ax.v1;
+    const double v = (6 * s2 - 6 * s) * (ax.p0 - ax.p1) / span + (3 * s2 - 4 * s + 1) * ax.v0 + (3 * s2 - 2 * s) * ax.v1;
+    ax.profile.track(p, v);
+  }
+}
+
 void EmulatedCard::tick() noexcept {
+  follow_tick();
   for (int a = 0; a < kAxes; ++a) {
     Axis& ax = axes_[a];
     if (!ax.closed) {
       ax.profile.reset(encoder(a));
+      ax.following = false;
       continue;
     }
-    // Firmware limit protection: a profile heading into a closed limit switch brakes at amax.
-    if (ax.outputs & hal::card::output::kLimitSwitchesOn)
-      ax.profile.brake_into_limits(machine_.limit_neg(a), machine_.limit_pos(a), ax.amax);
-    ax.profile.step(config_.tick);
+    if (!ax.following) {
+      // Firmware limit protection: a profile heading into a closed limit switch brakes at amax.
+      if (ax.outputs & hal::card::output::kLimitSwitchesOn)
+        ax.profile.brake_into_limits(machine_.limit_neg(a), machine_.limit_pos(a), ax.amax);
+      ax.profile.step(config_.tick);
+    }
     double error = ax.profile.position() - (machine_.carriage()[a] - ax.offset);
     if (std::abs(error) > ax.max_following_error) {
       ax.faults |= st::kFollowingError;
@@ -102,7 +166,7 @@ std::uint8_t EmulatedCard::inputs(int a) const noexcept {
 
 std::uint32_t EmulatedCard::status_word(int a) const noexcept {
   const Axis& ax = axes_[a];
-  const bool done = ax.profile.done();
+  const bool done = ax.profile.done() && !ax.following;  // following: done only on arrival at rest
   return hal::status_word({machine_.limit_neg(a), machine_.limit_pos(a), done, ax.closed,
                            done && std::abs(ax.profile.position() - encoder(a)) < config_.in_position_window,
                            ax.latch_valid},
@@ -169,6 +233,7 @@ Status EmulatedCard::answer(Op op, LinkReader& r, hal::LinkWriter& out) noexcept
     case Op::JogAbsolute: return jog_absolute(r);
     case Op::JogStop: return jog_stop(r);
     case Op::SetPosition: return set_position(r);
+    case Op::Follow: return follow(r, out);
     case Op::ReadState: return read_state(r, out);
     case Op::ReadLatch: return read_latch(r, out);
     case Op::WriteOutputs: return write_outputs(r);
@@ -234,6 +299,7 @@ Status EmulatedCard::set_loops(Op op, LinkReader& r) noexcept {
     Axis& ax = axes_[a];
     if (op == Op::ResetAxes) ax.faults = 0;
     bool close = op == Op::CloseLoops && !(ax.faults & st::kFaultMask);
+    if (!close) ax.following = false;
     if (close && !ax.closed) ax.profile.reset(encoder(a));
     ax.closed = close;
     machine_.set_driven(a, close);
@@ -249,6 +315,7 @@ Status EmulatedCard::jog_absolute(LinkReader& r) noexcept {
   if (auto s = read_axis_values(r, mask, v); s != Status::Ok) return s;
   for (int a = 0; a < kAxes; ++a)
     if (named(mask, a) && (!std::isfinite(v[a][0]) || !(v[a][1] > 0) || !(v[a][2] > 0))) return Status::BadValue;
+  if (following_) end_following(true);  // a move ends following; axes it does not name brake
   for (int a = 0; a < kAxes; ++a)
     if (named(mask, a) && axes_[a].closed)
       axes_[a].profile.start(v[a][0], std::min(v[a][1], axes_[a].vmax), std::min(v[a][2], axes_[a].amax));
@@ -264,8 +331,10 @@ Status EmulatedCard::jog_stop(LinkReader& r) noexcept {
     if (named(mask, a)) {
       const double d = decel[a][0];
       if (!(d > 0) || !std::isfinite(d)) return Status::BadValue;
-      axes_[a].profile.stop(std::min(d, axes_[a].amax));
     }
+  if (following_) end_following(true);  // axes the stop does not name brake at amax
+  for (int a = 0; a < kAxes; ++a)
+    if (named(mask, a)) axes_[a].profile.stop(std::min(decel[a][0], axes_[a].amax));
   return Status::Ok;
 }
 
@@ -280,16 +349,63 @@ Status EmulatedCard::set_position(LinkReader& r) noexcept {
       double old_offset = axes_[a].offset;
       axes_[a].offset = machine_.carriage()[a] - value[a][0];
       axes_[a].profile.shift(old_offset - axes_[a].offset);
+      axes_[a].p0 += old_offset - axes_[a].offset;
+      axes_[a].p1 += old_offset - axes_[a].offset;
     }
   return Status::Ok;
+}
+
+// Follow: the setpoint for the end of the next host period; the reply is ReadState's.
+Status EmulatedCard::follow(LinkReader& r, hal::LinkWriter& out) noexcept {
+  unsigned mask = 0;
+  if (auto s = ready_axis_table(r, mask); s != Status::Ok) return s;
+  hal::AxisArray<std::array<double, 2>> sp{};  // position, velocity
+  if (auto s = read_axis_values(r, mask, sp); s != Status::Ok) return s;
+  for (int a = 0; a < kAxes; ++a) {
+    if (!named(mask, a)) continue;
+    const Axis& ax = axes_[a];
+    const double vlim = kFollowSpeedMargin * ax.vmax;
+    if (!std::isfinite(sp[a][0]) || !std::isfinite(sp[a][1]) || std::abs(sp[a][1]) > vlim) return Status::BadValue;
+    if (ax.closed && std::abs(sp[a][0] - ax.profile.position()) > 2 * vlim * follow_span_ + 1e-6) return Status::BadValue;
+  }
+  // The host period, measured between frames while following (averaged: the card's ticks
+  // and the host's clock are not in step).
+  if (following_)
+    follow_span_ += (std::clamp(follow_age_, config_.tick, kFollowWatchdogPeriods * follow_span_) - follow_span_) *
+                    kSpanAveraging;
+  bool any = false;
+  for (int a = 0; a < kAxes; ++a) {
+    Axis& ax = axes_[a];
+    if (!named(mask, a) || !ax.closed) {
+      if (ax.following) ax.profile.stop(ax.amax);  // no setpoint for it: it brakes
+      ax.following = false;
+      continue;
+    }
+    const double p = sp[a][0], v = sp[a][1];
+    // An axis at rest that is told to stay there stays done (no flicker of the done bits).
+    if (!ax.following && ax.profile.done() && v == 0 && p == ax.profile.position()) continue;
+    ax.p0 = ax.profile.position();  // the command now: a running trapezoid is replaced
+    ax.v0 = ax.profile.velocity();
+    ax.p1 = p;
+    ax.v1 = v;
+    ax.following = any = true;
+  }
+  following_ = any;
+  follow_age_ = 0;
+  write_state(mask, out);
+  return Status::Ok;
+}
+
+void EmulatedCard::write_state(unsigned mask, hal::LinkWriter& out) const noexcept {
+  for (int a = 0; a < kAxes; ++a)
+    if (named(mask, a)) out.f64(encoder(a)).u32(status_word(a)).u8(inputs(a));
 }
 
 Status EmulatedCard::read_state(LinkReader& r, hal::LinkWriter& out) const noexcept {
   unsigned mask = 0;
   if (auto s = ready_axis_table(r, mask); s != Status::Ok) return s;
   if (!r.at_end()) return Status::BadLength;
-  for (int a = 0; a < kAxes; ++a)
-    if (named(mask, a)) out.f64(encoder(a)).u32(status_word(a)).u8(inputs(a));
+  write_state(mask, out);
   return Status::Ok;
 }
 

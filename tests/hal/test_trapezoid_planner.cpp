@@ -50,3 +50,26 @@ TEST_CASE("stop brakes to rest and a new target from speed reverses cleanly") {
   CHECK(p.done());
   CHECK(p.position() - before == Approx(100.0 * 100.0 / 2000 + 0.2 * 0).margin(0.02));
 }
+
+TEST_CASE("a tracked path point is not done, and stop() or start() go on from its velocity") {
+  TrapezoidPlanner p;
+  p.reset(0);
+  p.track(10, 100);
+  CHECK_FALSE(p.done());
+  CHECK(p.velocity() == 100);
+  p.stop(1000);
+  CHECK(p.target() == Approx(15));  // 10 + 100²/(2·1000)
+  double prev_v = p.velocity();
+  while (!p.done()) {
+    p.step(1e-4);
+    REQUIRE(p.velocity() <= prev_v + 1e-12);  // braking only
+    prev_v = p.velocity();
+  }
+  CHECK(p.position() == Approx(15).margin(1e-6));
+  p.track(20, -50);
+  p.start(30, 100, 1000);  // retargets from −50 mm/s: first brakes, then heads to 30
+  p.step(1e-4);
+  CHECK(p.velocity() == Approx(-49.9));
+  while (!p.done()) p.step(1e-4);
+  CHECK(p.position() == 30);
+}

@@ -1,5 +1,6 @@
 // ServoCardDriver: the MotionBackend for an MCU-style servo card that closes the position
-// loops and runs trapezoid profiles itself; spoken to only through a Link.
+// loops and runs trapezoid profiles or follows per-period setpoints itself; spoken to only
+// through a Link.
 #pragma once
 #include <string>
 
@@ -30,6 +31,11 @@ class ServoCardDriver final : public MotionBackend {
   bool read_latch(Vec3& latched) noexcept override;
   bool set_loops(bool closed) noexcept override;
   bool move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept override;
+  // One Follow frame: the setpoint out, the card's state back in the same round trip; the
+  // next read_state() returns that state (as of this call) without touching the link. A
+  // failed exchange latches a communication timeout (status bit 0 on every axis: the core's
+  // CommLost) until reset_faults(): a setpoint stream with a gap cannot be resumed.
+  bool follow(const Setpoint& sp) noexcept override;
   bool stop(const Vec3& decel) noexcept override;
   bool set_position(int axis, double value) noexcept override;
   bool reset_faults() noexcept override;
@@ -43,6 +49,7 @@ class ServoCardDriver final : public MotionBackend {
   // Sends writer_, checks the status byte; on success reply_ holds the payload after it.
   bool exchange(std::span<const std::uint8_t>& payload) noexcept;
   bool simple() noexcept;
+  bool parse_state(std::span<const std::uint8_t> payload, MachineState& out) noexcept;
   [[noreturn]] void fail(const std::string& what) const;
   void set_up_call(const char* what);
 
@@ -52,6 +59,9 @@ class ServoCardDriver final : public MotionBackend {
   std::array<std::uint8_t, kMaxFrame> reply_{};
   std::string revision_;
   unsigned long errors_ = 0;
+  MachineState followed_{};     // the state that came back with the last Follow frame
+  bool have_followed_ = false;  // not yet returned by read_state()
+  bool comm_lost_ = false;      // a Follow frame failed: report kCommTimeout until reset
 };
 
 }  // namespace imess::hal

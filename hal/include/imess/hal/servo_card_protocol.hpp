@@ -16,6 +16,8 @@ enum class Op : std::uint8_t {
   JogAbsolute = 0x21,   // table, per axis f64 target, f64 velocity, f64 accel -> status
   JogStop = 0x22,       // table, per axis f64 decel -> status
   SetPosition = 0x23,   // table, per axis f64 value -> status
+  Follow = 0x24,        // table, per axis f64 position, f64 velocity (the setpoint one motion period
+                        // ahead) -> status, then the ReadState reply: one round trip per cycle
   ReadState = 0x30,     // table -> status, per axis f64 position, u32 status word, u8 inputs
   ReadLatch = 0x31,     // table -> status, per axis f64 latched position (clears latch-valid)
   WriteOutputs = 0x40,  // table, per axis u8 output bits -> status

@@ -11,6 +11,9 @@ class TrapezoidPlanner {
   void reset(double position) noexcept;
   // vmax > 0, amax > 0 (units/s, units/s²); works from any current velocity.
   void start(double target, double vmax, double amax) noexcept;
+  // Tracks a path followed from outside (the card firmware's setpoint interpolation): the
+  // profile stands at position with velocity, not done; start() and stop() go on from there.
+  void track(double position, double velocity) noexcept;
   // Brakes to rest with the given deceleration.
   void stop(double decel) noexcept;
   // Where the profile is going: -1, +1, or 0 when it stands at its target.

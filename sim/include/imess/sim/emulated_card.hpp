@@ -1,7 +1,8 @@
 // EmulatedCard: an MCU-style servo card answering the link protocol of
 // hal/servo_card_protocol.hpp. Its firmware closes the position loops, runs trapezoid
-// profiles, stops axes at limit switches, watches the following error and latches all
-// axes on the probe edge; the Mechanics behind it is the machine.
+// profiles or follows the host's per-period setpoints, stops axes at limit switches,
+// watches the following error and latches all axes on the probe edge; the Mechanics
+// behind it is the machine.
 #pragma once
 #include <span>
 #include <string>
@@ -22,6 +23,7 @@ struct CardConfig {
   double encoder_resolution = 0.0001;      // mm per count
   double in_position_window = 0.005;       // mm
   bool absolute_scales = true;             // false: counters read 0 where the machine stands at power-on
+  double follow_period = 0.001;            // s, the host period assumed until Follow frames measured it
 };
 
 class EmulatedCard {
@@ -43,6 +45,10 @@ class EmulatedCard {
     bool latch_valid = false;
     double latched = 0;
     std::uint8_t outputs = 0;
+    // Following (Op::Follow): a cubic from the command when the last setpoint arrived
+    // (p0, v0) to that setpoint (p1, v1) over follow_span_; profile tracks the command.
+    bool following = false;
+    double p0 = 0, v0 = 0, p1 = 0, v1 = 0;
   };
 
   void tick() noexcept;
@@ -51,6 +57,11 @@ class EmulatedCard {
   std::uint32_t status_word(int a) const noexcept;
   std::uint8_t inputs(int a) const noexcept;
   void open_all() noexcept;
+  // Following: per tick the interpolated command of every following axis; ends on arrival
+  // at rest, brakes at amax when the setpoints stop coming (kCommTimeout) or a limit closes.
+  void follow_tick() noexcept;
+  void end_following(bool brake) noexcept;
+  void write_state(unsigned mask, hal::LinkWriter& out) const noexcept;
 
   // The link operations (hal/servo_card_protocol.hpp), one each: read the request's
   // arguments from r, act, append the reply's data to out; Status::Ok or the refusal.
@@ -65,6 +76,7 @@ class EmulatedCard {
   Status jog_absolute(hal::LinkReader& r) noexcept;
   Status jog_stop(hal::LinkReader& r) noexcept;
   Status set_position(hal::LinkReader& r) noexcept;
+  Status follow(hal::LinkReader& r, hal::LinkWriter& out) noexcept;
   Status read_state(hal::LinkReader& r, hal::LinkWriter& out) const noexcept;
   Status read_latch(hal::LinkReader& r, hal::LinkWriter& out) noexcept;
   Status write_outputs(hal::LinkReader& r) noexcept;
@@ -75,6 +87,9 @@ class EmulatedCard {
   double time_ = 0;
   bool running_ = false;  // time_ set by the first advance_to
   bool booted_ = false, params_ = false, latch_on_falling_ = false;
+  bool following_ = false;   // some axis follows setpoints
+  double follow_age_ = 0;    // s since the last setpoint arrived
+  double follow_span_ = 0;   // s, the host period: measured between Follow frames (averaged)
 };
 
 // The transport to the emulated card: brings the card up to the clock's time, then lets
