@@ -3,9 +3,11 @@
 
 namespace imess::hal {
 
-void StepGenerator::configure(const CompiledPins& pins, const StepTiming& timing) noexcept {
+void StepGenerator::configure(const CompiledPins& pins, const StepTiming& timing, bool centred) noexcept {
   pins_ = pins;
   timing_ = timing;
+  rest_accum_ = centred ? kOne / 2 : 0;
+  for (auto& a : axes_) a.accum = rest_accum_;
   auto at_least_one = [](std::uint32_t& v) { v = v < 1 ? 1 : v; };
   at_least_one(timing_.step_len);
   at_least_one(timing_.step_space);
@@ -44,7 +46,7 @@ std::uint8_t StepGenerator::tick(bool halted) noexcept {
     std::int64_t count = a.count.load(std::memory_order_relaxed);
     std::int64_t target = a.target.load(std::memory_order_acquire);
     if (halted || count == target) {
-      a.accum = 0;
+      a.accum = rest_accum_;
     } else {
       if (a.accum < kOne) a.accum += a.rate.load(std::memory_order_relaxed);  // a due step waits, never bursts
       int want = target > count ? 1 : -1;

@@ -22,7 +22,10 @@ class StepGenerator {
  public:
   static constexpr std::uint64_t kOne = 1ull << 32;  // one step in the accumulator
 
-  void configure(const CompiledPins& pins, const StepTiming& timing) noexcept;
+  // centred: an axis at rest holds its accumulator at half a step, so the steps of a
+  // command fall in the middle of their intervals, not at their ends (the step/dir
+  // backend: the count is then round(position) all along a linear period, not floor).
+  void configure(const CompiledPins& pins, const StepTiming& timing, bool centred = false) noexcept;
 
   // ---- servo side (any thread but the base one; one writer) ----
   // Drive axis toward target at rate (steps per base period × 2^32, capped at max_rate()).
@@ -55,6 +58,7 @@ class StepGenerator {
   };
   CompiledPins pins_{};
   StepTiming timing_{};
+  std::uint64_t rest_accum_ = 0;  // the accumulator of an axis at rest (0 or half a step)
   AxisArray<Axis> axes_;
 };
 
