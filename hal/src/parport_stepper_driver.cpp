@@ -26,7 +26,7 @@ ParportStepperDriver::ParportStepperDriver(PortIo& port, const Clock& clock, Par
   t.step_space = std::max(1u, ticks(config_.step_space_ns, base));
   t.dir_setup = std::max(1u, ticks(config_.dir_setup_ns, base));
   t.dir_hold = std::max(1u, ticks(config_.dir_hold_ns, base));
-  gen_.configure(pins_, t, /*centred=*/true);
+  gen_.configure(pins_, t);
   ticks_per_servo_ = static_cast<std::uint64_t>(std::llround(config_.servo_period_ns / base));
   for (int a = 0; a < kAxes; ++a) {
     const auto& ax = config_.axes[a];
@@ -160,16 +160,21 @@ bool ParportStepperDriver::read_state(MachineState& out) noexcept {
   return port_.errors() == 0;
 }
 
-void ParportStepperDriver::command_period(int a, std::int64_t target) noexcept {
+void ParportStepperDriver::command_period(int a, std::int64_t target, bool path) noexcept {
   const std::int64_t count = gen_.count(a);
   const std::uint64_t need = static_cast<std::uint64_t>(target > count ? target - count : count - target);
-  // Spread the steps evenly over the next servo period (the generator centres them in
-  // their intervals, so the last one is out half an interval before the period ends; the
-  // rate rounded up, never late by rounding); the generator caps at its maximum rate.
-  const std::uint64_t rate = need >= ticks_per_servo_ ? gen_.max_rate()
-                                                      : (need * StepGenerator::kOne + ticks_per_servo_ - 1) / ticks_per_servo_;
+  // Spread the steps over the next servo period; the generator caps at its maximum rate.
+  // Following a path the rate is rounded up and the steps centred in their intervals, so
+  // the last one is out half an interval before the period ends, never late by rounding.
+  std::uint64_t rate = 0;
+  if (need >= ticks_per_servo_)
+    rate = gen_.max_rate();
+  else if (path)
+    rate = (need * StepGenerator::kOne + ticks_per_servo_ - 1) / ticks_per_servo_;
+  else
+    rate = std::max<std::uint64_t>(need * StepGenerator::kOne / ticks_per_servo_, need > 0 ? 1 : 0);
   commanded_[a] = target;
-  gen_.command(a, target, rate);
+  gen_.command(a, target, rate, path);
 }
 
 void ParportStepperDriver::leave_following(int a) noexcept {
@@ -178,7 +183,8 @@ void ParportStepperDriver::leave_following(int a) noexcept {
   command_period(a, std::llround(profile_[a].position()));
 }
 
-// Budget: a few hundred ns for three axes (three llround, three divisions), servo rate.
+// Servo rate, once per period (not measured in bench/ yet: three llround and three integer
+// divisions, the same work as a trapezoid period).
 bool ParportStepperDriver::follow(const Setpoint& sp) noexcept {
   for (int a = 0; a < kAxes; ++a)
     if (!std::isfinite(sp.position[a]) || !std::isfinite(sp.velocity[a])) return false;
@@ -202,7 +208,7 @@ bool ParportStepperDriver::follow(const Setpoint& sp) noexcept {
     const bool at_rest = velocity == 0 && following_[a] && target == commanded_[a];
     profile_[a].track(static_cast<double>(target), velocity, at_rest);
     following_[a] = true;
-    command_period(a, target);
+    command_period(a, target, /*path=*/true);
   }
   follow_fresh_ = true;
   return true;

@@ -3,11 +3,9 @@
 
 namespace imess::hal {
 
-void StepGenerator::configure(const CompiledPins& pins, const StepTiming& timing, bool centred) noexcept {
+void StepGenerator::configure(const CompiledPins& pins, const StepTiming& timing) noexcept {
   pins_ = pins;
   timing_ = timing;
-  rest_accum_ = centred ? kOne / 2 : 0;
-  for (auto& a : axes_) a.accum = rest_accum_;
   auto at_least_one = [](std::uint32_t& v) { v = v < 1 ? 1 : v; };
   at_least_one(timing_.step_len);
   at_least_one(timing_.step_space);
@@ -15,10 +13,11 @@ void StepGenerator::configure(const CompiledPins& pins, const StepTiming& timing
   at_least_one(timing_.dir_hold);
 }
 
-void StepGenerator::command(int axis, std::int64_t target, std::uint64_t rate) noexcept {
+void StepGenerator::command(int axis, std::int64_t target, std::uint64_t rate, bool centred) noexcept {
   Axis& a = axes_[axis];
   std::uint64_t cap = max_rate();
   a.rate.store(rate > cap ? cap : rate, std::memory_order_relaxed);
+  a.centred.store(centred, std::memory_order_relaxed);
   a.target.store(target, std::memory_order_release);
 }
 
@@ -46,8 +45,11 @@ std::uint8_t StepGenerator::tick(bool halted) noexcept {
     std::int64_t count = a.count.load(std::memory_order_relaxed);
     std::int64_t target = a.target.load(std::memory_order_acquire);
     if (halted || count == target) {
-      a.accum = rest_accum_;
+      a.accum = 0;
+      a.resting = true;
     } else {
+      if (a.resting && a.centred.load(std::memory_order_relaxed)) a.accum = kOne / 2;  // steps mid-interval
+      a.resting = false;
       if (a.accum < kOne) a.accum += a.rate.load(std::memory_order_relaxed);  // a due step waits, never bursts
       int want = target > count ? 1 : -1;
       if (a.accum >= kOne && !a.step_high && a.space_left == 0) {

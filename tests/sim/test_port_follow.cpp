@@ -101,6 +101,8 @@ TEST_CASE("stepper: stop() mid-path brakes within v^2/2a without losing a step; 
     run.cycle(&sp);
   }
   REQUIRE(sp.velocity.norm() > 50);
+  CHECK_FALSE(run.state().any(hal::status::kProfileEnd));
+  CHECK_FALSE(run.state().any(hal::status::kInPosition));
   const hal::Vec3 decel(2000, 2000, 2000);
   REQUIRE(run.stop(decel));
   REQUIRE(run.settle());
@@ -206,6 +208,9 @@ TEST_CASE("drive kit: stop() mid-path brakes within v^2/2a; follow after stop an
         run.cycle(&sp);
       }
       REQUIRE(sp.velocity.norm() > 100);
+      // All three axes move: none claims the end of its profile or in position.
+      CHECK_FALSE(run.state().any(hal::status::kProfileEnd));
+      CHECK_FALSE(run.state().any(hal::status::kInPosition));
       const hal::Vec3 decel(2000, 2000, 2000);
       REQUIRE(rig.backend().stop(decel));
       REQUIRE(run.settle());

@@ -73,8 +73,9 @@ class ParportStepperDriver final : public MotionBackend, public BaseRateDriver {
   bool active(std::uint8_t status, std::uint8_t mask) const noexcept {
     return mask != 0 && ((status ^ pins_.status_xor) & mask) != 0;
   }
-  // Commands the generator toward target, the steps to go spread over one servo period.
-  void command_period(int axis, std::int64_t target) noexcept;
+  // Commands the generator toward target, the steps to go spread over one servo period
+  // (path: rounded up and centred, follow()'s position mode).
+  void command_period(int axis, std::int64_t target, bool path = false) noexcept;
   // An axis that was following goes back to its profile (braking, or a move from the path's
   // velocity): the servo step read_state skipped while following is made now.
   void leave_following(int axis) noexcept;

@@ -22,14 +22,14 @@ class StepGenerator {
  public:
   static constexpr std::uint64_t kOne = 1ull << 32;  // one step in the accumulator
 
-  // centred: an axis at rest holds its accumulator at half a step, so the steps of a
-  // command fall in the middle of their intervals, not at their ends (the step/dir
-  // backend: the count is then round(position) all along a linear period, not floor).
-  void configure(const CompiledPins& pins, const StepTiming& timing, bool centred = false) noexcept;
+  void configure(const CompiledPins& pins, const StepTiming& timing) noexcept;
 
   // ---- servo side (any thread but the base one; one writer) ----
   // Drive axis toward target at rate (steps per base period × 2^32, capped at max_rate()).
-  void command(int axis, std::int64_t target, std::uint64_t rate) noexcept;
+  // centred: an axis that sets off from its target starts its accumulator at half a step
+  // instead of 0, so the steps fall in the middle of their intervals, not at their ends
+  // (path following: the count is then the path rounded, not floored).
+  void command(int axis, std::int64_t target, std::uint64_t rate, bool centred = false) noexcept;
   std::int64_t count(int axis) const noexcept { return axes_[axis].count.load(std::memory_order_acquire); }
   // The fastest rate the pulse timing allows: one step per (step_len + step_space) periods.
   // Rounded up, so that n ticks at max_rate always make one whole step.
@@ -50,15 +50,16 @@ class StepGenerator {
     std::atomic<std::int64_t> target{0};
     std::atomic<std::uint64_t> rate{0};
     std::atomic<std::int64_t> count{0};
+    std::atomic<bool> centred{false};
     // base-thread state
     std::uint64_t accum = 0;
     std::uint32_t high_left = 0, space_left = 0, setup_left = 0, hold_left = 0;
     bool step_high = false;
+    bool resting = true;  // at the target last tick: the next command starts a new phase
     int dir = -1;  // -1 / +1: the level on the dir pin
   };
   CompiledPins pins_{};
   StepTiming timing_{};
-  std::uint64_t rest_accum_ = 0;  // the accumulator of an axis at rest (0 or half a step)
   AxisArray<Axis> axes_;
 };
 
