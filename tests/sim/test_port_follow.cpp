@@ -141,6 +141,28 @@ TEST_CASE("stepper: stop() mid-path brakes within v^2/2a without losing a step; 
   }
 }
 
+TEST_CASE("stepper following into a closed limit switch: that axis brakes as a move would, the others go on") {
+  auto o = stepper_follow_options();
+  o.sim.mechanics.start = hal::Vec3(20, 330, 100);
+  o.driver.initial_position = o.sim.mechanics.start;
+  StepperRig rig(o);
+  StepperFollowRun run(rig);
+  auto machine = follow_machine(o.sim.mechanics, o.driver.axes);
+  machine.axes[0].travel_min = -100;  // a path the planner lets past X's end/ref switch (at -2)
+  PathFeed feed(machine, run.state().position);
+  feed.plan({planner::Line{1, pose3(hal::Vec3(-15, 360, 100)), 30}});
+  run.follow(feed);
+  REQUIRE(run.settle());
+  const double x = run.state().position.x();
+  CHECK((run.state().status[0] & hal::status::kHardLimitNeg) != 0);
+  CHECK(x < -2);         // into the switch
+  CHECK(x > -2 - 0.25);  // braked at 4000 mm/s² from 30·|u_x| mm/s within a period of the edge
+  CHECK(run.decoded(1) == rig.driver().steps_for(1, 360));  // Y went on to the end of the path
+  CHECK(run.decoded(0) == rig.driver().step_count(0));
+  CHECK(rig.stepper().lost_steps(0) == 0);  // stopped well before the hard stop at -20
+  CHECK(rig.stepper().violations().total() == 0);
+}
+
 TEST_CASE("stepper follows seeded random paths: no step lost, within 1 step + v x base period") {
   for (std::uint32_t seed : {1u, 7u, 2024u}) {
     DYNAMIC_SECTION("seed " << seed) {
