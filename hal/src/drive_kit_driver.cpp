@@ -133,6 +133,7 @@ void DriveKitDriver::safe_state(std::uint16_t outputs) noexcept {
     port_.out16(config_.axes[a].command_port, 0);
     axes_[a].profile.reset(position(a));
     axes_[a].integral = axes_[a].remainder = 0;
+    axes_[a].following = false;
   }
   outputs_ = outputs;
   port_.out16(config_.outputs_port, outputs_);
@@ -155,6 +156,7 @@ bool DriveKitDriver::read_state(MachineState& out) noexcept {
     following_fault |= servo_axis(a, out.input(a, input::kLimitNeg), out.input(a, input::kLimitPos), dt);
   }
   if (following_fault) safe_state(config_.safe_outputs);
+  follow_fresh_ = false;
   if (config_.sync_port) port_.out16(config_.sync_port, ++strobe_);
   for (int a = 0; a < kAxes; ++a) {
     out.status[a] = axis_status(a, out);
@@ -233,13 +235,28 @@ bool DriveKitDriver::servo_axis(int a, bool lim_neg, bool lim_pos, double dt) no
   Axis& s = axes_[a];
   const double pos = position(a);
   TrapezoidPlanner& p = s.profile;
+  s.lim_neg = lim_neg;
+  s.lim_pos = lim_pos;
   if (!loops_closed_) {
     p.reset(pos);
     s.integral = s.last_error = 0;
+    s.following = false;
     return false;
   }
-  p.brake_into_limits(lim_neg, lim_pos, ax.max_accel);
-  p.step(dt);
+  if (s.following && !follow_fresh_) {  // the path stopped coming (dropped): brake from its velocity
+    s.following = false;
+    p.stop(ax.max_accel);
+  }
+  if (s.following) {
+    // follow() placed the setpoint for now (the end of the period it was given for).
+    if ((p.heading() < 0 && lim_neg) || (p.heading() > 0 && lim_pos)) {
+      s.following = false;  // into a closed limit switch: brake as a move() would
+      p.stop(ax.max_accel);
+    }
+  } else {
+    p.brake_into_limits(lim_neg, lim_pos, ax.max_accel);
+    p.step(dt);
+  }
   double e = p.position() - pos;
   s.max_error = std::max(s.max_error, std::abs(e));
   bool following_fault = false;
@@ -280,6 +297,7 @@ bool DriveKitDriver::set_loops(bool closed) noexcept {
   for (int a = 0; a < kAxes; ++a) {
     axes_[a].profile.reset(position(a));
     axes_[a].integral = axes_[a].last_error = axes_[a].remainder = 0;
+    axes_[a].following = false;
     port_.out16(config_.axes[a].command_port, 0);
   }
   outputs_ = static_cast<std::uint16_t>(closed ? (outputs_ | enable_bits()) : (outputs_ & ~enable_bits()));
@@ -293,17 +311,50 @@ bool DriveKitDriver::move(const AxisArray<AxisMove>& moves, unsigned axis_mask) 
     if ((axis_mask & (1u << a)) && (!std::isfinite(moves[a].target) || !(moves[a].velocity > 0) || !(moves[a].accel > 0)))
       return false;
   if (!loops_closed_) return true;
-  for (int a = 0; a < kAxes; ++a)
+  for (int a = 0; a < kAxes; ++a) {
+    Axis& s = axes_[a];
     if (axis_mask & (1u << a))
-      axes_[a].profile.start(moves[a].target, std::min(moves[a].velocity, config_.axes[a].max_speed),
-                             std::min(moves[a].accel, config_.axes[a].max_accel));
+      s.profile.start(moves[a].target, std::min(moves[a].velocity, config_.axes[a].max_speed),
+                      std::min(moves[a].accel, config_.axes[a].max_accel));
+    else if (s.following)  // a path no longer fed: that axis brakes
+      s.profile.stop(config_.axes[a].max_accel);
+    s.following = false;  // the profile holds the path's position and velocity: it goes on from there
+  }
+  return true;
+}
+
+// The setpoint is for the end of this period, which is when the next read_state runs the
+// PID: it is compared with the counters read then, and its velocity is the feed-forward.
+bool DriveKitDriver::follow(const Setpoint& sp) noexcept {
+  for (int a = 0; a < kAxes; ++a)
+    if (!std::isfinite(sp.position[a]) || !std::isfinite(sp.velocity[a])) return false;
+  if (!loops_closed_) return true;  // like move(): an open axis ignores it
+  for (int a = 0; a < kAxes; ++a) {
+    Axis& s = axes_[a];
+    const double v = sp.velocity[a];
+    const double d = sp.position[a] - s.profile.position();
+    const int heading = v != 0 ? (v > 0 ? 1 : -1) : (d != 0 ? (d > 0 ? 1 : -1) : 0);
+    if ((heading < 0 && s.lim_neg) || (heading > 0 && s.lim_pos)) {
+      // Into a closed limit switch: this axis brakes as a move() would.
+      if (s.following) s.profile.stop(config_.axes[a].max_accel);
+      s.following = false;
+      continue;
+    }
+    // At rest on the path when the setpoint neither moves nor changes: in position as today.
+    const bool at_rest = sp.velocity[a] == 0 && s.following && sp.position[a] == s.profile.position();
+    s.profile.track(sp.position[a], sp.velocity[a], at_rest);
+    s.following = true;
+  }
+  follow_fresh_ = true;
   return true;
 }
 
 bool DriveKitDriver::stop(const Vec3& decel) noexcept {
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < kAxes; ++a)
     if (!(decel[a] > 0)) return false;
-    axes_[a].profile.stop(std::min(decel[a], config_.axes[a].max_accel));
+  for (int a = 0; a < kAxes; ++a) {
+    axes_[a].profile.stop(std::min(decel[a], config_.axes[a].max_accel));  // from the path's velocity too
+    axes_[a].following = false;
   }
   return true;
 }

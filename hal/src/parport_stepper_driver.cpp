@@ -131,29 +131,87 @@ bool ParportStepperDriver::read_state(MachineState& out) noexcept {
          .index = in_index_window(count - release_count_[a].load(std::memory_order_relaxed), index_pitch_[a],
                                   index_width_[a])});
 
+    lim_neg_[a] = lim_neg;
+    lim_pos_[a] = lim_pos;
     TrapezoidPlanner& p = profile_[a];
     if (halted || !loops_closed_) {
+      following_[a] = false;
       p.reset(static_cast<double>(count));
       commanded_[a] = count;
       gen_.command(a, count, 0);
+    } else if (following_[a] && follow_fresh_ && !((p.heading() < 0 && lim_neg) || (p.heading() > 0 && lim_pos))) {
+      // Following: follow() already commanded this period's target; nothing to step here.
     } else {
+      if (following_[a]) {  // no setpoint came (the path was dropped) or a limit closed: brake
+        following_[a] = false;
+        p.stop(amax_[a]);
+      }
       p.brake_into_limits(lim_neg, lim_pos, amax_[a]);  // like the card firmware
       p.step(dt);
-      std::int64_t target = std::llround(p.position());
-      std::uint64_t need = static_cast<std::uint64_t>(target > count ? target - count : count - target);
-      // Spread the steps over the next servo period; the generator caps at its maximum rate.
-      std::uint64_t rate = need >= ticks_per_servo_ ? gen_.max_rate() : need * StepGenerator::kOne / ticks_per_servo_;
-      if (need > 0 && rate == 0) rate = 1;
-      commanded_[a] = target;
-      gen_.command(a, target, rate);
+      command_period(a, std::llround(p.position()));
     }
     const bool arrived = p.done() && count == commanded_[a];
     out.status[a] = status_word({lim_neg, lim_pos, arrived, loops_closed_ && !halted, arrived, latch},
                                 halted ? status::kStopInput : 0);
     out.position[a] = static_cast<double>(count - zero_[a]) / ax.steps_per_mm;
   }
+  follow_fresh_ = false;
   out.tip_touched = config_.tip_reversed ? !raw_probe : raw_probe;
   return port_.errors() == 0;
+}
+
+void ParportStepperDriver::command_period(int a, std::int64_t target, bool path) noexcept {
+  const std::int64_t count = gen_.count(a);
+  const std::uint64_t need = static_cast<std::uint64_t>(target > count ? target - count : count - target);
+  // Spread the steps over the next servo period; the generator caps at its maximum rate.
+  // Following a path the rate is rounded up and the steps centred in their intervals, so
+  // the last one is out half an interval before the period ends, never late by rounding.
+  std::uint64_t rate = 0;
+  if (need >= ticks_per_servo_)
+    rate = gen_.max_rate();
+  else if (path)
+    rate = (need * StepGenerator::kOne + ticks_per_servo_ - 1) / ticks_per_servo_;
+  else
+    rate = std::max<std::uint64_t>(need * StepGenerator::kOne / ticks_per_servo_, need > 0 ? 1 : 0);
+  commanded_[a] = target;
+  gen_.command(a, target, rate, path);
+}
+
+void ParportStepperDriver::leave_following(int a) noexcept {
+  following_[a] = false;
+  profile_[a].step(config_.servo_period_ns * 1e-9);
+  command_period(a, std::llround(profile_[a].position()));
+}
+
+// Servo rate, once per period (not measured in bench/ yet: three llround and three integer
+// divisions, the same work as a trapezoid period).
+bool ParportStepperDriver::follow(const Setpoint& sp) noexcept {
+  for (int a = 0; a < kAxes; ++a)
+    if (!std::isfinite(sp.position[a]) || !std::isfinite(sp.velocity[a])) return false;
+  if (!loops_closed_ || halted_.load(std::memory_order_relaxed)) return true;  // like move(): ignored
+  for (int a = 0; a < kAxes; ++a) {
+    const double spm = config_.axes[a].steps_per_mm;
+    // Absolute: round(position × steps/mm), so the rounding never accumulates.
+    const std::int64_t target = steps_for(a, sp.position[a]);
+    const double velocity = sp.velocity[a] * spm;
+    const std::int64_t count = gen_.count(a);
+    const int heading = velocity != 0 ? (velocity > 0 ? 1 : -1) : (target != count ? (target > count ? 1 : -1) : 0);
+    if ((heading < 0 && lim_neg_[a]) || (heading > 0 && lim_pos_[a])) {
+      // Into a closed limit switch: this axis brakes as a move() would.
+      if (following_[a]) {
+        profile_[a].stop(amax_[a]);
+        leave_following(a);
+      }
+      continue;
+    }
+    // At rest on the path when the setpoint neither moves nor changes: in position as today.
+    const bool at_rest = velocity == 0 && following_[a] && target == commanded_[a];
+    profile_[a].track(static_cast<double>(target), velocity, at_rest);
+    following_[a] = true;
+    command_period(a, target, /*path=*/true);
+  }
+  follow_fresh_ = true;
+  return true;
 }
 
 bool ParportStepperDriver::read_latch(Vec3& latched) noexcept {
@@ -167,6 +225,7 @@ bool ParportStepperDriver::set_loops(bool closed) noexcept {
   if (closed && halted_.load(std::memory_order_relaxed)) return true;  // like the card: a faulted axis stays open
   loops_closed_ = closed;
   for (int a = 0; a < kAxes; ++a) {
+    following_[a] = false;
     std::int64_t c = gen_.count(a);
     profile_[a].reset(static_cast<double>(c));
     commanded_[a] = c;
@@ -183,19 +242,28 @@ bool ParportStepperDriver::move(const AxisArray<AxisMove>& moves, unsigned axis_
   }
   if (!loops_closed_) return true;  // like the card: an open axis ignores jogs
   for (int a = 0; a < kAxes; ++a) {
-    if (!(axis_mask & (1u << a))) continue;
+    if (!(axis_mask & (1u << a))) {
+      if (following_[a]) {  // a path no longer fed: that axis brakes
+        profile_[a].stop(amax_[a]);
+        leave_following(a);
+      }
+      continue;
+    }
     const auto& m = moves[a];
     const double spm = config_.axes[a].steps_per_mm;
     double target = static_cast<double>(steps_for(a, m.target));
     profile_[a].start(target, std::min(m.velocity * spm, vmax_[a]), std::min(m.accel * spm, amax_[a]));
+    if (following_[a]) leave_following(a);
   }
   return true;
 }
 
 bool ParportStepperDriver::stop(const Vec3& decel) noexcept {
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < kAxes; ++a)
     if (!(decel[a] > 0)) return false;
+  for (int a = 0; a < kAxes; ++a) {
     profile_[a].stop(std::min(decel[a] * config_.axes[a].steps_per_mm, amax_[a]));
+    if (following_[a]) leave_following(a);  // brakes from the path's velocity, starting now
   }
   return true;
 }
@@ -211,6 +279,7 @@ bool ParportStepperDriver::reset_faults() noexcept {
   if (!active(status_.load(std::memory_order_acquire), pins_.stop)) halted_.store(false, std::memory_order_relaxed);
   loops_closed_ = false;
   for (int a = 0; a < kAxes; ++a) {
+    following_[a] = false;
     std::int64_t c = gen_.count(a);
     profile_[a].reset(static_cast<double>(c));
     commanded_[a] = c;

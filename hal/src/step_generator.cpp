@@ -13,10 +13,11 @@ void StepGenerator::configure(const CompiledPins& pins, const StepTiming& timing
   at_least_one(timing_.dir_hold);
 }
 
-void StepGenerator::command(int axis, std::int64_t target, std::uint64_t rate) noexcept {
+void StepGenerator::command(int axis, std::int64_t target, std::uint64_t rate, bool centred) noexcept {
   Axis& a = axes_[axis];
   std::uint64_t cap = max_rate();
   a.rate.store(rate > cap ? cap : rate, std::memory_order_relaxed);
+  a.centred.store(centred, std::memory_order_relaxed);
   a.target.store(target, std::memory_order_release);
 }
 
@@ -45,7 +46,10 @@ std::uint8_t StepGenerator::tick(bool halted) noexcept {
     std::int64_t target = a.target.load(std::memory_order_acquire);
     if (halted || count == target) {
       a.accum = 0;
+      a.resting = true;
     } else {
+      if (a.resting && a.centred.load(std::memory_order_relaxed)) a.accum = kOne / 2;  // steps mid-interval
+      a.resting = false;
       if (a.accum < kOne) a.accum += a.rate.load(std::memory_order_relaxed);  // a due step waits, never bursts
       int want = target > count ? 1 : -1;
       if (a.accum >= kOne && !a.step_high && a.space_left == 0) {

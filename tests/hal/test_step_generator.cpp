@@ -1,5 +1,6 @@
 // The base-period step routine: golden port bytes for a short fixed move on both pin maps
-// (hand-derived from the timing rules), and the pulse timing at the maximum rate.
+// (hand-derived from the timing rules), the pulse timing at the maximum rate, and where a
+// centred (path-following) command puts its steps.
 #include <catch2/catch.hpp>
 
 #include <vector>
@@ -57,4 +58,21 @@ TEST_CASE("longer pulse timing in base periods, and halting stops new steps at o
   auto before = g.count(0);
   for (int i = 0; i < 10; ++i) g.tick(true);
   CHECK(g.count(0) == before);
+}
+
+TEST_CASE("a centred command puts its steps mid-interval, a plain one at the interval's end") {
+  for (bool centred : {false, true}) {
+    StepGenerator g;
+    g.configure(compile_pins(*named_pin_map("shd-adapter")), StepTiming{1, 1, 1, 1});
+    g.tick(false);                                           // at rest
+    g.command(0, -2, StepGenerator::kOne / 8, centred);      // dir already negative: no setup wait
+    std::vector<int> at;
+    for (int i = 1; i <= 20; ++i) {
+      auto before = g.count(0);
+      g.tick(false);
+      if (g.count(0) != before) at.push_back(i);
+    }
+    CHECK(at == (centred ? std::vector<int>{4, 12} : std::vector<int>{8, 16}));
+    CHECK(g.count(0) == -2);
+  }
 }

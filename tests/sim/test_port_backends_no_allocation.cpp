@@ -1,8 +1,9 @@
 // Real-time discipline of the port backends: neither the servo-rate calls nor the base
 // routine allocate — counted by replacing the global allocator while the core jogs, hits,
-// retracts, moves, homes and stops on each backend.
+// retracts, moves, homes and stops on each backend, and while each follows a planned path.
 #include <catch2/catch.hpp>
 
+#include "follow_rig.hpp"
 #include "port_rigs.hpp"
 
 #include "allocation_counter.hpp"
@@ -20,7 +21,61 @@ core::CoreConfig brisk() {
   c.params.idle_open_time = 2;
   return c;
 }
+// Servo periods of follow() from a path planned beforehand, then stop() and a move(): the
+// allocations counted inside the loop only (the sampler is allocation-free).
+template <class Rig>
+long allocations_following(Rig& rig, PathFeed& feed, int periods) {
+  hal::MachineState ms;
+  auto& backend = rig.backend();
+  g_allocations = 0;
+  g_counting = true;
+  bool ok = true;
+  for (int i = 0; i < periods; ++i) {
+    rig.clock().advance(Rig::kPeriod);
+    ok = backend.read_state(ms) && ok;
+    if (i < periods / 2) {
+      const hal::Setpoint sp = feed.next();
+      ok = backend.follow(sp) && ok;
+    } else if (i == periods / 2) {
+      ok = backend.stop(hal::Vec3(2000, 2000, 2000)) && ok;  // mid-path
+    }
+  }
+  hal::AxisArray<hal::AxisMove> moves;
+  for (int a = 0; a < 3; ++a) moves[a] = {ms.position[a] + 1, 20, 1000};
+  ok = backend.move(moves, 7) && ok;
+  for (int i = 0; i < 200; ++i) {
+    rig.clock().advance(Rig::kPeriod);
+    ok = backend.read_state(ms) && ok;
+  }
+  g_counting = false;
+  CHECK(ok);
+  return g_allocations.load();
+}
 }  // namespace
+
+TEST_CASE("port backends: follow(), stop() after it and move() after it do not allocate") {
+  {
+    StepperRig rig;
+    hal::MachineState ms;
+    rig.servo_cycles(1);
+    REQUIRE(rig.backend().read_state(ms));
+    REQUIRE(rig.backend().set_loops(true));
+    PathFeed feed(follow_machine(rig.options().sim.mechanics, rig.options().driver.axes), ms.position);
+    feed.plan(corner_arc_dwell_path(ms.position, 80));
+    CHECK(allocations_following(rig, feed, 2500) == 0);
+  }
+  for (int mode : {1, 2}) {
+    auto o = drive_options(mode, mode == 1 ? "mrm-b" : "mrm-a");
+    DriveRig rig(o);
+    hal::MachineState ms;
+    rig.clock().advance(MotionRig::kPeriod);
+    REQUIRE(rig.backend().read_state(ms));
+    REQUIRE(rig.backend().set_loops(true));
+    PathFeed feed(follow_machine(o.sim.mechanics, o.driver.axes), ms.position);
+    feed.plan(corner_arc_dwell_path(ms.position, 120));
+    CHECK(allocations_following(rig, feed, 2500) == 0);
+  }
+}
 
 TEST_CASE("stepper backend: no servo cycle or base tick allocates") {
   StepperRig rig;

@@ -3,6 +3,8 @@
 // port (signed 16-bit counts, widened here), discrete inputs and outputs. The daemon closes
 // the loops: per servo period a trapezoid set point, PID with velocity feed-forward and
 // anti-windup, following-error watch. Normally-closed safety inputs stop everything.
+// follow() (a planned path, one setpoint per servo period) replaces the trapezoid's set
+// point and velocity feed-forward in that same PID step, in both kit modes.
 #pragma once
 #include <array>
 #include <optional>
@@ -69,6 +71,7 @@ class DriveKitDriver final : public MotionBackend {
   bool read_latch(Vec3& latched) noexcept override;
   bool set_loops(bool closed) noexcept override;
   bool move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept override;
+  bool follow(const Setpoint& sp) noexcept override;
   bool stop(const Vec3& decel) noexcept override;
   bool set_position(int axis, double value) noexcept override;
   bool reset_faults() noexcept override;
@@ -87,6 +90,8 @@ class DriveKitDriver final : public MotionBackend {
     std::int64_t release_count = 0;
     bool last_home = false;
     std::uint32_t faults = 0;
+    bool following = false;           // the profile holds a planned path's setpoint (follow())
+    bool lim_neg = false, lim_pos = false;  // the limit switches as read_state last saw them
   };
   double position(int a) const noexcept;
   void write_command(int a, double velocity) noexcept;
@@ -111,6 +116,7 @@ class DriveKitDriver final : public MotionBackend {
   std::uint16_t strobe_ = 0, outputs_ = 0;
   std::uint32_t safety_faults_ = 0;
   unsigned long handshake_misses_ = 0;
+  bool follow_fresh_ = false;  // a setpoint came since the last read_state
 };
 
 }  // namespace imess::hal

@@ -2,7 +2,10 @@
 // (BRIEF §4). Step and dir on the data register, switches on the status register. Servo
 // rate (read_state, 1 ms): trapezoid profiles in step units, a target step count and a
 // rate per axis for the step generator. Base rate (base_tick, e.g. 5-20 µs): pulse making,
-// STOP, and the probe latch captured at the step count of the edge.
+// STOP, and the probe latch captured at the step count of the edge. follow() (a planned
+// path, one setpoint per servo period) replaces the trapezoids: LinuxCNC stepgen's position
+// mode, the absolute target step count for the period's end and the rate that spreads the
+// steps to go evenly over the period.
 #pragma once
 #include <atomic>
 #include <string>
@@ -49,6 +52,7 @@ class ParportStepperDriver final : public MotionBackend, public BaseRateDriver {
   bool read_latch(Vec3& latched) noexcept override;
   bool set_loops(bool closed) noexcept override;
   bool move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept override;
+  bool follow(const Setpoint& sp) noexcept override;
   bool stop(const Vec3& decel) noexcept override;
   bool set_position(int axis, double value) noexcept override;
   bool reset_faults() noexcept override;
@@ -69,6 +73,12 @@ class ParportStepperDriver final : public MotionBackend, public BaseRateDriver {
   bool active(std::uint8_t status, std::uint8_t mask) const noexcept {
     return mask != 0 && ((status ^ pins_.status_xor) & mask) != 0;
   }
+  // Commands the generator toward target, the steps to go spread over one servo period
+  // (path: rounded up and centred, follow()'s position mode).
+  void command_period(int axis, std::int64_t target, bool path = false) noexcept;
+  // An axis that was following goes back to its profile (braking, or a move from the path's
+  // velocity): the servo step read_state skipped while following is made now.
+  void leave_following(int axis) noexcept;
 
   PortIo& port_;
   const Clock& clock_;
@@ -96,6 +106,10 @@ class ParportStepperDriver final : public MotionBackend, public BaseRateDriver {
   AxisArray<std::int64_t> index_pitch_{}, index_width_{};
   bool loops_closed_ = false;
   ServoInterval servo_interval_;
+  // Path following (follow()): per axis, and whether a setpoint came since the last read_state.
+  AxisArray<bool> following_{};
+  bool follow_fresh_ = false;
+  AxisArray<bool> lim_neg_{}, lim_pos_{};  // the limit switches as read_state last saw them
 };
 
 }  // namespace imess::hal

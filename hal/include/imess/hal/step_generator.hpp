@@ -26,7 +26,10 @@ class StepGenerator {
 
   // ---- servo side (any thread but the base one; one writer) ----
   // Drive axis toward target at rate (steps per base period × 2^32, capped at max_rate()).
-  void command(int axis, std::int64_t target, std::uint64_t rate) noexcept;
+  // centred: an axis that sets off from its target starts its accumulator at half a step
+  // instead of 0, so the steps fall in the middle of their intervals, not at their ends
+  // (path following: the count is then the path rounded, not floored).
+  void command(int axis, std::int64_t target, std::uint64_t rate, bool centred = false) noexcept;
   std::int64_t count(int axis) const noexcept { return axes_[axis].count.load(std::memory_order_acquire); }
   // The fastest rate the pulse timing allows: one step per (step_len + step_space) periods.
   // Rounded up, so that n ticks at max_rate always make one whole step.
@@ -47,10 +50,12 @@ class StepGenerator {
     std::atomic<std::int64_t> target{0};
     std::atomic<std::uint64_t> rate{0};
     std::atomic<std::int64_t> count{0};
+    std::atomic<bool> centred{false};
     // base-thread state
     std::uint64_t accum = 0;
     std::uint32_t high_left = 0, space_left = 0, setup_left = 0, hold_left = 0;
     bool step_high = false;
+    bool resting = true;  // at the target last tick: the next command starts a new phase
     int dir = -1;  // -1 / +1: the level on the dir pin
   };
   CompiledPins pins_{};

@@ -23,6 +23,14 @@ class TrapezoidPlanner {
   void brake_into_limits(bool limit_neg, bool limit_pos, double decel) noexcept;
   void step(double dt) noexcept;
   void shift(double delta) noexcept { pos_ += delta; target_ += delta; }
+  // Path following: the profile is placed where a planned path puts the axis (position,
+  // velocity) instead of running toward a target; done when the path holds the axis at rest.
+  // stop() then brakes from that velocity, start() begins a move from it.
+  void track(double position, double velocity, bool at_rest) noexcept {
+    pos_ = target_ = position;
+    vel_ = at_rest ? 0.0 : velocity;
+    done_ = at_rest;
+  }
 
   double position() const noexcept { return pos_; }
   double velocity() const noexcept { return vel_; }

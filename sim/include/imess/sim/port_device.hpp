@@ -55,6 +55,7 @@ class BaseTickPump final : public hal::MotionBackend {
   bool move(const hal::AxisArray<hal::AxisMove>& moves, unsigned axis_mask) noexcept override {
     return backend_.move(moves, axis_mask);
   }
+  bool follow(const hal::Setpoint& sp) noexcept override { return backend_.follow(sp); }
   bool stop(const hal::Vec3& decel) noexcept override { return backend_.stop(decel); }
   bool set_position(int axis, double value) noexcept override { return backend_.set_position(axis, value); }
   bool reset_faults() noexcept override { return backend_.reset_faults(); }
