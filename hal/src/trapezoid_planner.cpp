@@ -20,11 +20,11 @@ void TrapezoidPlanner::start(double target, double vmax, double amax) noexcept {
   done_ = false;
 }
 
-void TrapezoidPlanner::track(double position, double velocity) noexcept {
+void TrapezoidPlanner::track(double position, double velocity, bool at_rest) noexcept {
   pos_ = target_ = position;
-  vel_ = velocity;
-  vmax_ = std::max(std::abs(velocity), 1e-9);
-  done_ = false;
+  vel_ = at_rest ? 0.0 : velocity;
+  vmax_ = std::max(std::abs(vel_), 1e-9);
+  done_ = at_rest;
 }
 
 void TrapezoidPlanner::stop(double decel) noexcept {

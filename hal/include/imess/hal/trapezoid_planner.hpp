@@ -11,9 +11,11 @@ class TrapezoidPlanner {
   void reset(double position) noexcept;
   // vmax > 0, amax > 0 (units/s, units/s²); works from any current velocity.
   void start(double target, double vmax, double amax) noexcept;
-  // Tracks a path followed from outside (the card firmware's setpoint interpolation): the
-  // profile stands at position with velocity, not done; start() and stop() go on from there.
-  void track(double position, double velocity) noexcept;
+  // Path following (the card firmware's setpoint interpolation, the port backends' follow()):
+  // the profile is placed where a planned path puts the axis (position, velocity) instead of
+  // running toward a target; done only when the path holds the axis at rest. stop() then
+  // brakes from that velocity, start() begins a move from it.
+  void track(double position, double velocity, bool at_rest = false) noexcept;
   // Brakes to rest with the given deceleration.
   void stop(double decel) noexcept;
   // Where the profile is going: -1, +1, or 0 when it stands at its target.
@@ -23,14 +25,6 @@ class TrapezoidPlanner {
   void brake_into_limits(bool limit_neg, bool limit_pos, double decel) noexcept;
   void step(double dt) noexcept;
   void shift(double delta) noexcept { pos_ += delta; target_ += delta; }
-  // Path following: the profile is placed where a planned path puts the axis (position,
-  // velocity) instead of running toward a target; done when the path holds the axis at rest.
-  // stop() then brakes from that velocity, start() begins a move from it.
-  void track(double position, double velocity, bool at_rest) noexcept {
-    pos_ = target_ = position;
-    vel_ = at_rest ? 0.0 : velocity;
-    done_ = at_rest;
-  }
 
   double position() const noexcept { return pos_; }
   double velocity() const noexcept { return vel_; }
