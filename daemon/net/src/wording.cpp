@@ -74,10 +74,10 @@ Wording fail_wording(core::FailReason f) {
     case core::FailReason::Stopped: return {"Stopped", "a stop dropped the queue"};
     case core::FailReason::OutOfTravel: return {"OutOfTravel", "the segment leaves the travel"};
     case core::FailReason::IntoLimit: return {"IntoLimit", "a limit switch stopped the machine"};
-    case core::FailReason::Faulted: return {"Faulted", "machine fault, or this backend cannot follow a planned path"};
-    case core::FailReason::UnexpectedHit: return {"UnexpectedHit", "the probe touched during the move; stopped, retracted, no point"};
-    case core::FailReason::TipTouched: return {"TipTouched", "the probe is deflected; the queue did not start"};
-    case core::FailReason::OffPath: return {"OffPath", "the queue does not start where the machine stands"};
+    case core::FailReason::Faulted: return {"Faulted", "fault, or the backend cannot follow a path"};
+    case core::FailReason::UnexpectedHit: return {"UnexpectedHit", "probe touched: stopped, retracted, no point"};
+    case core::FailReason::TipTouched: return {"TipTouched", "probe deflected: the queue did not start"};
+    case core::FailReason::OffPath: return {"OffPath", "the machine is not at the queue's start"};
   }
   return {"Unknown", ""};
 }
