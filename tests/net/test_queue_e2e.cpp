@@ -75,7 +75,7 @@ class QueueHarness {
     while (lines_.empty() && std::chrono::steady_clock::now() < limit) settle();  // CurrCor on connect
   }
   ~QueueHarness() {
-    ::close(fd_);
+    if (fd_ >= 0) ::close(fd_);
     server_.stop();
     quiet();
   }
@@ -114,6 +114,12 @@ class QueueHarness {
     return out;
   }
   const std::vector<std::string>& lines() const { return lines_; }
+  // The controlling client goes away (its connection closes).
+  void disconnect() {
+    ::close(fd_);
+    fd_ = -1;
+    quiet();
+  }
   void clear() { lines_.clear(); }
 
   struct Rig : test::MotionRig {
@@ -128,6 +134,10 @@ class QueueHarness {
     while (io_.poll() > 0);
   }
   void settle() {
+    if (fd_ < 0) {
+      quiet();
+      return;
+    }
     for (int i = 0; i < 1000; ++i) {
       int unacked = 0;
       if (ioctl(fd_, SIOCOUTQ, &unacked) != 0 || unacked == 0) break;
@@ -260,4 +270,21 @@ TEST_CASE("a backend that cannot follow: MoveTo is Ok, then Failed id Faulted") 
   const auto failed = h.starting("Failed 9 Faulted");
   CHECK(failed.size() == 1);
   CHECK(h.starting("Done").empty());
+}
+
+TEST_CASE("the controlling client disconnects mid-queue: the machine brakes and the queue is dropped") {
+  QueueHarness h;
+  h.send("MoveTo 1 X400 F80\nMoveTo 2 Y300\nMoveTo 3 X100");
+  h.run(0.5);
+  REQUIRE(h.rig.mode() == test::Mode::Path);
+  const int stops = h.rig.hw.stops;
+  h.disconnect();
+  h.run(0.3);
+  CHECK(h.rig.hw.stops == stops + 1);
+  CHECK(h.rig.mode() == test::Mode::Idle);
+  CHECK_FALSE(h.rig.core().snapshot().path_running);
+  const auto at_rest = h.rig.position();
+  h.run(1.0);  // nothing of the dropped queue runs later
+  CHECK(h.rig.position() == at_rest);
+  CHECK(h.rig.position().y() == 100);  // segment 2 never started
 }
