@@ -37,6 +37,9 @@ double& param_ref(CoreParams& p, ParamId id) noexcept {
     case ParamId::GoToSpeed: return p.goto_speed;
     case ParamId::HandMinTravel: return p.hand_min_travel;
     case ParamId::HandMinInterval: return p.hand_min_interval;
+    case ParamId::SearchDistance: return p.search_distance;
+    case ParamId::PrehitDistance: return p.prehit_distance;
+    case ParamId::ProbeSpeed: return p.probe_speed;
   }
   return p.tip_radius;
 }

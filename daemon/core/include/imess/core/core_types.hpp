@@ -68,11 +68,15 @@ struct CoreParams {
   double goto_speed = 50;          // mm/s when GoTo names none
   double hand_min_travel = 1.0;    // mm of travel that gives a hand hit its direction
   double hand_min_interval = 1.0;  // s between accepted hand hits
+  // The probing move (DirectCMM, BRIEF §2; the Probe cycle that uses them comes next):
+  double search_distance = 10;     // mm searched past the target before "part not found"
+  double prehit_distance = 2;      // mm before the target where the touch speed is reached
+  double probe_speed = 5;          // mm/s, the touch speed
 };
 
 enum class ParamId : std::uint8_t {
   TipRadius, SpeedLevel, MaxSpeed, MaxAccel, RetractDistance, RetractSpeed, RetractTimeout,
-  IdleOpenTime, GoToSpeed, HandMinTravel, HandMinInterval,
+  IdleOpenTime, GoToSpeed, HandMinTravel, HandMinInterval, SearchDistance, PrehitDistance, ProbeSpeed,
 };
 double& param_ref(CoreParams& p, ParamId id) noexcept;
 double param_value(const CoreParams& p, ParamId id) noexcept;
