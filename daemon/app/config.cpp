@@ -282,6 +282,7 @@ void finish_config(DaemonConfig& cfg) {
   }
   for (int a = 0; a < core::kAxes; ++a) cfg.card.max_accel[a] = 20000;  // the drives' limit; MaxAccel shapes moves
   cfg.server.period_us = cfg.period_us;  // the read-only parameters Period and Backend
+  cfg.core.period_s = cfg.period_us * 1e-6;  // the time step of queued segments
   cfg.server.backend = cfg.backend;
 }
 

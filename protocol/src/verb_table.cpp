@@ -19,6 +19,28 @@ std::optional<double> optional_number(const Args& a, std::size_t i) {
   return a.has(i) ? std::optional<double>(a.number(i)) : std::nullopt;
 }
 
+// A queued move's id: the client's number, echoed in Done / Failed.
+constexpr ArgSpec move_id() {
+  return whole(number("id", 0, 4294967295.0, "a move id is a whole number from {min} to {max}, got '{got}'"));
+}
+std::uint32_t id_of(const Args& a) { return static_cast<std::uint32_t>(a.number(0)); }
+PathWords path_words(const Args& a) {
+  PathWords w;
+  for (const auto& x : a.axis_words) {
+    switch (x.letter) {
+      case 'X': w.x = x.value; break;
+      case 'Y': w.y = x.value; break;
+      case 'Z': w.z = x.value; break;
+      case 'I': w.i = x.value; break;
+      case 'J': w.j = x.value; break;
+      case 'K': w.k = x.value; break;
+      case 'F': w.f = x.value; break;
+      default: break;
+    }
+  }
+  return w;
+}
+
 const std::array kVerbs{
     VerbSpec{"StartMv", args(percent("vx"), percent("vy"), percent("vz")),
              "jog: per-axis speed in % of MaxSpeed (x SpeedLevel), sign = direction", true, Access::Controlling,
@@ -74,6 +96,29 @@ const std::array kVerbs{
              command_index<Watch>(), [](const Args& a) -> Command { return Watch{static_cast<int>(a.number(0))}; }},
     VerbSpec{"Version", args(), "the daemon's version", false, Access::Open,
              command_index<Version>(), [](const Args&) -> Command { return Version{}; }},
+    VerbSpec{"MoveTo",
+             args(move_id(), axis_words("X.. Y.. Z.. F..", "XYZF",
+                                        "MoveTo takes words X Y Z (mm) and F (mm/s), each at most once, got '{got}'; usage: {usage}")),
+             "queue a straight move; axes not named keep their planned position; F mm/s (default GoToSpeed)", false,
+             Access::Controlling, command_index<MoveTo>(),
+             [](const Args& a) -> Command { return MoveTo{id_of(a), path_words(a)}; }},
+    VerbSpec{"ArcTo",
+             args(move_id(), choice("dir", "CW CCW", "ArcTo turns CW or CCW (seen from +Z), got '{got}'; usage: {usage}"),
+                  axis_words("X.. Y.. Z.. I.. J.. F..", "XYZIJF",
+                             "ArcTo takes words X Y Z (end), I J (centre offset from the start, XY plane), F, each once, got '{got}'; usage: {usage}")),
+             "queue an arc in the XY plane (helix when Z changes): end XYZ, centre = start + IJ", false,
+             Access::Controlling, command_index<ArcTo>(),
+             [](const Args& a) -> Command { return ArcTo{id_of(a), a.at[1].choice == 1, path_words(a)}; }},
+    VerbSpec{"Dwell",
+             args(move_id(), number("seconds", 0, kMaxDwellSeconds, "Dwell takes seconds from {min} to {max}, got '{got}'")),
+             "queue a pause of the given seconds (the path stops there)", false, Access::Controlling,
+             command_index<Dwell>(), [](const Args& a) -> Command { return Dwell{id_of(a), a.number(1)}; }},
+    VerbSpec{"Queue", args(), "queued moves: how many are pending, the running id, held or not", false, Access::Open,
+             command_index<Queue>(), [](const Args&) -> Command { return Queue{}; }},
+    VerbSpec{"Pause", args(), "feed hold: queued moves brake to rest on their path", false, Access::Controlling,
+             command_index<Pause>(), [](const Args&) -> Command { return Pause{}; }},
+    VerbSpec{"Resume", args(), "end a feed hold: queued moves go on", false, Access::Controlling,
+             command_index<Resume>(), [](const Args&) -> Command { return Resume{}; }},
 };
 
 }  // namespace

@@ -3,14 +3,17 @@
 #include <catch2/catch.hpp>
 
 #include "core_rig.hpp"
+#include "ideal_follower.hpp"
 #include "imess/core/event_fd.hpp"
 
 #include "allocation_counter.hpp"
 
 using namespace imess::test;
 
+namespace planner = imess::planner;
+
 namespace {
-void push(CoreRig& rig, Command c) { rig.core().submit(c); }
+void push(MotionRig& rig, Command c) { rig.core().submit(c); }
 }  // namespace
 
 TEST_CASE("no motion cycle allocates: jog, hit, retract, idle, hand hits, GoTo, homing, fault") {
@@ -49,4 +52,31 @@ TEST_CASE("the eventfd wake-up allocates nothing and fires only for cycles that 
   CHECK(woken > 0);
   CHECK(woken < 3000);  // not every cycle: only those with events
   rig.core().set_event_signal(nullptr);
+}
+
+TEST_CASE("no motion cycle allocates while running queued segments: follow, Done, hold, resume, stop") {
+  FollowerRig rig;
+  rig.hw.record = false;  // the double's own log would allocate
+  rig.append(rig.line(1, 150, 100, 100, 50));
+  rig.append(rig.line(2, 150, 150, 100, 50));
+  planner::Arc arc;
+  arc.id = 3;
+  arc.target = {190, 190, 100};
+  arc.centre = {190, 150, 100};
+  arc.ccw = false;
+  arc.feed = 30;
+  rig.append(arc);
+  rig.append(planner::Dwell{4, 0.1});
+  rig.append(rig.line(5, 300, 190, 120, 60));
+  rig.feed(true);
+  CHECK(allocations_over_cycles(rig, 1500) == 0);
+  CHECK(rig.mode() == Mode::Path);
+  push(rig, {CommandKind::Pause, 1, 1});
+  CHECK(allocations_over_cycles(rig, 300) == 0);
+  push(rig, {CommandKind::Resume, 1, 2});
+  CHECK(allocations_over_cycles(rig, 300) == 0);
+  rig.core().request_stop();  // fails the rest: Failed events, braking
+  CHECK(allocations_over_cycles(rig, 500) == 0);
+  CHECK(rig.mode() == Mode::Idle);
+  CHECK(rig.hw.follow_calls > 1500);
 }

@@ -16,8 +16,11 @@ namespace {
 constexpr double kFar = 1e5;  // mm: a jog target beyond any travel when no soft limits are known
 
 bool moving_mode(Mode m) {
-  return m == Mode::Jog || m == Mode::Move || m == Mode::Retract || m == Mode::Home || m == Mode::Stopping;
+  return m == Mode::Jog || m == Mode::Move || m == Mode::Retract || m == Mode::Home || m == Mode::Stopping ||
+         m == Mode::Path;
 }
+// A queued path starts only where the machine stands (mm, per axis).
+constexpr double kPathStartTolerance = 0.05;
 int sign(double v) { return (v > 0) - (v < 0); }
 }  // namespace
 
@@ -34,6 +37,9 @@ double& param_ref(CoreParams& p, ParamId id) noexcept {
     case ParamId::GoToSpeed: return p.goto_speed;
     case ParamId::HandMinTravel: return p.hand_min_travel;
     case ParamId::HandMinInterval: return p.hand_min_interval;
+    case ParamId::SearchDistance: return p.search_distance;
+    case ParamId::PrehitDistance: return p.prehit_distance;
+    case ParamId::ProbeSpeed: return p.probe_speed;
   }
   return p.tip_radius;
 }
@@ -131,7 +137,8 @@ void MotionCore::take_stop(Nanos now) noexcept {
   if (t == stop_taken_) return;
   stop_taken_ = t;
   pending_ = Pending::None;
-  if (mode_ == Mode::Jog || mode_ == Mode::Move || mode_ == Mode::Home) {
+  fail_queue(FailReason::Stopped, now, false);  // also those in the ring; the io side knows of its stop
+  if (mode_ == Mode::Jog || mode_ == Mode::Move || mode_ == Mode::Home || mode_ == Mode::Path) {
     stop_motion();
     stopped_from_ = mode_;
     enter(Mode::Stopping, now);
@@ -168,6 +175,12 @@ void MotionCore::handle(const Command& c, Nanos now) noexcept {
         comm_failures_ = 0;
         enter(Mode::Free, now);
       }
+      return reply(c, Refusal::None);
+    case CommandKind::Pause:
+      sampler_.hold();
+      return reply(c, Refusal::None);
+    case CommandKind::Resume:
+      sampler_.resume();
       return reply(c, Refusal::None);
     case CommandKind::HandMv:
       if (!sim_) return reply(c, Refusal::NotSimulated);
@@ -213,7 +226,7 @@ bool MotionCore::away_from_touch(const Vec3& u) const noexcept {
 
 Refusal MotionCore::start_jog(const Vec3& percent, Nanos now) noexcept {
   if (mode_ == Mode::Fault) return Refusal::Faulted;
-  if (mode_ == Mode::Home) return Refusal::Busy;
+  if (mode_ == Mode::Home || mode_ == Mode::Path) return Refusal::Busy;  // a queue runs: StopMv first
   const auto& p = config_.params;
   Vec3 v = percent / 100.0 * p.max_speed * p.speed_level;
   if (percent.isZero()) {  // all speeds zero: the machine stands
@@ -295,7 +308,7 @@ Vec3 MotionCore::jog_target(const Vec3& u) const noexcept {
 
 Refusal MotionCore::go_to(const Vec3& target, double speed, Nanos now) noexcept {
   if (mode_ == Mode::Fault) return Refusal::Faulted;
-  if (mode_ == Mode::Home || mode_ == Mode::Retract) return Refusal::Busy;
+  if (mode_ == Mode::Home || mode_ == Mode::Retract || mode_ == Mode::Path) return Refusal::Busy;
   if (referenced_)
     for (int a = 0; a < kAxes; ++a)
       if (target[a] < config_.axes[a].travel_min || target[a] > config_.axes[a].travel_max) return Refusal::OutOfTravel;
@@ -327,7 +340,8 @@ Refusal MotionCore::go_to(const Vec3& target, double speed, Nanos now) noexcept 
 
 Refusal MotionCore::start_homing(Nanos now) noexcept {
   if (mode_ == Mode::Fault) return Refusal::Faulted;
-  if (mode_ == Mode::Home || mode_ == Mode::Retract || mode_ == Mode::Stopping) return Refusal::Busy;
+  if (mode_ == Mode::Home || mode_ == Mode::Retract || mode_ == Mode::Stopping || mode_ == Mode::Path)
+    return Refusal::Busy;
   if (ms_.tip_touched) return Refusal::TipTouched;
   if (moving_mode(mode_)) stop_motion();
   if (!ms_.loops_closed() && !hw_.set_loops(true)) return Refusal::Hardware;
@@ -375,10 +389,12 @@ void MotionCore::on_probe_latch(Nanos now) noexcept {
       measured(latched + r * motion_dir_, motion_dir_, true, now);
       retract_from(latched, motion_dir_, now);
       return;
+    case Mode::Path:
     case Mode::Move:
     case Mode::Home:
     case Mode::Stopping: {
       pending_ = Pending::None;
+      fail_queue(FailReason::UnexpectedHit, now);  // a queued segment: Failed id UnexpectedHit
       warn(Warning::UnexpectedHit, latched, now);
       Vec3 dir = motion_dir_;
       if (dir.isZero()) {  // homing moves one axis: the overtravel tells the direction
@@ -447,8 +463,10 @@ void MotionCore::check_limits(Nanos now) noexcept {
     e.side = static_cast<std::int8_t>(side);
     e.time = now;
     emit(e);
-    if ((mode_ == Mode::Jog || mode_ == Mode::Move || mode_ == Mode::Retract) && moving_into_limit(a, side)) {
+    if ((mode_ == Mode::Jog || mode_ == Mode::Move || mode_ == Mode::Retract || mode_ == Mode::Path) &&
+        moving_into_limit(a, side)) {
       pending_ = Pending::None;
+      fail_queue(FailReason::IntoLimit, now);
       stop_motion();
       stopped_from_ = mode_;
       enter(Mode::Stopping, now);
@@ -473,14 +491,25 @@ void MotionCore::update_mode(Nanos now) noexcept {
       if (ms_.motion_done() && ms_.all(st::kInPosition)) launch_pending_or_idle(now);  // every axis at rest
       break;
     case Mode::Retract: update_retract(in_mode, now); break;
+    case Mode::Path: run_path(now); break;
     case Mode::Idle:
+      if (!segments_.empty()) {
+        start_path(now);
+        break;
+      }
       if (in_mode >= p.idle_open_time) {
         if (!hw_.set_loops(false)) ++hardware_errors_;
         enter(Mode::Free, now);
       }
       break;
     case Mode::Home: update_homing(now); break;
-    case Mode::Free: hand_.update(ms_.position); break;
+    case Mode::Free:
+      if (!segments_.empty()) {
+        start_path(now);
+        break;
+      }
+      hand_.update(ms_.position);
+      break;
     case Mode::Fault: break;
   }
 }
@@ -543,6 +572,7 @@ void MotionCore::enter(Mode m, Nanos now) noexcept {
 
 void MotionCore::fault(FaultKind f, Nanos now) noexcept {
   pending_ = Pending::None;
+  fail_queue(FailReason::Faulted, now);
   stop_motion();
   if (!hw_.set_loops(false)) ++hardware_errors_;
   Event e;
@@ -552,6 +582,131 @@ void MotionCore::fault(FaultKind f, Nanos now) noexcept {
   e.time = now;
   emit(e);
   enter(Mode::Fault, now);
+}
+
+// ---------------------------------------------------------------- path (queued segments)
+
+bool MotionCore::stale(const QueuedSegment& q) const noexcept {
+  return q.stop_ticket < stop_taken_ || q.drops != drops_;
+}
+
+// The sampler's source: the ring, minus segments sent before a stop or a drop (each of those
+// is Failed Stopped here), and the first segment of a run must start where the machine is.
+bool MotionCore::pop_segment(planner::PlannedSegment& out) noexcept {
+  QueuedSegment q;
+  while (segments_.pop(q)) {
+    if (stale(q)) {
+      segment_event(EventKind::Failed, q.seg.id, FailReason::Stopped, path_now_);
+      continue;
+    }
+    if (check_start_) {
+      check_start_ = false;
+      for (int a = 0; a < kAxes; ++a)
+        if (std::abs(q.seg.start[a] - ms_.position[a]) > kPathStartTolerance) {
+          segment_event(EventKind::Failed, q.seg.id, FailReason::OffPath, path_now_);
+          check_start_ = true;  // the next one must start here too
+          break;
+        }
+      if (check_start_) continue;
+    }
+    if (held_count_ < static_cast<int>(held_ids_.size())) held_ids_[held_count_++] = q.seg.id;
+    low_sent_ = false;
+    out = q.seg;
+    return true;
+  }
+  return false;
+}
+
+// Idle or free with segments waiting: close the loops and follow them from here.
+void MotionCore::start_path(Nanos now) noexcept {
+  path_now_ = now;
+  if (ms_.tip_touched) return fail_queue(FailReason::TipTouched, now);
+  planner::Pose here{};
+  for (int a = 0; a < kAxes; ++a) here[a] = ms_.position[a];
+  sampler_.set_position(here);
+  held_count_ = 0;
+  check_start_ = true;
+  for (int a = 0; a < kAxes; ++a) started_in_limit_[a] = ms_.limit_side(a);
+  if (!ms_.loops_closed() && !hw_.set_loops(true)) {
+    ++hardware_errors_;
+    return fail_queue(FailReason::Faulted, now);
+  }
+  motion_dir_ = Vec3::Zero();
+  enter(Mode::Path, now);
+  run_path(now);
+}
+
+// One sampler tick: the setpoint to the backend, a Done per completed segment, QueueLow when
+// only the running segment is left, idle when the queue ran out at rest.
+void MotionCore::run_path(Nanos now) noexcept {
+  path_now_ = now;
+  const planner::Sample& smp = sampler_.advance(config_.period_s, [this](planner::PlannedSegment& s) { return pop_segment(s); });
+  for (int i = 0; i < smp.done_count; ++i) {
+    segment_event(EventKind::Done, smp.done[i].id, FailReason::Stopped, now);
+    if (held_count_ > 0) {
+      for (int k = 1; k < held_count_; ++k) held_ids_[k - 1] = held_ids_[k];
+      --held_count_;
+    }
+  }
+  if (smp.done_count == 0 && !smp.busy && held_count_ == 0 && sampler_.idle()) {  // nothing came: nothing to run
+    enter(Mode::Idle, now);
+    return;
+  }
+  hal::Setpoint sp;
+  for (int a = 0; a < kAxes; ++a) {
+    sp.position[a] = smp.pose[a];
+    sp.velocity[a] = smp.velocity[a];
+  }
+  if (sp.velocity.norm() > 1e-9) motion_dir_ = sp.velocity.normalized();  // for a stop's braking line
+  if (!hw_.follow(sp)) {  // this backend cannot follow a planned path (or did not answer)
+    fail_queue(FailReason::Faulted, now);
+    stop_motion();
+    stopped_from_ = Mode::Path;
+    enter(Mode::Stopping, now);
+    return;
+  }
+  if (sampler_.idle() && !smp.busy) {
+    enter(Mode::Idle, now);
+    return;
+  }
+  if (held_count_ <= 1 && segments_.empty() && !low_sent_) {
+    low_sent_ = true;
+    Event e;
+    e.kind = EventKind::QueueLow;
+    e.time = now;
+    emit(e);
+  }
+}
+
+// Fails every queued id (the running one, the buffered one, those in the ring) with why, and
+// tells the io side, which fails what it has not sent and plans anew from where the machine
+// comes to rest. Segments the io side sends before it hears of this are failed on arrival.
+void MotionCore::fail_queue(FailReason why, Nanos now, bool tell) noexcept {
+  path_now_ = now;
+  for (int i = 0; i < held_count_; ++i) segment_event(EventKind::Failed, held_ids_[i], why, now);
+  held_count_ = 0;
+  QueuedSegment q;
+  while (segments_.pop(q)) segment_event(EventKind::Failed, q.seg.id, stale(q) ? FailReason::Stopped : why, now);
+  planner::Pose here{};
+  for (int a = 0; a < kAxes; ++a) here[a] = ms_.position[a];
+  sampler_.set_position(here);
+  if (!tell) return;  // the stop lane: segments sent before it are stale by their ticket
+  ++drops_;
+  Event e;
+  e.kind = EventKind::QueueDropped;
+  e.id = drops_;
+  e.fail = why;
+  e.time = now;
+  emit(e);
+}
+
+void MotionCore::segment_event(EventKind k, std::uint32_t id, FailReason why, Nanos now) noexcept {
+  Event e;
+  e.kind = k;
+  e.id = id;
+  e.fail = why;
+  e.time = now;
+  emit(e);
 }
 
 // ---------------------------------------------------------------- output
@@ -612,6 +767,9 @@ void MotionCore::publish(Nanos now) noexcept {
   s.simulated = sim_ != nullptr;
   s.events_dropped = events_dropped_;
   s.hardware_errors = hardware_errors_;
+  s.path_running = held_count_ > 0;
+  s.path_id = held_count_ > 0 ? held_ids_[0] : 0;
+  s.path_held = sampler_.holding();
   snapshot_.publish();
 }
 

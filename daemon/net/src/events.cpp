@@ -81,6 +81,16 @@ void Server::pump_events() {
         broadcast(protocol::format_event("Homed", ""));
         spdlog::info("reference search done: machine homed");
         break;
+      case EventKind::Done:
+      case EventKind::Failed: on_segment_end(e); break;
+      case EventKind::QueueDropped:  // a limit, fault or hit: what the loop never received fails too
+        drops_ = e.id;
+        drop_planned(e.fail);
+        break;
+      case EventKind::QueueLow:  // the loop holds only the segment it runs: end the plan at rest
+        planner_.flush();
+        feed_segments();
+        break;
     }
   }
 }

@@ -1,6 +1,8 @@
 // Accepting, session bookkeeping, broadcasting and the periodic timers.
 #include "imess/net/server.hpp"
 
+#include "imess/core/path_machine.hpp"
+
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -28,7 +30,8 @@ Server::Server(asio::io_context& io, ServerConfig config, core::MotionCore& core
       report_timer_(io),
       log_timer_(io),
       clients_timer_(io),
-      accept_timer_(io) {}
+      accept_timer_(io),
+      planner_(core::path_machine(core.config()), core::path_options(core.config())) {}
 
 void Server::start() {
   boost::system::error_code ec;

@@ -22,7 +22,12 @@ std::string host_text(const Session& s) {
 
 Controller Server::controller(Session& s) const { return {s.id(), controller_name(s.id(), s.info().name), s.host()}; }
 
-void Server::stop_machine() { core_.request_stop(); }  // the stop lane: read first in every motion cycle
+// The stop lane (read first in every motion cycle); the queued moves the loop has not
+// received fail here, those it has fail there (their ids were stamped before this stop).
+void Server::stop_machine() {
+  core_.request_stop();
+  drop_planned(core::FailReason::Stopped);
+}
 
 void Server::announce_control() {
   const auto& owner = control_.owner();

@@ -20,6 +20,7 @@ std::string_view mode_name(Mode m) {
     case Mode::Home: return "home";
     case Mode::Fault: return "fault";
     case Mode::Stopping: return "stopping";
+    case Mode::Path: return "move";  // queued segments: the 1996 clients' word for a motor move
   }
   return "unknown";
 }
@@ -33,6 +34,8 @@ std::string_view command_verb(CommandKind k) {
     case CommandKind::Free: return "Free";
     case CommandKind::Reset: return "Reset";
     case CommandKind::HandMv: return "HandMv";
+    case CommandKind::Pause: return "Pause";
+    case CommandKind::Resume: return "Resume";
   }
   return "Unknown";
 }
@@ -62,6 +65,19 @@ Wording fault_wording(FaultKind f) {
     case FaultKind::SafetyInput2: return {"SafetyInput2", "safety input 2 opened; outputs off; close it, Reset"};
     case FaultKind::SafetyInput3: return {"SafetyInput3", "safety input 3 opened; outputs off; close it, Reset"};
     case FaultKind::SafetyInput4: return {"SafetyInput4", "safety input 4 opened; outputs off; close it, Reset"};
+  }
+  return {"Unknown", ""};
+}
+
+Wording fail_wording(core::FailReason f) {
+  switch (f) {
+    case core::FailReason::Stopped: return {"Stopped", "a stop dropped the queue"};
+    case core::FailReason::OutOfTravel: return {"OutOfTravel", "the segment leaves the travel"};
+    case core::FailReason::IntoLimit: return {"IntoLimit", "a limit switch stopped the machine"};
+    case core::FailReason::Faulted: return {"Faulted", "fault, or the backend cannot follow a path"};
+    case core::FailReason::UnexpectedHit: return {"UnexpectedHit", "probe touched: stopped, retracted, no point"};
+    case core::FailReason::TipTouched: return {"TipTouched", "probe deflected: the queue did not start"};
+    case core::FailReason::OffPath: return {"OffPath", "the machine is not at the queue's start"};
   }
   return {"Unknown", ""};
 }

@@ -38,10 +38,25 @@ struct Watch { int ms = 0; };                               // dead-man interval
 
 struct Version {};                                          // the daemon's version
 
+// Queued motion (planner segments; docs/protocol.md, "Queued moves"). Ids are the client's;
+// each queued id ends in exactly one `Done id` or `Failed id <Reason> <text>` event.
+struct PathWords {  // named words; an axis not named keeps its planned position
+  std::optional<double> x, y, z, i, j, k, f;
+  friend bool operator==(const PathWords&, const PathWords&) = default;
+};
+struct MoveTo { std::uint32_t id = 0; PathWords words; };          // straight line, mm, F mm/s
+struct ArcTo { std::uint32_t id = 0; bool ccw = true; PathWords words; };  // end XYZ, centre offset IJK
+struct Dwell { std::uint32_t id = 0; double seconds = 0; };
+struct Queue {};                                            // pending count, running id
+struct Pause {};                                            // feed hold on the path
+struct Resume {};
+inline constexpr double kMaxDwellSeconds = 3600;
+
 inline constexpr int kWatchMinMs = 50;     // below this, io jitter alone would stop the machine
 inline constexpr int kWatchMaxMs = 60000;
 
 using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo, Home, Free,
-                             Reset, Set, Get, Stats, HandMv, Quit, Replay, Take, Release, Watch, Version>;
+                             Reset, Set, Get, Stats, HandMv, Quit, Replay, Take, Release, Watch, Version,
+                             MoveTo, ArcTo, Dwell, Queue, Pause, Resume>;
 
 }  // namespace imess::protocol

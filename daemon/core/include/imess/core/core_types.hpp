@@ -13,8 +13,21 @@ using hal::Nanos;
 using hal::Vec3;
 
 // Stopping: braking to rest after a stop (StopMv, a limit switch, a dropped owner); Idle
-// follows only when every axis is at rest.
-enum class Mode : std::uint8_t { Free, Idle, Jog, Move, Retract, Home, Fault, Stopping };
+// follows only when every axis is at rest. Path: running queued planner segments (MoveTo,
+// ArcTo, Dwell) through MotionBackend::follow; on the wire it is the 1996 word "move".
+enum class Mode : std::uint8_t { Free, Idle, Jog, Move, Retract, Home, Fault, Stopping, Path };
+
+// Why a queued segment did not complete (`Failed id <Reason>`). Never renumbered; the wire
+// words are in net/wording.cpp (fail_wording).
+enum class FailReason : std::uint8_t {
+  Stopped,        // a stop (StopMv, Release, a dropped owner, the dead-man) dropped the queue
+  OutOfTravel,    // the planner refused it (io side; the core never sends it)
+  IntoLimit,      // a limit switch stopped the machine
+  Faulted,        // a fault, or the backend cannot follow a planned path
+  UnexpectedHit,  // the probe touched during a queued segment: stopped, retracted, no point
+  TipTouched,     // the queue could not start: the probe is deflected
+  OffPath,        // the queue does not start where the machine stands (it was moved meanwhile)
+};
 
 // Why the loop refused a command; net maps each to a protocol error code.
 // TooSlow: the requested speed is below kMinSpeed (nothing would visibly move).
@@ -55,11 +68,15 @@ struct CoreParams {
   double goto_speed = 50;          // mm/s when GoTo names none
   double hand_min_travel = 1.0;    // mm of travel that gives a hand hit its direction
   double hand_min_interval = 1.0;  // s between accepted hand hits
+  // The probing move (DirectCMM, BRIEF §2; the Probe cycle that uses them comes next):
+  double search_distance = 10;     // mm searched past the target before "part not found"
+  double prehit_distance = 2;      // mm before the target where the touch speed is reached
+  double probe_speed = 5;          // mm/s, the touch speed
 };
 
 enum class ParamId : std::uint8_t {
   TipRadius, SpeedLevel, MaxSpeed, MaxAccel, RetractDistance, RetractSpeed, RetractTimeout,
-  IdleOpenTime, GoToSpeed, HandMinTravel, HandMinInterval,
+  IdleOpenTime, GoToSpeed, HandMinTravel, HandMinInterval, SearchDistance, PrehitDistance, ProbeSpeed,
 };
 double& param_ref(CoreParams& p, ParamId id) noexcept;
 double param_value(const CoreParams& p, ParamId id) noexcept;
@@ -89,12 +106,14 @@ struct CoreConfig {
   AxisArray<AxisSettings> axes{AxisSettings{0, 1000, -1, 0}, AxisSettings{0, 1000, -1, 0}, AxisSettings{0, 600, 1, 600}};
   HomingSettings homing;
   double max_velocity = 150;  // mm/s: no speed level lifts a move above this
+  double period_s = 0.001;    // the loop's period: the time step of queued segments
   bool referenced_at_start = false;  // absolute scales: soft limits valid without Home
 };
 
 // Commands through the ring. Stops and parameter changes have lanes of their own
 // (MotionCore::request_stop, MotionCore::set_param) and never wait behind these.
-enum class CommandKind : std::uint8_t { StartMv, ForcePt, GoTo, Home, Free, Reset, HandMv };
+// Pause / Resume: feed hold of the queued segments (Sampler::hold / resume), on the path.
+enum class CommandKind : std::uint8_t { StartMv, ForcePt, GoTo, Home, Free, Reset, HandMv, Pause, Resume };
 
 struct Command {
   CommandKind kind = CommandKind::ForcePt;
@@ -105,7 +124,10 @@ struct Command {
   std::uint64_t ticket = 0;  // set by MotionCore::submit: orders commands against stops
 };
 
-enum class EventKind : std::uint8_t { Reply, MeasPt, State, Limit, Warn, Fault, Homed };
+// Done / Failed: a queued segment (id) completed / did not. QueueDropped: the loop dropped
+// every queued segment (drops: its new count, to stamp the segments sent after it).
+// QueueLow: the loop holds no more than the segment it runs: the planner should flush.
+enum class EventKind : std::uint8_t { Reply, MeasPt, State, Limit, Warn, Fault, Homed, Done, Failed, QueueDropped, QueueLow };
 
 struct Event {
   EventKind kind = EventKind::Reply;
@@ -121,6 +143,8 @@ struct Event {
   Vec3 dir = Vec3::Zero();            // MeasPt: approach direction used
   const char* reason = nullptr;       // Warn: a static text saying why (HomingFailed), or none
   double radius = 0;                  // MeasPt: tip radius applied (0: ForcePt)
+  std::uint32_t id = 0;               // Done, Failed: the segment's id; QueueDropped: drops
+  FailReason fail = FailReason::Stopped;  // Failed, QueueDropped
   Nanos time{0};
 };
 
@@ -137,6 +161,9 @@ struct Snapshot {
   bool simulated = false;
   std::uint64_t events_dropped = 0;
   std::uint64_t hardware_errors = 0;
+  bool path_running = false;          // a queued segment is in hand
+  std::uint32_t path_id = 0;          // its id
+  bool path_held = false;             // Pause is in effect
 };
 
 }  // namespace imess::core

@@ -3,6 +3,7 @@
 // writes the hardware, pushes events and publishes a snapshot. cycle() never allocates,
 // locks, logs, throws or blocks; time comes in as an argument (real or virtual).
 #pragma once
+#include <array>
 #include <atomic>
 
 #include "imess/core/event_signal.hpp"
@@ -11,6 +12,7 @@
 #include "imess/core/queues.hpp"
 #include "imess/core/triple_buffer.hpp"
 #include "imess/hal/motion_backend.hpp"
+#include "imess/planner/sampler.hpp"
 
 namespace imess::core {
 
@@ -32,6 +34,12 @@ class MotionCore {
   //
   // submit: queues a command; false when the ring is full (the caller answers QueueFull).
   bool submit(Command c) noexcept;
+  // The segment ring (io thread): a planned segment for the path mode; false when the ring is
+  // full (the caller keeps it and tries again after a Done). stop_ticket(): the newest stop
+  // ticket issued, to stamp segments with.
+  bool submit_segment(const QueuedSegment& s) noexcept { return segments_.push(s); }
+  std::size_t segment_room() const noexcept { return segments_.write_available(); }
+  std::uint64_t stop_ticket() const noexcept { return next_ticket_; }
   // The stop lane: the loop reads it first thing every cycle, so a stop never waits behind
   // queued commands. Every motion brakes to rest with the axes' configured deceleration
   // (never a client-set value); motion commands submitted before the stop and not yet taken
@@ -74,6 +82,14 @@ class MotionCore {
   void update_retract(double in_mode, Nanos now) noexcept;
   void update_homing(Nanos now) noexcept;
   void enter(Mode m, Nanos now) noexcept;
+  // Path mode (queued segments): start when idle, one sampler tick per cycle, the failing of
+  // every queued id with a reason (the stop lane, limits, faults, hits).
+  void start_path(Nanos now) noexcept;
+  void run_path(Nanos now) noexcept;
+  bool pop_segment(planner::PlannedSegment& out) noexcept;  // fails stale segments on the way
+  bool stale(const QueuedSegment& q) const noexcept;
+  void fail_queue(FailReason why, Nanos now, bool tell = true) noexcept;
+  void segment_event(EventKind k, std::uint32_t id, FailReason why, Nanos now) noexcept;
   void fault(FaultKind f, Nanos now) noexcept;
   void emit(const Event& e) noexcept;
   void reply(const Command& c, Refusal r) noexcept;
@@ -125,6 +141,15 @@ class MotionCore {
   Vec3 pending_v_ = Vec3::Zero();
   double pending_speed_ = 0;  // a move was commanded after this cycle's state was read
   std::uint64_t cycles_ = 0, events_dropped_ = 0, hardware_errors_ = 0;
+  // Path mode. held_ids_: the ids the sampler holds (current, then the buffered one), in order.
+  SegmentQueue segments_;
+  planner::Sampler sampler_;
+  std::array<std::uint32_t, 4> held_ids_{};
+  int held_count_ = 0;
+  std::uint32_t drops_ = 0;       // queue drops by the loop (stamped on segments by the io side)
+  bool check_start_ = false;      // the next segment popped must start where the machine stands
+  bool low_sent_ = false;         // QueueLow sent since the last segment popped
+  Nanos path_now_{0};             // the cycle's time, for events raised inside pop_segment
 };
 
 }  // namespace imess::core

@@ -4,6 +4,7 @@
 #include <boost/lockfree/spsc_queue.hpp>
 
 #include "imess/core/core_types.hpp"
+#include "imess/planner/segment.hpp"
 
 namespace imess::core {
 
@@ -11,7 +12,24 @@ inline constexpr std::size_t kCommandCapacity = 256;  // a full ring is an immed
 inline constexpr std::size_t kEventCapacity = 4096;   // drained by the io thread as soon as the loop wakes it
 inline constexpr int kCommandsPerCycle = 8;           // bounded work per motion cycle
 
+// Planned segments, io thread -> loop. A full ring is not waited on: the io side keeps the
+// rest in its planner and feeds them as Done events free room.
+inline constexpr std::size_t kSegmentCapacity = 128;
+
+// A segment with the stop ticket and the loop's drop count the io side knew when it sent it:
+// a segment older than a stop or a drop is failed (Stopped), never run.
+struct QueuedSegment {
+  planner::PlannedSegment seg;
+  std::uint64_t stop_ticket = 0;
+  std::uint32_t drops = 0;
+};
+static_assert(std::is_trivially_copyable_v<QueuedSegment>);
+
 using CommandQueue = boost::lockfree::spsc_queue<Command, boost::lockfree::capacity<kCommandCapacity>>;
 using EventQueue = boost::lockfree::spsc_queue<Event, boost::lockfree::capacity<kEventCapacity>>;
 
+}  // namespace imess::core
+
+namespace imess::core {
+using SegmentQueue = boost::lockfree::spsc_queue<QueuedSegment, boost::lockfree::capacity<kSegmentCapacity>>;
 }  // namespace imess::core

@@ -4,6 +4,7 @@
 #include <boost/asio.hpp>
 #include <spdlog/spdlog.h>
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -17,6 +18,7 @@
 #include "imess/net/host_list.hpp"
 #include "imess/net/log_limiter.hpp"
 #include "imess/net/session.hpp"
+#include "imess/planner/planner.hpp"
 #include "imess/protocol/commands.hpp"
 
 namespace imess::net {
@@ -112,6 +114,17 @@ class Server {
   // hits.cpp, replay.cpp
   void send_hit(const core::Event& e);
   void on_replay(Session& s, std::uint32_t slot, std::uint64_t from);
+  // queue.cpp: queued moves — the planner on the io thread, the segment ring's producer
+  void queue_move(Session& s, std::uint32_t slot, std::string_view verb, const planner::Request& r);
+  void move_to(Session& s, std::uint32_t slot, const protocol::MoveTo& c);
+  void arc_to(Session& s, std::uint32_t slot, const protocol::ArcTo& c);
+  void queue_status(Session& s, std::uint32_t slot);
+  bool plan_from_here(std::string& why);  // the planner starts where the machine stands
+  void feed_segments();                   // final segments into the ring while it has room
+  void schedule_flush_check();            // after the lines that arrived together
+  void flush_check();                     // flush when the loop holds too little motion
+  void on_segment_end(const core::Event& e);  // Done / Failed
+  void drop_planned(core::FailReason why);    // fail what the loop has not received, plan anew
   // events.cpp
   void wait_for_events();  // re-arms the wait on the EventFd
   void pump_events();
@@ -137,6 +150,14 @@ class Server {
   bool running_ = false;
   Control control_;
   LogLimiter log_limiter_;
+  // Queued moves (queue.cpp). unsent_: ids in the planner, not yet in the ring, in order;
+  // in_loop_: ids in the ring or the loop's hand with their planned seconds.
+  planner::Planner planner_;
+  bool planning_ = false;  // planner_ continues the queued path (else: starts where the machine stands)
+  std::deque<std::uint32_t> unsent_;
+  std::deque<std::pair<std::uint32_t, double>> in_loop_;
+  std::uint32_t drops_ = 0;  // the loop's queue drops known here (stamped on every segment)
+  bool flush_check_posted_ = false;
 };
 
 }  // namespace imess::net

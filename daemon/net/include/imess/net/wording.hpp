@@ -18,6 +18,8 @@ struct Wording {
 };
 Wording warning_wording(core::Warning w);
 Wording fault_wording(core::FaultKind f);
+// The reason word of `Failed id <Reason> <text>` (the one list of them: core::FailReason).
+Wording fail_wording(core::FailReason f);
 
 struct RefusalWording {
   protocol::ErrorCode code;

@@ -1,0 +1,31 @@
+// The planner's view of the machine the core drives: the three linear axes X Y Z with the
+// configured travel and the resolved per-axis limits (MotionCore::config()), and the loop's
+// period. The io side builds its Planner from this; tests do the same.
+#pragma once
+#include "imess/core/core_types.hpp"
+#include "imess/planner/planner.hpp"
+
+namespace imess::core {
+
+inline planner::Machine path_machine(const CoreConfig& resolved) {
+  planner::Machine m;
+  m.count = kAxes;
+  for (int a = 0; a < kAxes; ++a) {
+    auto& ax = m.axes[a];
+    ax.letter = planner::kAxisLetters[a];
+    ax.kind = planner::AxisKind::Linear;
+    ax.travel_min = resolved.axes[a].travel_min;
+    ax.travel_max = resolved.axes[a].travel_max;
+    ax.max_velocity = resolved.axes[a].max_velocity;
+    ax.max_accel = resolved.axes[a].max_accel;
+  }
+  return m;
+}
+
+inline planner::PlannerOptions path_options(const CoreConfig& resolved) {
+  planner::PlannerOptions o;
+  o.loop_period = resolved.period_s;
+  return o;
+}
+
+}  // namespace imess::core

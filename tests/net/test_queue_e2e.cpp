@@ -1,0 +1,290 @@
+// Queued moves end to end through net::Server in virtual time: a loopback TCP client sends
+// MoveTo / ArcTo / Dwell / Queue / Pause / StopMv; the Server plans on the io side, the motion
+// core (on the IdealFollower double) follows; the test steps the loop and reads the lines.
+#include <catch2/catch.hpp>
+
+#include <arpa/inet.h>
+#include <linux/sockios.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <sys/ioctl.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "ideal_follower.hpp"
+#include "imess/core/event_fd.hpp"
+#include "imess/journal/journal.hpp"
+#include "imess/net/server.hpp"
+
+using namespace imess;
+
+namespace {
+
+class TempDir {
+ public:
+  TempDir() {
+    path_ = (std::filesystem::temp_directory_path() / "imess-queue-XXXXXX").string();
+    if (!mkdtemp(path_.data())) throw std::runtime_error("mkdtemp failed");
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+journal::JournalConfig jconfig(const std::string& dir) {
+  journal::JournalConfig c;
+  c.dir = dir;
+  return c;
+}
+
+net::ServerConfig sconfig() {
+  net::ServerConfig c;
+  c.listen = "127.0.0.1";
+  c.port = 0;
+  c.stream_position = false;
+  return c;
+}
+
+// The Server and the core in virtual time, one client; the golden harness's approach.
+class QueueHarness {
+ public:
+  QueueHarness() : journal_(jconfig(dir_.path())), server_(io_, sconfig(), rig.core(), nullptr, journal_, &wake_) {
+    spdlog::set_level(spdlog::level::off);
+    rig.core().set_event_signal(&wake_);
+    server_.start();
+    fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in to{};
+    to.sin_family = AF_INET;
+    to.sin_port = htons(server_.port());
+    to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    REQUIRE(::connect(fd_, reinterpret_cast<sockaddr*>(&to), sizeof to) == 0);
+    int one = 1;
+    setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+    const auto limit = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (lines_.empty() && std::chrono::steady_clock::now() < limit) settle();  // CurrCor on connect
+  }
+  ~QueueHarness() {
+    if (fd_ >= 0) ::close(fd_);
+    server_.stop();
+    quiet();
+  }
+
+  // Sends lines in one write, lets the io side answer, runs one cycle.
+  void send(const std::string& text) {
+    std::string b = text + "\n";
+    REQUIRE(::send(fd_, b.data(), b.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(b.size()));
+    settle();
+    step();
+  }
+  void step() {
+    rig.clock().advance(test::MotionRig::kPeriod);
+    rig.core().cycle(rig.clock().now());
+    settle();
+  }
+  void run(double seconds) {
+    for (long i = 0, n = static_cast<long>(seconds * 1000 + 0.5); i < n; ++i) step();
+  }
+  bool run_until(const std::string& line, double seconds) {
+    for (long i = 0, n = static_cast<long>(seconds * 1000); i < n; ++i) {
+      if (has(line)) return true;
+      step();
+    }
+    return has(line);
+  }
+  bool has(const std::string& line) const {
+    for (auto& l : lines_)
+      if (l == line) return true;
+    return false;
+  }
+  std::vector<std::string> starting(const std::string& prefix) const {
+    std::vector<std::string> out;
+    for (auto& l : lines_)
+      if (l.rfind(prefix, 0) == 0) out.push_back(l);
+    return out;
+  }
+  const std::vector<std::string>& lines() const { return lines_; }
+  // The controlling client goes away (its connection closes).
+  void disconnect() {
+    ::close(fd_);
+    fd_ = -1;
+    quiet();
+  }
+  void clear() { lines_.clear(); }
+
+  struct Rig : test::MotionRig {
+    Rig() { start_core(test::FollowerRig::default_config()); }
+    hal::MotionBackend& backend() override { return hw; }
+    test::IdealFollower hw;
+  } rig;
+
+ private:
+  void quiet() {
+    do io_.restart();
+    while (io_.poll() > 0);
+  }
+  void settle() {
+    if (fd_ < 0) {
+      quiet();
+      return;
+    }
+    for (int i = 0; i < 1000; ++i) {
+      int unacked = 0;
+      if (ioctl(fd_, SIOCOUTQ, &unacked) != 0 || unacked == 0) break;
+      quiet();
+    }
+    quiet();
+    char buf[65536];
+    for (;;) {
+      auto n = ::recv(fd_, buf, sizeof buf, MSG_DONTWAIT);
+      if (n <= 0) break;
+      pending_.append(buf, static_cast<std::size_t>(n));
+    }
+    for (auto nl = pending_.find('\n'); nl != std::string::npos; nl = pending_.find('\n')) {
+      lines_.push_back(pending_.substr(0, nl));
+      pending_.erase(0, nl + 1);
+    }
+  }
+
+  TempDir dir_;
+  core::EventFd wake_;
+  journal::Journal journal_;
+  boost::asio::io_context io_;
+  net::Server server_;
+  int fd_ = -1;
+  std::string pending_;
+  std::vector<std::string> lines_;
+};
+
+}  // namespace
+
+TEST_CASE("MoveTo, ArcTo and Dwell through the Server: Ok, State move, Done in order, idle at the end") {
+  QueueHarness h;
+  h.send("MoveTo 1 X150 F50\nMoveTo 2 Y150\nArcTo 3 CW X200 Y200 I50\nDwell 4 0.1\nMoveTo 5 Z50 X210 F40");
+  CHECK(h.has("Ok MoveTo"));
+  CHECK(h.starting("Ok ").size() == 5);
+  CHECK(h.has("Ok ArcTo"));
+  CHECK(h.has("Ok Dwell"));
+  CHECK(h.has("State move"));
+  REQUIRE(h.run_until("Done 5", 20));
+  CHECK(h.starting("Done ") == std::vector<std::string>{"Done 1", "Done 2", "Done 3", "Done 4", "Done 5"});
+  CHECK(h.starting("Failed").empty());
+  h.step();
+  CHECK(h.has("State idle"));
+  CHECK(h.rig.position().isApprox(hal::Vec3(210, 200, 50), 1e-9));
+  // the arc ran on its circle: centre (200, 150) = start + I, radius 50, a quarter turn CW, every followed point within 1 µm
+  int on_arc = 0;
+  for (const auto& sp : h.rig.hw.setpoints) {
+    const double x = sp.position.x(), y = sp.position.y();
+    if (x > 150 + 1e-6 && y > 150 + 1e-6 && x < 200 - 1e-6 && y < 200 - 1e-6 && std::abs(sp.position.z() - 100) < 1e-9) {
+      CHECK(std::abs(std::hypot(x - 200, y - 150) - 50) < 1e-6);
+      ++on_arc;
+    }
+  }
+  CHECK(on_arc > 100);
+}
+
+TEST_CASE("a MoveTo out of the travel is Err 206 naming the id and the axis; nothing moves") {
+  QueueHarness h;
+  h.send("MoveTo 42 Y900");
+  CHECK(h.has("Err 206 segment 42: axis Y leaves its travel at 900.000000"));
+  h.run(0.1);
+  CHECK(h.starting("Done").empty());
+  CHECK(h.rig.hw.follow_calls == 0);
+  h.send("Queue");
+  CHECK(h.has("Ok Queue Pending 0 Running none Held no"));
+}
+
+TEST_CASE("StopMv mid-queue: Ok StopMv, every queued id Failed Stopped, then a new queue runs") {
+  QueueHarness h;
+  h.send("MoveTo 1 X400 F80\nMoveTo 2 Y300\nMoveTo 3 X100");
+  h.run(0.5);
+  h.send("Queue");
+  CHECK(h.has("Ok Queue Pending 3 Running 1 Held no"));
+  h.send("StopMv");
+  CHECK(h.has("Ok StopMv"));
+  REQUIRE(h.run_until("State idle", 2));
+  const auto failed = h.starting("Failed ");
+  REQUIRE(failed.size() == 3);
+  for (const auto& id : {"1", "2", "3"}) {
+    bool found = false;
+    for (const auto& l : failed) found = found || l.rfind(std::string("Failed ") + id + " Stopped ", 0) == 0;
+    CHECK(found);
+  }
+  CHECK(h.starting("Done").empty());
+  for (const auto& l : failed) CHECK(l.size() <= 78);
+  h.clear();
+  h.send("MoveTo 7 X120");  // starts where the machine came to rest
+  CHECK(h.has("Ok MoveTo"));
+  CHECK(h.run_until("Done 7", 10));
+  CHECK(h.starting("Failed").empty());
+}
+
+TEST_CASE("Pause holds the queue on its path, Queue says Held yes, Resume finishes it") {
+  QueueHarness h;
+  h.send("MoveTo 1 X300 Y250 F60");
+  h.run(1.0);
+  h.send("Pause");
+  CHECK(h.has("Ok Pause"));
+  h.run(0.5);
+  const auto held = h.rig.position();
+  h.run(0.3);
+  CHECK(h.rig.position() == held);
+  h.send("Queue");
+  CHECK(h.has("Ok Queue Pending 1 Running 1 Held yes"));
+  h.send("Resume");
+  CHECK(h.has("Ok Resume"));
+  CHECK(h.run_until("Done 1", 10));
+}
+
+TEST_CASE("a GoTo while a queue runs is Err 202; MoveTo while jogging is Err 202") {
+  QueueHarness h;
+  h.send("MoveTo 1 X300 F50");
+  h.run(0.2);
+  h.send("GoTo 0 0 0");
+  CHECK(h.starting("Err 202").size() == 1);
+  CHECK(h.run_until("Done 1", 10));
+  h.run(0.01);
+  h.clear();
+  h.send("StartMv 10 0 0");
+  h.run(0.05);
+  h.send("MoveTo 2 X100");
+  CHECK(h.starting("Err 202").size() == 1);
+}
+
+TEST_CASE("a backend that cannot follow: MoveTo is Ok, then Failed id Faulted") {
+  QueueHarness h;
+  h.rig.hw.can_follow = false;
+  h.send("MoveTo 9 X120");
+  h.run(0.1);
+  const auto failed = h.starting("Failed 9 Faulted");
+  CHECK(failed.size() == 1);
+  CHECK(h.starting("Done").empty());
+}
+
+TEST_CASE("the controlling client disconnects mid-queue: the machine brakes and the queue is dropped") {
+  QueueHarness h;
+  h.send("MoveTo 1 X400 F80\nMoveTo 2 Y300\nMoveTo 3 X100");
+  h.run(0.5);
+  REQUIRE(h.rig.mode() == test::Mode::Path);
+  const int stops = h.rig.hw.stops;
+  h.disconnect();
+  h.run(0.3);
+  CHECK(h.rig.hw.stops == stops + 1);
+  CHECK(h.rig.mode() == test::Mode::Idle);
+  CHECK_FALSE(h.rig.core().snapshot().path_running);
+  const auto at_rest = h.rig.position();
+  h.run(1.0);  // nothing of the dropped queue runs later
+  CHECK(h.rig.position() == at_rest);
+  CHECK(h.rig.position().y() == 100);  // segment 2 never started
+}
