@@ -17,9 +17,13 @@ namespace st = hal::status;
 
 namespace {
 constexpr double kMaxCatchUp = 0.5;  // s; a stalled caller does not make the card spin for ages
-// Following: the setpoints stopped coming when none arrived for this many host periods (one
-// lost frame is enough: a gap in a per-period setpoint stream cannot be made up).
+// Following: the setpoints stopped coming when none arrived for this many host periods, and
+// at least kFollowWatchdogMin. A lost frame the driver sees at once (CommLost); this watchdog
+// is for a host that stalls. Until it fires, a late frame is bridged by going on at the last
+// setpoint's velocity: a host without a real-time kernel wakes up to a millisecond late
+// (messd's Stats: LatMax), which must not fault the machine.
 constexpr double kFollowWatchdogPeriods = 1.5;
+constexpr double kFollowWatchdogMin = 0.005;  // s
 // Follow frames that the firmware refuses as implausible: faster than this many times vmax,
 // or farther from the command than that speed covers in two periods.
 constexpr double kFollowSpeedMargin = 1.1;
@@ -96,7 +100,7 @@ void EmulatedCard::follow_tick() noexcept {
     for (auto& ax : axes_) ax.following = false;
     return;
   }
-  if (follow_age_ > kFollowWatchdogPeriods * span) {
+  if (follow_age_ > std::max(kFollowWatchdogPeriods * span, kFollowWatchdogMin)) {
     // The setpoints stopped coming: brake on the card, report a communication timeout.
     for (auto& ax : axes_) ax.faults |= st::kCommTimeout;
     return end_following(true);
