@@ -493,7 +493,7 @@ void MotionCore::update_mode(Nanos now) noexcept {
     case Mode::Retract: update_retract(in_mode, now); break;
     case Mode::Path: run_path(now); break;
     case Mode::Idle:
-      if (!segments_.empty()) {
+      if (fresh_segments_waiting(now)) {
         start_path(now);
         break;
       }
@@ -504,7 +504,7 @@ void MotionCore::update_mode(Nanos now) noexcept {
       break;
     case Mode::Home: update_homing(now); break;
     case Mode::Free:
-      if (!segments_.empty()) {
+      if (fresh_segments_waiting(now)) {
         start_path(now);
         break;
       }
@@ -588,6 +588,17 @@ void MotionCore::fault(FaultKind f, Nanos now) noexcept {
 
 bool MotionCore::stale(const QueuedSegment& q) const noexcept {
   return q.stop_ticket < stop_taken_ || q.drops != drops_;
+}
+
+// Segments sent before a stop or a drop never run: they are failed (Stopped) here, before a
+// path starts, so a stale tail does not flicker the state into move and back.
+bool MotionCore::fresh_segments_waiting(Nanos now) noexcept {
+  while (!segments_.empty() && stale(segments_.front())) {
+    QueuedSegment q;
+    segments_.pop(q);
+    segment_event(EventKind::Failed, q.seg.id, FailReason::Stopped, now);
+  }
+  return !segments_.empty();
 }
 
 // The sampler's source: the ring, minus segments sent before a stop or a drop (each of those

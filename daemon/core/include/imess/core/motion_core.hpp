@@ -87,6 +87,7 @@ class MotionCore {
   void start_path(Nanos now) noexcept;
   void run_path(Nanos now) noexcept;
   bool pop_segment(planner::PlannedSegment& out) noexcept;  // fails stale segments on the way
+  bool fresh_segments_waiting(Nanos now) noexcept;
   bool stale(const QueuedSegment& q) const noexcept;
   void fail_queue(FailReason why, Nanos now, bool tell = true) noexcept;
   void segment_event(EventKind k, std::uint32_t id, FailReason why, Nanos now) noexcept;
