@@ -427,13 +427,7 @@ class GcodeTranslator {
 
 Translation translate_gcode(std::string_view text, const GcodeOptions& options) {
   GcodeTranslator t(options);
-  try {
-    Translation r;
-    r.items = t.run(text);
-    return r;
-  } catch (const Failure& f) {
-    return fail(f.error.kind, f.error.line, f.error.column, f.error.found, f.error.accepted);
-  }
+  return translate_with(t, text);
 }
 
 }  // namespace imess::programs

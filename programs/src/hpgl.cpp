@@ -186,13 +186,7 @@ class HpglTranslator {
 
 Translation translate_hpgl(std::string_view text, const HpglOptions& options) {
   HpglTranslator t(options);
-  try {
-    Translation r;
-    r.items = t.run(text);
-    return r;
-  } catch (const Failure& f) {
-    return fail(f.error.kind, f.error.line, f.error.column, f.error.found, f.error.accepted);
-  }
+  return translate_with(t, text);
 }
 
 }  // namespace imess::programs

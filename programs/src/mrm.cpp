@@ -126,13 +126,7 @@ class MrmTranslator {
 
 Translation translate_mrm(std::string_view text, const MrmOptions& options) {
   MrmTranslator t(options);
-  try {
-    Translation r;
-    r.items = t.run(text);
-    return r;
-  } catch (const Failure& f) {
-    return fail(f.error.kind, f.error.line, f.error.column, f.error.found, f.error.accepted);
-  }
+  return translate_with(t, text);
 }
 
 }  // namespace imess::programs

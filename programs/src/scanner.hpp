@@ -27,6 +27,19 @@ struct Failure {
 };
 [[noreturn]] void raise(ErrorKind kind, int line, int column, std::string found, std::string accepted);
 
+// A translator's entry point: every item of the text, or its first error (a Failure thrown
+// inside). Set-up errors from the translator's constructor (bad options) propagate.
+template <class Translator>
+Translation translate_with(Translator& t, std::string_view text) {
+  try {
+    Translation r;
+    r.items = t.run(text);
+    return r;
+  } catch (const Failure& f) {
+    return fail(f.error.kind, f.error.line, f.error.column, f.error.found, f.error.accepted);
+  }
+}
+
 // Trims trailing zeros: 1.500000 -> 1.5, -0 -> 0 (6 decimals).
 std::string num(double v);
 

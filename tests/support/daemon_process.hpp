@@ -26,6 +26,19 @@
 
 namespace imess::test {
 
+// In a forked child: becomes messd on an ephemeral loopback port without real-time
+// scheduling, with the test's extra arguments; never returns.
+[[noreturn]] inline void exec_messd(const std::vector<std::string>& args) {
+  std::string bin = std::string(IMESS_BIN_DIR) + "/messd";
+  std::vector<std::string> all{bin, "--port", "0", "--listen", "127.0.0.1", "--no-rt"};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  execv(bin.c_str(), argv.data());
+  _exit(127);
+}
+
 class DaemonProcess {
  public:
   explicit DaemonProcess(std::vector<std::string> args = {}) {
@@ -45,14 +58,7 @@ class DaemonProcess {
       int devnull = open("/dev/null", O_WRONLY);
       if (!std::getenv("IMESS_TEST_DAEMON_LOG")) dup2(devnull, STDERR_FILENO);
       close(out[0]);
-      std::string bin = std::string(IMESS_BIN_DIR) + "/messd";
-      std::vector<std::string> all{bin, "--port", "0", "--listen", "127.0.0.1", "--no-rt"};
-      all.insert(all.end(), args.begin(), args.end());
-      std::vector<char*> argv;
-      for (auto& a : all) argv.push_back(a.data());
-      argv.push_back(nullptr);
-      execv(bin.c_str(), argv.data());
-      _exit(127);
+      exec_messd(args);
     }
     close(out[1]);
     out_ = fdopen(out[0], "r");
@@ -113,14 +119,7 @@ inline MessdExit run_messd_to_exit(const std::vector<std::string>& args, double 
     dup2(err[1], STDERR_FILENO);
     close(out[0]);
     close(err[0]);
-    std::string bin = std::string(IMESS_BIN_DIR) + "/messd";
-    std::vector<std::string> all{bin, "--port", "0", "--listen", "127.0.0.1", "--no-rt"};
-    all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(bin.c_str(), argv.data());
-    _exit(127);
+    exec_messd(args);
   }
   close(out[1]);
   close(err[1]);
