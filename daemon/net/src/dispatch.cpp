@@ -59,9 +59,10 @@ bool Server::to_core(Session& s, std::uint32_t slot, core::Command c) {
   // A client that floods gets QueueFull itself; its share of the ring stays bounded, so the
   // ring never fills up for anyone else.
   if (s.info().in_flight >= config_.control.max_in_flight) {
-    reply(s, slot, format_err(ErrorCode::QueueFull, std::to_string(config_.control.max_in_flight) +
-                                                        " commands of this client are waiting for the motion loop; "
-                                                        "retry when they are answered"));
+    const std::uint32_t n = config_.control.max_in_flight;
+    reply(s, slot, format_err(ErrorCode::QueueFull, std::to_string(n) + (n == 1 ? " command" : " commands") +
+                                                        " of this client " + (n == 1 ? "is" : "are") +
+                                                        " waiting for the motion loop; retry when answered"));
     return false;
   }
   if (!core_.submit(c)) {
