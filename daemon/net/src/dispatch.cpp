@@ -134,7 +134,7 @@ void Server::hello(Session& s, std::uint32_t slot, const protocol::Hello& c) {
     if (owner) announce_control();  // everyone sees the owner under its new name
   }
   const bool sim = core_.snapshot().simulated;
-  reply(s, slot, format_ok("Hello", "IMESS 1 messd " + config_.version + " Caps jog goto home probe hand stats journal" +
+  reply(s, slot, format_ok("Hello", "IMESS 1 messd " + config_.version + " Caps jog goto home probe hand stats journal queue" +
                                  (sim ? " sim" : "")));
 }
 
