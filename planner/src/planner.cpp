@@ -48,7 +48,9 @@ std::string describe(const AppendResult& r, const Machine& m) {
       const char letter = r.axis >= 0 && r.axis < m.count ? m.axes[r.axis].letter : '?';
       return seg + "axis " + letter + " leaves its travel at " + std::to_string(r.value);
     }
-    case PlanError::BadFeed: return seg + "feed must be a number > 0";
+    case PlanError::BadFeed:
+      return seg + (r.value > 0 ? "feed must be a number of at least " + std::to_string(r.value)
+                                : std::string("feed must be a number > 0"));
     case PlanError::BadPose: return seg + "target is not a finite number on every axis";
     case PlanError::BadDwell: return seg + "dwell must be a number of seconds >= 0";
     case PlanError::ArcBadPlane: return seg + "arc plane must be three distinct linear axes with a non-zero normal";
@@ -109,6 +111,10 @@ AppendResult Planner::append(const Request& request) {
   return {PlanError::None, seg.id};
 }
 
+bool Planner::feed_ok(double feed) const noexcept {
+  return feed > 0 && feed >= options_.min_feed && std::isfinite(feed);
+}
+
 AppendResult Planner::queue_line(const Line& l) {
   Pose target{};
   for (int i = 0; i < machine_.count; ++i) {
@@ -139,7 +145,7 @@ AppendResult Planner::queue_line(const Line& l) {
     queue_rest(seg);
     return {PlanError::None, l.id};
   }
-  if (!(l.feed > 0) || !std::isfinite(l.feed)) return {PlanError::BadFeed, l.id};
+  if (!feed_ok(l.feed)) return {PlanError::BadFeed, l.id, -1, options_.min_feed};
   // Path limits from every moving axis: v ≤ v_i/|u_i|, a ≤ a_i/|u_i| (u_i = Δ_i / L).
   double v = l.feed, a = kInf;
   for (int i = 0; i < machine_.count; ++i) {
@@ -178,7 +184,7 @@ AppendResult Planner::queue_arc(const Arc& arc) {
   Vector3d c(arc.centre[0], arc.centre[1], arc.centre[2]);
   if (!(n.norm() > 1e-12) || !c.allFinite() || !n.allFinite() || arc.turns < 0)
     return {PlanError::ArcBadPlane, arc.id};
-  if (!(arc.feed > 0) || !std::isfinite(arc.feed)) return {PlanError::BadFeed, arc.id};
+  if (!feed_ok(arc.feed)) return {PlanError::BadFeed, arc.id, -1, options_.min_feed};
   if (auto r = check_travel(arc.id, target); !r.ok()) return r;
   n.normalize();
   const Vector3d p0(position_[ax[0]], position_[ax[1]], position_[ax[2]]);

@@ -157,6 +157,17 @@ TEST_CASE("planner: bad requests are refused with their own error") {
   CHECK_THROWS_AS(make_machine("XX", 0, 10, 1, 1), std::invalid_argument);
 }
 
+TEST_CASE("planner: a feed below the machine's minimum is refused and the message says the minimum") {
+  PlannerOptions o;
+  o.min_feed = 0.01;
+  Planner p(xyz(), o);
+  const auto r = p.append(Line{7, pose_of({10, 0, 0}), 1e-8});
+  CHECK(r.error == PlanError::BadFeed);
+  CHECK(describe(r, xyz()) == "segment 7: feed must be a number of at least 0.010000");
+  CHECK(p.pending() == 0);
+  CHECK(p.append(Line{8, pose_of({10, 0, 0}), 0.01}).ok());
+}
+
 TEST_CASE("planner: zero-length moves, dwells and outputs complete with their id and do not move") {
   Planner p(xyz());
   const auto r = run(p, {Line{1, pose_of({0, 0, 0}), 100}, Line{2, pose_of({10, 0, 0}), 100},

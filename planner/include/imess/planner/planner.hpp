@@ -21,6 +21,7 @@ struct PlannerOptions {
   double loop_period = 0.001;           // s, the sampler's tick
   double min_segment_periods = 1.02;    // v ≤ L / (periods · loop_period): ≥ 1 tick per segment
   double arc_tolerance = 0.002;         // mm: allowed end-radius mismatch (or 1e-3·r if larger)
+  double min_feed = 0;                  // a moving segment's feed below this is BadFeed (0: any > 0)
 };
 
 // Why append refused a request. Never renumbered; the daemon maps them to protocol errors
@@ -28,7 +29,7 @@ struct PlannerOptions {
 enum class PlanError : std::uint8_t {
   None = 0,
   OutOfTravel = 1,        // the segment leaves the travel of `axis` (arc: its extreme points too)
-  BadFeed = 2,            // feed ≤ 0 or not finite for a segment that moves
+  BadFeed = 2,            // feed ≤ 0, below min_feed or not finite for a segment that moves
   BadPose = 3,            // a target value is not finite
   BadDwell = 4,           // negative or not finite seconds
   ArcBadPlane = 5,        // plane axes not three distinct linear axes, or normal zero
@@ -86,6 +87,7 @@ class Planner {
     bool moves = false;
     AxisGroup path_group = AxisGroup::Primary;  // the axes L is measured over
   };
+  bool feed_ok(double feed) const noexcept;
   AppendResult queue_line(const Line& l);
   AppendResult queue_arc(const Arc& a);
   void queue_rest(PlannedSegment seg);

@@ -25,6 +25,7 @@ inline planner::Machine path_machine(const CoreConfig& resolved) {
 inline planner::PlannerOptions path_options(const CoreConfig& resolved) {
   planner::PlannerOptions o;
   o.loop_period = resolved.period_s;
+  o.min_feed = kMinSpeed;  // as for jog and GoTo: slower than this nothing visibly moves
   return o;
 }
 
