@@ -51,12 +51,18 @@ std::string describe(const AppendResult& r, const Machine& m) {
     case PlanError::BadFeed:
       return seg + (r.value > 0 ? "feed must be a number of at least " + std::to_string(r.value)
                                 : std::string("feed must be a number > 0"));
-    case PlanError::BadPose: return seg + "target is not a finite number on every axis";
+    case PlanError::BadPose: return seg + "target (and an arc's centre) must be a finite number on every axis";
     case PlanError::BadDwell: return seg + "dwell must be a number of seconds >= 0";
-    case PlanError::ArcBadPlane: return seg + "arc plane must be three distinct linear axes with a non-zero normal";
+    case PlanError::ArcBadPlane: return seg + "arc plane must be three distinct linear axes of the machine";
     case PlanError::ArcRadiusMismatch:
-      return seg + "arc end is not on the circle (radius differs by " + std::to_string(r.value) + ")";
-    case PlanError::ArcDegenerate: return seg + "arc start lies on its centre";
+      return seg + "arc end is not on the circle: its radius differs from the start's by " + std::to_string(r.value) +
+             " (accepted: up to " + std::to_string(r.limit) + ")";
+    case PlanError::ArcDegenerate: return seg + "arc centre lies on the start point: the radius must be > 0";
+    case PlanError::ArcZeroNormal: return seg + "arc plane normal must be a finite non-zero vector";
+    case PlanError::ArcOffPlane:
+      return seg + "arc end is " + std::to_string(r.value) + " off the plane through the start (accepted: up to " +
+             std::to_string(r.limit) + "; a planar arc has no helix)";
+    case PlanError::ArcBadTurns: return seg + "arc extra turns must be 0 or more";
   }
   return seg + "refused";
 }
@@ -182,8 +188,9 @@ AppendResult Planner::queue_arc(const Arc& arc) {
   }
   Vector3d n(arc.normal[0], arc.normal[1], arc.normal[2]);
   Vector3d c(arc.centre[0], arc.centre[1], arc.centre[2]);
-  if (!(n.norm() > 1e-12) || !c.allFinite() || !n.allFinite() || arc.turns < 0)
-    return {PlanError::ArcBadPlane, arc.id};
+  if (!n.allFinite() || !(n.norm() > 1e-12)) return {PlanError::ArcZeroNormal, arc.id};
+  if (!c.allFinite()) return {PlanError::BadPose, arc.id};
+  if (arc.turns < 0) return {PlanError::ArcBadTurns, arc.id};
   if (!feed_ok(arc.feed)) return {PlanError::BadFeed, arc.id, -1, options_.min_feed};
   if (auto r = check_travel(arc.id, target); !r.ok()) return r;
   n.normalize();
@@ -198,8 +205,9 @@ AppendResult Planner::queue_arc(const Arc& arc) {
   const double h = q.dot(n);
   const Vector3d r1v = q - h * n;
   const double r1 = r1v.norm();
-  if (std::fabs(r1 - r0) > std::max(options_.arc_tolerance, 1e-3 * r0))
-    return {PlanError::ArcRadiusMismatch, arc.id, -1, std::fabs(r1 - r0)};
+  const double tolerance = std::max(options_.arc_tolerance, 1e-3 * r0);
+  if (arc.planar && std::fabs(h) > tolerance) return {PlanError::ArcOffPlane, arc.id, -1, std::fabs(h), tolerance};
+  if (std::fabs(r1 - r0) > tolerance) return {PlanError::ArcRadiusMismatch, arc.id, -1, std::fabs(r1 - r0), tolerance};
   double phi = std::atan2(r1v.dot(e2), r1v.dot(e1));
   if (arc.ccw && phi <= 1e-12) phi += 2 * kPi;
   if (!arc.ccw && phi >= -1e-12) phi -= 2 * kPi;

@@ -35,13 +35,18 @@ enum class PlanError : std::uint8_t {
   ArcBadPlane = 5,        // plane axes not three distinct linear axes, or normal zero
   ArcRadiusMismatch = 6,  // the end is not on the circle through the start
   ArcDegenerate = 7,      // start on the centre (radius 0)
+  ArcZeroNormal = 8,      // the plane's normal is zero or not finite
+  ArcOffPlane = 9,        // a planar arc whose end is off the plane through the start
+  ArcBadTurns = 10,       // extra turns below 0
 };
 
 struct AppendResult {
   PlanError error = PlanError::None;
   std::uint32_t id = 0;    // the refused request's id
   std::int8_t axis = -1;   // OutOfTravel: machine axis index
-  double value = 0;        // OutOfTravel: the offending coordinate; ArcRadiusMismatch: |Δr|
+  double value = 0;        // OutOfTravel: the offending coordinate; ArcRadiusMismatch: |Δr|;
+                           // ArcOffPlane: the end's distance from the plane
+  double limit = 0;        // ArcRadiusMismatch, ArcOffPlane: the tolerance that was exceeded
   bool ok() const noexcept { return error == PlanError::None; }
 };
 // One line for a log or an Err reply: "segment 12: axis Y leaves its travel at 1012.5".

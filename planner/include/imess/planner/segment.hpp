@@ -24,9 +24,11 @@ struct Line {
 // `plane_axes` (machine axis indices, e.g. X Y Z = 0 1 2) with unit `normal` (in those
 // axes' coordinates; (0,0,1) = the XY plane); `centre` is given in those three axes and
 // projected onto the plane through the start. ccw = counter-clockwise seen from +normal.
-// turns: extra full turns. The end's component along the normal, and every other axis,
-// move linearly along the arc (helix). The end must lie on the circle: |r_end − r_start|
-// ≤ max(Options::arc_tolerance, 1e-3·r) or append refuses it (ArcRadiusMismatch).
+// turns: extra full turns (≥ 0). The end's component along the normal, and every other
+// axis, move linearly along the arc (helix); `planar` refuses an end off the plane through
+// the start instead (ArcOffPlane, the same tolerance). The end must lie on the circle:
+// |r_end − r_start| ≤ max(Options::arc_tolerance, 1e-3·r) or append refuses it
+// (ArcRadiusMismatch).
 struct Arc {
   std::uint32_t id = 0;
   Pose target{};
@@ -35,6 +37,7 @@ struct Arc {
   std::array<std::int8_t, 3> plane_axes{0, 1, 2};
   bool ccw = true;
   int turns = 0;
+  bool planar = false;
   double feed = 0;  // mm/s along the helix
 };
 
