@@ -26,6 +26,7 @@ constexpr ArgSpec move_id() {
 std::uint32_t id_of(const Args& a) { return static_cast<std::uint32_t>(a.number(0)); }
 PathWords path_words(const Args& a) {
   PathWords w;
+  int normal_words = 0;
   for (const auto& x : a.axis_words) {
     switch (x.letter) {
       case 'X': w.x = x.value; break;
@@ -35,6 +36,11 @@ PathWords path_words(const Args& a) {
       case 'J': w.j = x.value; break;
       case 'K': w.k = x.value; break;
       case 'F': w.f = x.value; break;
+      case 'P': w.p = x.value; break;
+      case 'N':  // three words in order: i j k
+        if (!w.n) w.n = std::array<double, 3>{};
+        (*w.n)[normal_words++] = x.value;
+        break;
       default: break;
     }
   }
@@ -103,10 +109,13 @@ const std::array kVerbs{
              Access::Controlling, command_index<MoveTo>(),
              [](const Args& a) -> Command { return MoveTo{id_of(a), path_words(a)}; }},
     VerbSpec{"ArcTo",
-             args(move_id(), choice("dir", "CW CCW", "ArcTo turns CW or CCW (seen from +Z), got '{got}'; usage: {usage}"),
-                  axis_words("X.. Y.. Z.. I.. J.. F..", "XYZIJF",
-                             "ArcTo takes words X Y Z (end), I J (centre offset from the start, XY plane), F, each once, got '{got}'; usage: {usage}")),
-             "queue an arc in the XY plane (helix when Z changes): end XYZ, centre = start + IJ", false,
+             args(move_id(),
+                  choice("dir", "CW CCW", "ArcTo turns CW or CCW (seen from the tip of the plane's normal), got '{got}'; usage: {usage}"),
+                  with_vectors(axis_words("X.. Y.. Z.. I.. J.. K.. N i j k P.. F..", "XYZIJKNPF",
+                                          "ArcTo takes words X Y Z (end), I J K (centre offset from the start), "
+                                          "N i j k (plane normal), P (turns), F, each once, got '{got}'; usage: {usage}"),
+                               "N")),
+             "queue an arc: end XYZ, centre start+IJK; plane XY (I J), ZX (I K), YZ (J K) with helix, or normal N; P turns", false,
              Access::Controlling, command_index<ArcTo>(),
              [](const Args& a) -> Command { return ArcTo{id_of(a), a.at[1].choice == 1, path_words(a)}; }},
     VerbSpec{"Dwell",

@@ -74,14 +74,29 @@ bool in_range(const ArgSpec& a, double x) {
   return (a.above_min ? x > a.min : x >= a.min) && x <= a.max;
 }
 
-// "X10" etc.: each letter of the declared set at most once, each with a number.
+// "X10" etc.: each letter of the declared set at most once, each with a number; a vector
+// letter ("N 0 0 1") alone, then three numbers, kept as three words with that letter.
 std::optional<ParseError> read_axis_words(const VerbSpec& v, const ArgSpec& a, std::span<const std::string_view> tokens,
                                           Args& out) {
-  for (auto t : tokens) {
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    const auto t = tokens[i];
     const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(t[0])));
     bool repeated = false;
     for (const auto& w : out.axis_words) repeated = repeated || w.letter == letter;
     if (a.words.find(letter) == std::string_view::npos || repeated) return refusal(v, a, t);
+    if (a.vectors.find(letter) != std::string_view::npos) {
+      if (t.size() != 1 || i + 3 >= tokens.size())
+        return ParseError{ErrorCode::BadArguments, std::string(v.name) + " takes " + std::string(1, letter) +
+                                                       " alone followed by three numbers (" + std::string(1, letter) +
+                                                       " i j k), got '" + std::string(t) + "'; usage: " + usage(v)};
+      for (int k = 1; k <= 3; ++k) {
+        auto n = parse_number(tokens[i + k]);
+        if (!n) return number_error(v, tokens[i + k]);
+        out.axis_words.push_back({letter, *n});
+      }
+      i += 3;
+      continue;
+    }
     auto n = parse_number(t.substr(1));
     if (!n) return number_error(v, t);
     out.axis_words.push_back({letter, *n});

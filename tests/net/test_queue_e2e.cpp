@@ -288,3 +288,138 @@ TEST_CASE("the controlling client disconnects mid-queue: the machine brakes and 
   CHECK(h.rig.position() == at_rest);
   CHECK(h.rig.position().y() == 100);  // segment 2 never started
 }
+
+TEST_CASE("ArcTo in the ZX plane (I K) with a helix along Y and P2 turns: on the circle, counter-clockwise about +Y") {
+  QueueHarness h;
+  // machine at 100 100 100; centre (110, ·, 100), radius 10: half a circle plus one full turn, Y rises 10
+  h.send("ArcTo 1 CCW X120 Y110 I10 K0 P2 F30");
+  CHECK(h.has("Ok ArcTo"));
+  REQUIRE(h.run_until("Done 1", 20));
+  h.step();
+  CHECK(h.rig.position().isApprox(hal::Vec3(120, 110, 100), 1e-9));
+  const auto& sp = h.rig.hw.setpoints;
+  REQUIRE(sp.size() > 500);
+  double y_prev = 100, swept = 0, a_prev = std::atan2(0.0, -10.0);
+  for (const auto& p : sp) {
+    const double dx = p.position.x() - 110, dz = p.position.z() - 100;
+    CHECK(std::hypot(dx, dz) == Approx(10).margin(1e-6));
+    CHECK(p.position.y() >= y_prev - 1e-9);  // the helix rises monotonically
+    y_prev = p.position.y();
+    // counter-clockwise about +Y turns Z toward X: the angle atan2(x, z)... measured as atan2(-dz, dx) grows
+    const double a = std::atan2(-dz, dx);
+    swept += std::remainder(a - a_prev, 2 * 3.14159265358979323846);
+    a_prev = a;
+  }
+  CHECK(swept == Approx(3 * 3.14159265358979323846).margin(1e-6));  // 1.5 turns, positive about +Y
+  CHECK(sp[20].position.z() > 100);                                   // from -X about +Y: Z rises first
+}
+
+TEST_CASE("ArcTo in the YZ plane (J K) and in a tilted plane (N i j k): on the circle and in the plane") {
+  QueueHarness h;
+  h.send("ArcTo 1 CW Y120 J10 K0 F30\nArcTo 2 CCW X120 Y120 Z80 I10 J0 K-10 N 1 0 1 F30");
+  CHECK(h.starting("Ok ArcTo").size() == 2);
+  REQUIRE(h.run_until("Done 2", 20));
+  h.step();
+  CHECK(h.rig.position().isApprox(hal::Vec3(120, 120, 80), 1e-9));
+  int in_first = 0, in_second = 0;
+  for (const auto& p : h.rig.hw.setpoints) {
+    const hal::Vec3 q = p.position;
+    if (std::abs(q.x() - 100) < 1e-12 && q.y() > 100 + 1e-9 && q.y() < 120 - 1e-9) {  // the YZ half circle
+      CHECK(std::hypot(q.y() - 110, q.z() - 100) == Approx(10).margin(1e-6));
+      CHECK(q.z() > 100 - 1e-9);  // CW seen from +X, from 9 o'clock (-Y) up through 12 (+Z)
+      ++in_first;
+    } else if (q.x() > 100 + 1e-9 && q.x() < 120 - 1e-9) {  // the tilted half circle, centre (110, 120, 90)
+      const hal::Vec3 r = q - hal::Vec3(110, 120, 90);
+      CHECK(q.y() < 120 + 1e-9);  // counter-clockwise about N from (-1, 0, 1): through -Y
+      CHECK(r.norm() == Approx(std::sqrt(200.0)).margin(1e-6));
+      CHECK((r.x() + r.z()) / std::sqrt(2.0) == Approx(0).margin(1e-6));  // in the plane of N 1 0 1
+      ++in_second;
+    }
+  }
+  CHECK(in_first > 100);
+  CHECK(in_second > 100);
+}
+
+TEST_CASE("ArcTo refusals name what was wrong and what is accepted; nothing is queued") {
+  QueueHarness h;
+  const std::pair<const char*, const char*> cases[] = {
+      {"ArcTo 4 CW X110 I5 J5 K5",
+       "Err 105 ArcTo 4: I J K together need N i j k, the plane's normal; I J is the XY plane, I K the ZX plane, J K "
+       "the YZ plane"},
+      {"ArcTo 4 CW Z110 K5",
+       "Err 105 ArcTo 4: K alone names no plane; give I K (ZX plane) or J K (YZ plane), with I0 or J0 if need be, or N "
+       "i j k"},
+      {"ArcTo 4 CW X120 I10 P0",
+       "Err 105 ArcTo 4: P is the number of turns, a whole number from 1 (the arc alone) to 1000, got 0"},
+      {"ArcTo 4 CW X120 I10 P2.5",
+       "Err 105 ArcTo 4: P is the number of turns, a whole number from 1 (the arc alone) to 1000, got 2.5"},
+      {"ArcTo 4 CW X120 I10 N 0 0 0", "Err 105 segment 4: arc plane normal must be a finite non-zero vector"},
+      {"ArcTo 4 CCW X120 Z105 I10 N 0 0 1",
+       "Err 105 segment 4: arc end is 5.000000 off the plane through the start (accepted: up to 0.010000; a planar arc "
+       "has no helix)"},
+      {"ArcTo 4 CW X130 I10",
+       "Err 105 segment 4: arc end is not on the circle: its radius differs from the start's by 10.000000 (accepted: up "
+       "to 0.010000)"},
+      {"ArcTo 4 CW X110 I0 J0", "Err 105 segment 4: arc centre lies on the start point: the radius must be > 0"},
+      {"ArcTo 4 CW X120 I10 N 0 0",
+       "Err 101 ArcTo takes N alone followed by three numbers (N i j k), got 'N'; usage: ArcTo id dir X.. Y.. Z.. I.. "
+       "J.. K.. N i j k P.. F.."},
+      {"ArcTo 4 CW X120 I10 N0 0 1",
+       "Err 101 ArcTo takes N alone followed by three numbers (N i j k), got 'N0'; usage: ArcTo id dir X.. Y.. Z.. I.. "
+       "J.. K.. N i j k P.. F.."},
+      {"ArcTo 4 CW X120 I10 N 0 x 1",
+       "Err 102 'x' is not a number; usage: ArcTo id dir X.. Y.. Z.. I.. J.. K.. N i j k P.. F.. (decimal numbers, "
+       "e.g. -12.5)"},
+      // both ends inside the travel (0 ... 500), the circle bulges below Z 0 clockwise about +Y
+      {"ArcTo 5 CW X340 I120 K0", "Err 206 segment 5: axis Z leaves its travel at -20.000000"},
+  };
+  for (const auto& [line, reply] : cases) {
+    INFO(line);
+    h.clear();
+    h.send(line);
+    CHECK(h.has(reply));
+  }
+  h.run(0.1);
+  CHECK(h.rig.hw.follow_calls == 0);
+  h.send("Queue");
+  CHECK(h.has("Ok Queue Pending 0 Running none Held no"));
+  h.send("ArcTo 6 CCW X340 I120 K0");  // the same arc the other way round stays inside (Z up to 220)
+  CHECK(h.has("Ok ArcTo"));
+  REQUIRE(h.run_until("Done 6", 30));
+}
+
+TEST_CASE("ArcTo: the session of docs/protocol.md (\"Arcs\") line for line") {
+  QueueHarness h;
+  h.send("ArcTo 1 CCW X120 Y110 I10 K0 P2 F30");
+  CHECK(h.has("Ok ArcTo"));
+  REQUIRE(h.run_until("Done 1", 20));
+  h.send("ArcTo 2 CW Y130 J10 K0 F30\nArcTo 3 CCW X140 Z80 I10 K-10 N 1 0 1 F30");
+  CHECK(h.starting("Ok ArcTo").size() == 3);
+  REQUIRE(h.run_until("Done 3", 20));
+  CHECK(h.starting("Done") == std::vector<std::string>{"Done 1", "Done 2", "Done 3"});
+  h.step();
+  CHECK(h.rig.position().isApprox(hal::Vec3(140, 130, 80), 1e-9));
+  const std::pair<const char*, const char*> refusals[] = {
+      {"ArcTo 4 CW X150 I10",
+       "Err 105 segment 4: arc end is not on the circle: its radius differs from the start's by 10.000000 (accepted: up "
+       "to 0.010000)"},
+      {"ArcTo 4 CCW X160 Z85 I10 N 0 0 1",
+       "Err 105 segment 4: arc end is 5.000000 off the plane through the start (accepted: up to 0.010000; a planar arc "
+       "has no helix)"},
+      {"ArcTo 4 CW Z110 K5",
+       "Err 105 ArcTo 4: K alone names no plane; give I K (ZX plane) or J K (YZ plane), with I0 or J0 if need be, or N "
+       "i j k"},
+      {"ArcTo 4 CW X160 I10 P2.5",
+       "Err 105 ArcTo 4: P is the number of turns, a whole number from 1 (the arc alone) to 1000, got 2.5"},
+      {"ArcTo 4 CW X160 I10 N 0 0",
+       "Err 101 ArcTo takes N alone followed by three numbers (N i j k), got 'N'; usage: ArcTo id dir X.. Y.. Z.. I.. "
+       "J.. K.. N i j k P.. F.."},
+      {"ArcTo 5 CW X380 I120 K0", "Err 206 segment 5: axis Z leaves its travel at -40.000000"},
+  };
+  for (const auto& [line, reply] : refusals) {
+    INFO(line);
+    h.clear();
+    h.send(line);
+    CHECK(h.lines() == std::vector<std::string>{reply});
+  }
+}

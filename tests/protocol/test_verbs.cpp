@@ -208,3 +208,31 @@ TEST_CASE("Version takes no arguments") {
   parsed<Version>("version");
   CHECK(failed("Version 2").text == "Version takes no arguments, got 1; usage: Version");
 }
+
+TEST_CASE("ArcTo: end, centre offsets I J K, the plane's normal N i j k, turns P, feed") {
+  auto a = parsed<ArcTo>("ArcTo 7 ccw X1 Y2 Z3 I4 J5 K6 N 0 -0.5 1e0 P3 F20");
+  CHECK(a.id == 7);
+  CHECK(a.ccw);
+  CHECK(a.words.x == 1.0);
+  CHECK(a.words.k == 6.0);
+  REQUIRE(a.words.n.has_value());
+  CHECK(*a.words.n == std::array<double, 3>{0, -0.5, 1});
+  CHECK(a.words.p == 3.0);
+  CHECK(a.words.f == 20.0);
+  auto b = parsed<ArcTo>("ArcTo 8 CW N 1 0 0 X5");  // N anywhere among the words
+  CHECK_FALSE(b.ccw);
+  CHECK(*b.words.n == std::array<double, 3>{1, 0, 0});
+  CHECK(b.words.x == 5.0);
+  CHECK_FALSE(parsed<ArcTo>("ArcTo 9 CW X5 I2").words.n.has_value());
+  const std::string usage = "usage: ArcTo id dir X.. Y.. Z.. I.. J.. K.. N i j k P.. F..";
+  CHECK(failed("ArcTo 1 CW X5 N 0 1").text == "ArcTo takes N alone followed by three numbers (N i j k), got 'N'; " + usage);
+  CHECK(failed("ArcTo 1 CW X5 N 0 1").code == ErrorCode::BadArguments);
+  CHECK(failed("ArcTo 1 CW N1 0 0").text == "ArcTo takes N alone followed by three numbers (N i j k), got 'N1'; " + usage);
+  CHECK(failed("ArcTo 1 CW N 1 0 0 N 0 0 1").code == ErrorCode::BadValue);  // once
+  CHECK(failed("ArcTo 1 CW N 1 zero 0").code == ErrorCode::BadNumber);
+  CHECK(failed("ArcTo 1 CW X5 Q1").text ==
+        "ArcTo takes words X Y Z (end), I J K (centre offset from the start), N i j k (plane normal), P (turns), F, "
+        "each once, got 'Q1'; " + usage);
+  CHECK(failed("ArcTo 1 up X5").text ==
+        "ArcTo turns CW or CCW (seen from the tip of the plane's normal), got 'up'; " + usage);
+}

@@ -7,6 +7,9 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
 
 #include "imess/net/server.hpp"
 #include "imess/net/wording.hpp"
@@ -20,6 +23,13 @@ using protocol::format_ok;
 
 namespace {
 constexpr double kFlushLead = 0.05;  // s of motion the loop should hold before the plan must end at rest
+
+// A number as a person typed it: 2.5, 0, 1e+06.
+std::string as_typed(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
 
 // The number of a queued id in an event, and the Failed line.
 std::string failed_line(std::uint32_t id, core::FailReason why) {
@@ -80,9 +90,40 @@ void Server::move_to(Session& s, std::uint32_t slot, const protocol::MoveTo& c) 
   queue_move(s, slot, "MoveTo", l);
 }
 
-// ArcTo id CW|CCW X Y Z I J [F]: the end (unnamed axes keep their position), the centre at
-// start + (I, J) in the XY plane (a missing I or J is 0); a Z change makes a helix.
+// ArcTo id CW|CCW X Y Z I J K [N i j k] [P] [F]: the end (unnamed axes keep their
+// position), the centre at start + (I, J, K) (a missing one is 0). The plane: N when given
+// (any orientation; a planar arc, as DirectCMM's MoveInArc), else by the offsets named:
+// I J or neither XY, I K ZX, J K YZ (G17 / G18 / G19), where the third axis makes a helix.
+// P is LinuxCNC's: the number of turns, P1 the arc alone.
 void Server::arc_to(Session& s, std::uint32_t slot, const protocol::ArcTo& c) {
+  const auto& w = c.words;
+  std::array<double, 3> normal{0, 0, 1};
+  if (w.n) {
+    normal = *w.n;
+  } else if (w.k && w.i && w.j) {
+    reply(s, slot, format_err(ErrorCode::BadValue, "ArcTo " + std::to_string(c.id) +
+                                                       ": I J K together need N i j k, the plane's normal; "
+                                                       "I J is the XY plane, I K the ZX plane, J K the YZ plane"));
+    return;
+  } else if (w.k && !w.i && !w.j) {
+    reply(s, slot, format_err(ErrorCode::BadValue, "ArcTo " + std::to_string(c.id) +
+                                                       ": K alone names no plane; give I K (ZX plane) or J K "
+                                                       "(YZ plane), with I0 or J0 if need be, or N i j k"));
+    return;
+  } else if (w.k) {
+    normal = w.i ? std::array<double, 3>{0, 1, 0} : std::array<double, 3>{1, 0, 0};
+  }
+  int turns = 0;
+  if (w.p) {
+    if (!(*w.p >= 1 && *w.p <= protocol::kMaxArcTurns && *w.p == std::floor(*w.p))) {
+      reply(s, slot, format_err(ErrorCode::BadValue, "ArcTo " + std::to_string(c.id) +
+                                                         ": P is the number of turns, a whole number from 1 (the arc "
+                                                         "alone) to " + std::to_string(protocol::kMaxArcTurns) +
+                                                         ", got " + as_typed(*w.p)));
+      return;
+    }
+    turns = static_cast<int>(*w.p) - 1;
+  }
   std::string why;
   if (!plan_from_here(why)) {
     reply(s, slot, format_err(ErrorCode::Busy, why));
@@ -92,15 +133,17 @@ void Server::arc_to(Session& s, std::uint32_t slot, const protocol::ArcTo& c) {
   planner::Arc a;
   a.id = c.id;
   a.target = start;
-  if (c.words.x) a.target[0] = *c.words.x;
-  if (c.words.y) a.target[1] = *c.words.y;
-  if (c.words.z) a.target[2] = *c.words.z;
-  a.centre = {start[0] + c.words.i.value_or(0), start[1] + c.words.j.value_or(0), start[2]};
-  a.normal = {0, 0, 1};
+  if (w.x) a.target[0] = *w.x;
+  if (w.y) a.target[1] = *w.y;
+  if (w.z) a.target[2] = *w.z;
+  a.centre = {start[0] + w.i.value_or(0), start[1] + w.j.value_or(0), start[2] + w.k.value_or(0)};
+  a.normal = normal;
+  a.planar = w.n.has_value();
   a.plane_axes = {0, 1, 2};
   a.ccw = c.ccw;
+  a.turns = turns;
   const auto& p = core_.params();
-  a.feed = c.words.f ? *c.words.f : p.goto_speed * p.speed_level;
+  a.feed = w.f ? *w.f : p.goto_speed * p.speed_level;
   queue_move(s, slot, "ArcTo", a);
 }
 

@@ -1,5 +1,6 @@
 // Typed client -> daemon commands. The parser (verbs.hpp) produces them; the daemon acts on them.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -42,15 +43,18 @@ struct Version {};                                          // the daemon's vers
 // each queued id ends in exactly one `Done id` or `Failed id <Reason> <text>` event.
 struct PathWords {  // named words; an axis not named keeps its planned position
   std::optional<double> x, y, z, i, j, k, f;
+  std::optional<double> p;                   // ArcTo: turns
+  std::optional<std::array<double, 3>> n;    // ArcTo: the plane's normal (N i j k)
   friend bool operator==(const PathWords&, const PathWords&) = default;
 };
 struct MoveTo { std::uint32_t id = 0; PathWords words; };          // straight line, mm, F mm/s
-struct ArcTo { std::uint32_t id = 0; bool ccw = true; PathWords words; };  // end XYZ, centre offset IJK
+struct ArcTo { std::uint32_t id = 0; bool ccw = true; PathWords words; };  // end XYZ, centre offset IJK, N, P
 struct Dwell { std::uint32_t id = 0; double seconds = 0; };
 struct Queue {};                                            // pending count, running id
 struct Pause {};                                            // feed hold on the path
 struct Resume {};
 inline constexpr double kMaxDwellSeconds = 3600;
+inline constexpr int kMaxArcTurns = 1000;  // ArcTo P: 1 (the arc alone) ... this
 
 inline constexpr int kWatchMinMs = 50;     // below this, io jitter alone would stop the machine
 inline constexpr int kWatchMaxMs = 60000;

@@ -19,7 +19,8 @@ enum class ArgKind : std::uint8_t {
   Word,        // any word, kept as typed (a client name, a parameter name or value)
   Choice,      // one word of `words`, case-insensitive; the value is its index
   Sequence,    // a hit sequence number: plain digits, 0 ... kMaxSequenceNumber
-  AxisWords,   // the rest of the line as letter+number words (X10 C90 F20), letters from `words`
+  AxisWords,   // the rest of the line as letter+number words (X10 C90 F20), letters from `words`;
+               // a letter of `vectors` stands alone and takes the next three numbers (N 0 0 1)
 };
 
 // One argument. `refusal` is the BadValue text; it may name {min}, {max}, {got}, {usage},
@@ -35,6 +36,8 @@ struct ArgSpec {
   bool or_zero = false;          // Number: 0 is accepted too (an "off" value outside the range)
   std::string_view words;        // Choice: accepted words, blank-separated; AxisWords: letters
   std::string_view refusal;      // BadValue text
+  std::string_view vectors;      // AxisWords: letters written alone and followed by three
+                                 // numbers ("N 0 0 1"), given as three AxisWords in order
 };
 
 // A letter and its number from an AxisWords argument ("X10" -> {'X', 10}).
@@ -106,6 +109,7 @@ constexpr ArgSpec sequence(std::string_view name, std::string_view refusal) {
 constexpr ArgSpec axis_words(std::string_view name, std::string_view letters, std::string_view refusal) {
   return {ArgKind::AxisWords, name, false, 0, 0, false, false, false, letters, refusal};
 }
+constexpr ArgSpec with_vectors(ArgSpec a, std::string_view letters) { a.vectors = letters; return a; }
 constexpr ArgSpec optional(ArgSpec a) { a.optional = true; return a; }
 constexpr ArgSpec above_min(ArgSpec a) { a.above_min = true; return a; }
 constexpr ArgSpec whole(ArgSpec a) { a.whole = true; return a; }
