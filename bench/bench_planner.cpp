@@ -5,6 +5,7 @@
 // planning against planning a bare trapezoid per segment, a tick against evaluating one
 // segment's profile and geometry. Prints figures; not a test.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -22,7 +23,8 @@ double ns_since(Clock::time_point t0) { return std::chrono::duration<double, std
 
 volatile double g_sink = 0;  // keeps the reference loops from being optimised away
 
-// A zig-zag of short moves (1 mm, 20° turns, every tenth an arc): junctions, look-ahead work.
+// A zig-zag of short moves (1 mm, 20° turns, every tenth a half circle in XY, ZX or YZ):
+// junctions, look-ahead work.
 std::vector<Request> workload(int n) {
   std::vector<Request> r;
   Pose p{};
@@ -34,8 +36,15 @@ std::vector<Request> workload(int n) {
       Arc a;
       a.id = static_cast<std::uint32_t>(i);
       const double up = i % 20000 < 10000 ? 1 : -1;  // stays within the travel
-      a.centre = {p[0], p[1] + 2 * up, 0};
-      t[1] = p[1] + 4 * up;
+      const int plane = (i / 10) % 3;                // half circles in XY, ZX, YZ in turn
+      if (plane == 0) {
+        a.centre = {p[0], p[1] + 2 * up, p[2]};
+        t[1] = p[1] + 4 * up;
+      } else {
+        a.centre = {p[0], p[1], p[2] + 2 * up};
+        a.normal = plane == 1 ? std::array<double, 3>{0, 1, 0} : std::array<double, 3>{1, 0, 0};
+        t[2] = p[2] + 4 * up;
+      }
       a.target = t;
       a.ccw = i % 20 == 0;
       a.feed = 100;
@@ -87,7 +96,7 @@ int main() {
     g_sink = acc;
     best_ref = std::min(best_ref, ns_since(t1));
   }
-  std::printf("planner: %zu segments (1 mm zig-zag, every tenth an arc)\n", produced);
+  std::printf("planner: %zu segments (1 mm zig-zag, every tenth a half circle in XY, ZX or YZ)\n", produced);
   std::printf("  plan + look-ahead + release  %8.0f ns/segment  %10.0f segments/s   %5.1f x a bare trapezoid (%5.0f ns)\n",
               best_plan / n, n / best_plan * 1e9, best_plan / best_ref, best_ref / n);
 
