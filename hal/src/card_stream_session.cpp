@@ -60,16 +60,17 @@ void CardStreamSession::take(std::span<const std::uint8_t> frame) noexcept {
   if (!card::read_status(frame, s)) return lost();
   if (stream_status_ && s.clock - newest_.clock != status_ticks_) lost();  // one went missing
   if (stream_status_ && s.starvations != newest_.starvations) lost();      // the card ran dry
-  if (s.ack_status != static_cast<std::uint8_t>(card::Status::Ok)) {
-    refused_ = true;
-    ++errors_;
-  }
   newest_ = s;
   stream_status_ = true;
   status_cycle_ = cycle_;
   ++status_frames_;
-  // The card saw a damaged or missing host frame (it reports it until ResetAxes arrives).
-  if ((s.flags & card::flag::kStreamError) && !pending(reset_)) lost();
+  // Until the card has a reset sent, what it reports is of the frames before it.
+  if (pending(reset_)) return;
+  if (s.ack_status != static_cast<std::uint8_t>(card::Status::Ok)) {  // the card refused a command
+    refused_ = true;
+    ++errors_;
+  }
+  if (s.flags & card::flag::kStreamError) lost();  // it saw a damaged or missing host frame
 }
 
 bool CardStreamSession::read_state(MachineState& out) noexcept {
@@ -137,6 +138,7 @@ bool CardStreamSession::command(std::span<const std::uint8_t> op_frame, Effect e
       reset_ = now;
       loops_ = Pending{};
       following_ = comm_lost_ = refused_ = false;
+      stream_status_ = false;  // a gap before the reset is not held against the frames after it
       status_cycle_ = cycle_;
       // Frames lost before the reset are not waited for: the card acknowledges this one.
       for (std::uint8_t s = static_cast<std::uint8_t>(newest_.ack + 1); s != seq_; ++s) sent_at_[s] = cycle_;

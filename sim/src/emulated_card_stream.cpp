@@ -50,7 +50,8 @@ void EmulatedCard::on_stream_frame(std::span<const std::uint8_t> frame) noexcept
   ack_ = seq;
   hal::LinkWriter reply;  // a stream command's reply data is not sent: status frames say it all
   const Status s = streaming_ ? answer(op, r, reply) : Status::NotReady;
-  if (s != Status::Ok && frame_status_ == Status::Ok) frame_status_ = s;
+  if (op == Op::ResetAxes && s == Status::Ok) frame_status_ = Status::Ok;  // refusals before it are done with
+  else if (s != Status::Ok && frame_status_ == Status::Ok) frame_status_ = s;
 }
 
 void EmulatedCard::on_damaged_frame() noexcept { stream_fault(); }

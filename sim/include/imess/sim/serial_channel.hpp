@@ -15,12 +15,17 @@ struct LineStats {
   long refused = 0;            // frames that did not fit the queue
   long lost = 0, corrupted = 0;
   double max_backlog = 0;      // s, the longest a frame waited for the line to be free
+  long overruns = 0;           // frames that waited longer than the patience (a motion period)
 };
 
 class SerialChannel {
  public:
   explicit SerialChannel(double baud, double bits_per_byte = 10)
       : byte_time_(baud > 0 ? bits_per_byte / baud : 0) {}
+
+  // A frame that waits longer than this for the line is an overrun (default: 1 ms, a motion
+  // period: its sender's cycle put more on the line than the line carries).
+  void set_patience(double seconds) noexcept { patience_ = seconds; }
 
   enum class Fault { None, Lose, Corrupt };
   void inject(Fault f) noexcept { fault_ = f; }
@@ -35,6 +40,7 @@ class SerialChannel {
     fault_ = Fault::None;
     const double start = busy_until_ > now ? busy_until_ : now;
     if (start - now > stats_.max_backlog) stats_.max_backlog = start - now;
+    if (start - now > patience_) ++stats_.overruns;
     busy_until_ = start + static_cast<double>(bytes.size()) * byte_time_;
     ++stats_.frames;
     stats_.bytes += static_cast<long>(bytes.size());
@@ -73,7 +79,7 @@ class SerialChannel {
   double byte_time_;
   std::array<Byte, 4096> ring_{};
   std::size_t head_ = 0, count_ = 0;
-  double busy_until_ = 0;
+  double busy_until_ = 0, patience_ = 0.001;
   Fault fault_ = Fault::None;
   LineStats stats_;
 };
