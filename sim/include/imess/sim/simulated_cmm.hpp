@@ -28,6 +28,7 @@ class SimulatedCmm {
 
   hal::Link& link() noexcept { return streamed_ ? static_cast<hal::Link&>(line_) : link_; }
   hal::StreamLink* stream() noexcept { return streamed_ ? &line_ : nullptr; }
+  bool streamed() const noexcept { return streamed_; }
   TimedCardLink& line() noexcept { return line_; }
   Mechanics& mechanics() noexcept { return mechanics_; }
   EmulatedCard& card() noexcept { return card_; }
