@@ -273,6 +273,7 @@ Status EmulatedCard::boot(LinkReader& r) noexcept {
   if (std::string_view(name, len) != config_.firmware) return Status::WrongFirmware;
   booted_ = true;
   params_ = false;
+  streaming_ = false;  // a new firmware starts quiet, until StartStream
   open_all();
   return Status::Ok;
 }
