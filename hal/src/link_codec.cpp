@@ -15,6 +15,12 @@ LinkWriter& LinkWriter::u8(std::uint8_t v) noexcept {
   return *this;
 }
 
+LinkWriter& LinkWriter::u16(std::uint16_t v) noexcept {
+  return u8(static_cast<std::uint8_t>(v)).u8(static_cast<std::uint8_t>(v >> 8));
+}
+
+LinkWriter& LinkWriter::f32(float v) noexcept { return u32(std::bit_cast<std::uint32_t>(v)); }
+
 LinkWriter& LinkWriter::u32(std::uint32_t v) noexcept {
   for (int i = 0; i < 4; ++i) u8(static_cast<std::uint8_t>(v >> (8 * i)));
   return *this;
@@ -35,6 +41,14 @@ bool LinkReader::need(std::size_t n) noexcept {
 }
 
 std::uint8_t LinkReader::u8() noexcept { return need(1) ? data_[pos_++] : 0; }
+
+std::uint16_t LinkReader::u16() noexcept {
+  if (!need(2)) return 0;
+  const auto lo = data_[pos_++];
+  return static_cast<std::uint16_t>(lo | (data_[pos_++] << 8));
+}
+
+float LinkReader::f32() noexcept { return std::bit_cast<float>(u32()); }
 
 std::uint32_t LinkReader::u32() noexcept {
   if (!need(4)) return 0;

@@ -2,6 +2,7 @@
 // only the fixed writer_/reply_ buffers.
 #include "imess/hal/servo_card_driver.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "imess/hal/servo_card_protocol.hpp"
@@ -28,7 +29,8 @@ const char* status_text(std::uint8_t s) {
 }
 }  // namespace
 
-ServoCardDriver::ServoCardDriver(Link& link, ServoCardConfig config) : link_(link), config_(std::move(config)) {}
+ServoCardDriver::ServoCardDriver(Link& link, ServoCardConfig config, StreamLink* stream)
+    : link_(link), config_(std::move(config)), stream_link_(stream) {}
 
 LinkWriter& ServoCardDriver::begin(Op op) noexcept {
   writer_.clear();
@@ -62,6 +64,15 @@ bool ServoCardDriver::simple() noexcept {
   return exchange(payload);
 }
 
+bool ServoCardDriver::command(CardStreamSession::Effect effect) noexcept {
+  if (!session_) return simple();
+  if (!writer_.ok()) {
+    ++errors_;
+    return false;
+  }
+  return session_->command(writer_.bytes(), effect);
+}
+
 void ServoCardDriver::fail(const std::string& what) const {
   throw std::runtime_error("servo card: " + what);
 }
@@ -74,6 +85,7 @@ void ServoCardDriver::set_up_call(const char* what) {
 
 void ServoCardDriver::initialise(bool force_reboot) {
   comm_lost_ = have_followed_ = false;
+  session_.reset();  // set-up speaks request/reply only
   // 1. Firmware: boot when missing, wrong, or forced (-r); retry a wrong revision.
   for (int attempt = 0;; ++attempt) {
     begin(Op::ReadInfo);
@@ -115,11 +127,34 @@ void ServoCardDriver::initialise(bool force_reboot) {
   for (int a = 0; a < kAxes; ++a)
     writer_.u8(card::output::kLimitSwitchesOn | card::output::kReferenceSwitchOn | card::output::kProbeOn);
   set_up_call("switching limit, reference and probe inputs on");
+  if (stream_link_) start_stream();
+}
+
+// 4. With a stream: status frames every status period, real-time calls on the stream from now.
+void ServoCardDriver::start_stream() {
+  const auto& s = config_.stream;
+  if (!(s.status_period > 0 && s.status_period * 1e6 < 65536 && s.period > 0 && s.segment_cycles >= 1 && s.lead > 0))
+    fail("stream settings out of range (status period 0-65 ms, period and lead > 0, segment cycles >= 1)");
+  session_.reset();
+  begin(Op::StartStream).u16(static_cast<std::uint16_t>(std::lround(s.status_period * 1e6)));
+  table(kAllAxes);
+  set_up_call("starting the stream");
+  LinkReader r(std::span<const std::uint8_t>(reply_.data() + 1, reply_.size() - 1));
+  const std::uint32_t ticks_per_second = r.u32(), clock = r.u32();
+  if (!r.ok() || ticks_per_second == 0) fail("malformed StartStream reply");
+  MachineState now;
+  begin(Op::ReadState);
+  table(kAllAxes);
+  std::span<const std::uint8_t> payload;
+  if (!exchange(payload) || !parse_state(payload, now)) fail("no state after starting the stream");
+  session_.emplace(*stream_link_, s);
+  session_->start(ticks_per_second, clock, now, config_.tip_reversed);
 }
 
 std::string ServoCardDriver::describe() const { return "servo card, firmware '" + revision_ + "'"; }
 
 bool ServoCardDriver::read_state(MachineState& out) noexcept {
+  if (session_) return session_->read_state(out);
   if (have_followed_) {  // the Follow reply of this cycle: no second round trip
     have_followed_ = false;
     out = followed_;
@@ -135,6 +170,7 @@ bool ServoCardDriver::read_state(MachineState& out) noexcept {
 }
 
 bool ServoCardDriver::follow(const Setpoint& sp) noexcept {
+  if (session_) return session_->follow(sp);
   // Measured on the link (tests/sim/test_card_follow.cpp): 53 bytes out, 40 back.
   begin(Op::Follow);
   table(kAllAxes);
@@ -165,6 +201,8 @@ bool ServoCardDriver::parse_state(std::span<const std::uint8_t> payload, Machine
 bool ServoCardDriver::read_latch(Vec3& latched) noexcept {
   begin(Op::ReadLatch);
   table(kAllAxes);
+  if (session_)  // the status frame carries the latch; the command clears it on the card
+    return session_->latched(latched) && command(CardStreamSession::Effect::ClearLatch);
   std::span<const std::uint8_t> payload;
   if (!exchange(payload)) return false;
   LinkReader r(payload);
@@ -175,7 +213,7 @@ bool ServoCardDriver::read_latch(Vec3& latched) noexcept {
 bool ServoCardDriver::set_loops(bool closed) noexcept {
   begin(closed ? Op::CloseLoops : Op::OpenLoops);
   table(kAllAxes);
-  return simple();
+  return command(closed ? CardStreamSession::Effect::CloseLoops : CardStreamSession::Effect::OpenLoops);
 }
 
 bool ServoCardDriver::move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept {
@@ -184,18 +222,27 @@ bool ServoCardDriver::move(const AxisArray<AxisMove>& moves, unsigned axis_mask)
   table(axis_mask);
   for (int a = 0; a < kAxes; ++a)
     if (axis_mask & (1u << a)) writer_.f64(moves[a].target).f64(moves[a].velocity).f64(moves[a].accel);
-  return simple();
+  return command(CardStreamSession::Effect::Motion);
 }
 
 bool ServoCardDriver::stop(const Vec3& decel) noexcept {
   begin(Op::JogStop);
   table(kAllAxes);
   for (int a = 0; a < kAxes; ++a) writer_.f64(decel[a]);
-  return simple();
+  return command(CardStreamSession::Effect::Motion);
 }
 
 bool ServoCardDriver::set_position(int axis, double value) noexcept {
   if (axis < 0 || axis >= kAxes) return false;
+  if (session_) {  // relative on the stream: exact however old the newest status frame is
+    const double delta = session_->shift_for(axis, value);
+    begin(Op::ShiftPosition);
+    table(1u << axis);
+    writer_.f64(delta);
+    if (!command(CardStreamSession::Effect::None)) return false;
+    session_->note_shift(axis, delta);
+    return true;
+  }
   begin(Op::SetPosition);
   table(1u << axis);
   writer_.f64(value);
@@ -205,7 +252,7 @@ bool ServoCardDriver::set_position(int axis, double value) noexcept {
 bool ServoCardDriver::reset_faults() noexcept {
   begin(Op::ResetAxes);
   table(kAllAxes);
-  if (!simple()) return false;
+  if (!command(CardStreamSession::Effect::Reset)) return false;
   comm_lost_ = have_followed_ = false;
   return true;
 }

@@ -62,14 +62,12 @@ void EmulatedCard::advance_to(double t) noexcept {
     return;
   }
   if (t - time_ > kMaxCatchUp) time_ = t - kMaxCatchUp;
-  while (time_ + config_.tick <= t) {
-    tick();
-    time_ += config_.tick;
-  }
+  while (time_ + config_.tick <= t) step();
 }
 
 void EmulatedCard::end_following(bool brake) noexcept {
   following_ = false;
+  knot_count_ = 0;
   for (auto& ax : axes_) {
     if (!ax.following) continue;
     ax.following = false;
@@ -77,21 +75,34 @@ void EmulatedCard::end_following(bool brake) noexcept {
   }
 }
 
+bool EmulatedCard::following_into_limit() const noexcept {
+  for (int a = 0; a < kAxes; ++a) {
+    const Axis& ax = axes_[a];
+    if (!ax.following || !(ax.outputs & hal::card::output::kLimitSwitchesOn)) continue;
+    const double v = ax.profile.velocity();
+    if ((v < 0 && machine_.limit_neg(a)) || (v > 0 && machine_.limit_pos(a))) return true;
+  }
+  return false;
+}
+
+void EmulatedCard::track_cubic(double s, double span, double late) noexcept {
+  const double s2 = s * s, s3 = s2 * s;
+  for (auto& ax : axes_) {
+    if (!ax.following) continue;
+    const double p = (2 * s3 - 3 * s2 + 1) * ax.p0 + (s3 - 2 * s2 + s) * span * ax.v0 + (3 * s2 - 2 * s3) * ax.p1 +
+                     (s3 - s2) * span * ax.v1 + late * ax.v1;
+    const double v = (6 * s2 - 6 * s) * (ax.p0 - ax.p1) / span + (3 * s2 - 4 * s + 1) * ax.v0 + (3 * s2 - 2 * s) * ax.v1;
+    ax.profile.track(p, v);
+  }
+}
+
 void EmulatedCard::follow_tick() noexcept {
   if (!following_) return;
   follow_age_ += config_.tick;
   const double span = follow_span_;
-  bool moving = false, into_limit = false;
-  for (int a = 0; a < kAxes; ++a) {
-    const Axis& ax = axes_[a];
-    if (!ax.following) continue;
-    moving = moving || ax.v1 != 0;
-    const double v = ax.profile.velocity();
-    if ((ax.outputs & hal::card::output::kLimitSwitchesOn) &&
-        ((v < 0 && machine_.limit_neg(a)) || (v > 0 && machine_.limit_pos(a))))
-      into_limit = true;
-  }
-  if (into_limit) return end_following(true);  // firmware limit protection, as for profiles
+  bool moving = false;
+  for (const auto& ax : axes_) moving = moving || (ax.following && ax.v1 != 0);
+  if (following_into_limit()) return end_following(true);  // firmware limit protection, as for profiles
   if (!moving && follow_age_ >= span - 0.5 * config_.tick) {
     // Arrived at a setpoint at rest: the path ended (or pauses); done until the next frame.
     for (auto& ax : axes_)
@@ -106,19 +117,17 @@ void EmulatedCard::follow_tick() noexcept {
     return end_following(true);
   }
   // Cubic Hermite from (p0, v0) to (p1, v1) over the span; a late frame: on at v1.
-  const double s = std::min(follow_age_ / span, 1.0), late = std::max(0.0, follow_age_ - span);
-  const double s2 = s * s, s3 = s2 * s;
-  for (auto& ax : axes_) {
-    if (!ax.following) continue;
-    const double p = (2 * s3 - 3 * s2 + 1) * ax.p0 + (s3 - 2 * s2 + s) * span * ax.v0 + (3 * s2 - 2 * s3) * ax.p1 +
-                     (s3 - s2) * span * ax.v1 + late * ax.v1;
-    const double v = (6 * s2 - 6 * s) * (ax.p0 - ax.p1) / span + (3 * s2 - 4 * s + 1) * ax.v0 + (3 * s2 - 2 * s) * ax.v1;
-    ax.profile.track(p, v);
-  }
+  track_cubic(std::min(follow_age_ / span, 1.0), span, std::max(0.0, follow_age_ - span));
+}
+
+void EmulatedCard::step() noexcept {
+  tick();
+  time_ += config_.tick;
 }
 
 void EmulatedCard::tick() noexcept {
-  follow_tick();
+  if (streaming_) knot_tick();
+  else follow_tick();
   for (int a = 0; a < kAxes; ++a) {
     Axis& ax = axes_[a];
     if (!ax.closed) {
@@ -158,6 +167,11 @@ void EmulatedCard::tick() noexcept {
       }
     }
   }
+  ++clock_;
+  if (streaming_ && ++since_status_ >= status_ticks_) {
+    since_status_ = 0;
+    emit_status();
+  }
 }
 
 std::uint8_t EmulatedCard::inputs(int a) const noexcept {
@@ -184,19 +198,7 @@ namespace {
 bool named(unsigned mask, int a) noexcept { return (mask & (1u << a)) != 0; }
 
 // Axis table {count, axis...}: the mask of the axes named, each at most once.
-Status read_axis_table(LinkReader& r, unsigned& mask) noexcept {
-  std::uint8_t count = r.u8();
-  if (!r.ok()) return Status::BadLength;
-  if (count == 0 || count > kAxes) return Status::BadAxis;
-  mask = 0;
-  for (int i = 0; i < count; ++i) {
-    std::uint8_t a = r.u8();
-    if (!r.ok()) return Status::BadLength;
-    if (a >= kAxes || named(mask, a)) return Status::BadAxis;
-    mask |= 1u << a;
-  }
-  return Status::Ok;
-}
+Status read_axis_table(LinkReader& r, unsigned& mask) noexcept { return hal::card::read_table(r, mask); }
 
 // N f64 values for each axis of the table, in axis order; the frame must end after them.
 template <std::size_t N>
@@ -241,6 +243,10 @@ Status EmulatedCard::answer(Op op, LinkReader& r, hal::LinkWriter& out) noexcept
     case Op::ReadState: return read_state(r, out);
     case Op::ReadLatch: return read_latch(r, out);
     case Op::WriteOutputs: return write_outputs(r);
+    case Op::ShiftPosition: return shift_position(r);
+    case Op::StartStream: return start_stream(r, out);
+    case Op::Segment: return segment(r);
+    case Op::Status: return Status::BadOpcode;  // the card's own frame
   }
   return Status::BadOpcode;
 }
@@ -267,6 +273,7 @@ Status EmulatedCard::boot(LinkReader& r) noexcept {
   if (std::string_view(name, len) != config_.firmware) return Status::WrongFirmware;
   booted_ = true;
   params_ = false;
+  streaming_ = false;  // a new firmware starts quiet, until StartStream
   open_all();
   return Status::Ok;
 }
@@ -301,7 +308,10 @@ Status EmulatedCard::set_loops(Op op, LinkReader& r) noexcept {
   for (int a = 0; a < kAxes; ++a) {
     if (!named(mask, a)) continue;
     Axis& ax = axes_[a];
-    if (op == Op::ResetAxes) ax.faults = 0;
+    if (op == Op::ResetAxes) {
+      ax.faults = 0;
+      stream_error_ = false;
+    }
     bool close = op == Op::CloseLoops && !(ax.faults & st::kFaultMask);
     if (!close) ax.following = false;
     if (close && !ax.closed) ax.profile.reset(encoder(a));
@@ -350,13 +360,19 @@ Status EmulatedCard::set_position(LinkReader& r) noexcept {
   for (int a = 0; a < kAxes; ++a)
     if (named(mask, a)) {
       if (!std::isfinite(value[a][0])) return Status::BadValue;
-      double old_offset = axes_[a].offset;
-      axes_[a].offset = machine_.carriage()[a] - value[a][0];
-      axes_[a].profile.shift(old_offset - axes_[a].offset);
-      axes_[a].p0 += old_offset - axes_[a].offset;
-      axes_[a].p1 += old_offset - axes_[a].offset;
+      shift_axis(a, machine_.carriage()[a] - value[a][0]);
     }
   return Status::Ok;
+}
+
+void EmulatedCard::shift_axis(int a, double new_offset) noexcept {
+  Axis& ax = axes_[a];
+  const double by = ax.offset - new_offset;
+  ax.offset = new_offset;
+  ax.profile.shift(by);
+  ax.p0 += by;
+  ax.p1 += by;
+  for (int i = 0; i < knot_count_; ++i) knots_[(knot_head_ + i) % knots_.size()].position[a] += by;
 }
 
 // Follow: the setpoint for the end of the next host period; the reply is ReadState's.

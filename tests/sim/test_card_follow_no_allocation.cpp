@@ -1,5 +1,6 @@
 // Real-time discipline of the servo card's path following: follow(), the read_state() that
-// returns its reply, and a stop allocate nothing — counted by replacing the global allocator.
+// returns its reply, and a stop allocate nothing — on the request/reply link and on the
+// stream over the byte-timed line — counted by replacing the global allocator.
 #include <catch2/catch.hpp>
 
 #include "card_follow_rig.hpp"
@@ -27,4 +28,44 @@ TEST_CASE("card follow: follow() and the cycle's read_state() allocate nothing")
   g_counting = false;
   CHECK(g_allocations.load() == 0);
   CHECK(failures == 0);
+}
+
+TEST_CASE("card stream: the driver's real-time calls on the stream and the byte-timed line allocate nothing") {
+  RigOptions o = default_options();
+  o.sim.streamed = true;
+  CoreRig rig(o);
+  auto& drv = rig.driver();
+  hal::MachineState ms;
+  hal::Setpoint sp;
+  sp.position = rig.position();
+  hal::AxisArray<hal::AxisMove> moves{};
+  moves[0] = {sp.position.x() - 5, 50, 500};
+  Vec3 latched;
+  long failures = 0;
+  double v = 0;
+  g_allocations = 0;
+  g_counting = true;
+  if (!drv.set_loops(true)) ++failures;
+  for (int i = 0; i < 3000; ++i) {
+    rig.clock().advance(MotionRig::kPeriod);
+    if (!drv.read_state(ms)) ++failures;
+    if (i < 1000) {  // a path along X (setpoints out, status frames in), then a stop, a move, a latch read
+      v = std::min(50.0, v + 1.0);
+      sp.position.x() += v * 0.001;
+      sp.velocity = Vec3(v, 0, 0);
+      if (!drv.follow(sp)) ++failures;
+    }
+    if (i == 1000 && !drv.stop(Vec3::Constant(1000))) ++failures;
+    if (i == 1500 && !drv.move(moves, 1u)) ++failures;
+    if (i == 2500) {
+      drv.read_latch(latched);  // none latched: false, no frame
+      if (!drv.set_position(0, 100) || !drv.reset_faults()) ++failures;
+    }
+  }
+  g_counting = false;
+  CHECK(g_allocations.load() == 0);
+  CHECK(failures == 0);
+  CHECK(!ms.faulted());
+  CHECK(drv.stream()->frames_sent() > 250);
+  CHECK(drv.stream()->status_frames() > 500);
 }

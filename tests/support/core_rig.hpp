@@ -1,5 +1,6 @@
 // MotionRig: the motion core in virtual time — step the loop, send commands, collect events.
-// No threads, no sleeping: deterministic and fast. CoreRig: on the simulated servo-card CMM.
+// No threads, no sleeping: deterministic and fast. CoreRig: on the simulated servo-card CMM
+// (RigOptions::sim.streamed: the card streamed over a byte-timed serial line).
 #pragma once
 #include <functional>
 #include <memory>
@@ -120,7 +121,7 @@ class MotionRig {
 class CoreRig final : public MotionRig {
  public:
   explicit CoreRig(RigOptions options = default_options())
-      : options_(options), cmm_(options.sim, clock_), driver_(cmm_.link(), card_config(options)) {
+      : options_(options), cmm_(options.sim, clock_), driver_(cmm_.link(), card_config(options), cmm_.stream()) {
     core_ = std::make_unique<core::MotionCore>(driver_, options.core, &cmm_.mechanics());
     driver_.initialise(false);
     core_->start(clock_.now());
@@ -135,6 +136,8 @@ class CoreRig final : public MotionRig {
 
   hal::MotionBackend& backend() override { return driver_; }
   sim::Mechanics& mechanics() { return cmm_.mechanics(); }
+  sim::SimulatedCmm& cmm() { return cmm_; }
+  hal::ServoCardDriver& driver() { return driver_; }
   const RigOptions& options() const { return options_; }
 
  private:

@@ -1,5 +1,6 @@
 // "sim-servo-card": the real servo-card driver over a simulated link to the simulated CMM
-// (the default backend; the only one whose absolute scales make it referenced at start).
+// (the default backend; the only one whose absolute scales make it referenced at start):
+// request/reply at no cost, or ("link": "serial") streamed over a byte-timed serial line.
 #include "backend_registry.hpp"
 #include "imess/hal/servo_card_driver.hpp"
 #include "imess/sim/simulated_cmm.hpp"
@@ -12,12 +13,13 @@ namespace {
 class SimServoCardMachine final : public Machine {
  public:
   SimServoCardMachine(const DaemonConfig& cfg, const hal::Clock& clock)
-      : cmm_(cfg.sim, clock), driver_(cmm_.link(), cfg.card), absolute_(cfg.sim.card.absolute_scales) {}
+      : cmm_(cfg.sim, clock), driver_(cmm_.link(), cfg.card, cmm_.stream()), absolute_(cfg.sim.card.absolute_scales) {}
   void initialise(bool force_reboot) { driver_.initialise(force_reboot); }
   hal::MotionBackend& backend() override { return driver_; }
   hal::SimHooks* sim_hooks() override { return &cmm_.mechanics(); }
   std::string describe() const override {
-    return driver_.describe() + " (simulated CMM, " + (absolute_ ? "absolute" : "incremental") + " scales)";
+    const std::string line = cmm_.streamed() ? ", streamed over a simulated serial line" : "";
+    return driver_.describe() + " (simulated CMM, " + (absolute_ ? "absolute" : "incremental") + " scales" + line + ")";
   }
 
  private:
@@ -30,6 +32,9 @@ void load(JsonObject& b, DaemonConfig& cfg) {
   cfg.card.firmware = b.text("firmware", cfg.card.firmware);
   double ferr = b.number("max_following_error", cfg.card.max_following_error[0], 0.01, 100);
   cfg.card.max_following_error = {ferr, ferr, ferr};
+  cfg.sim.streamed = b.text("link", "request-reply", {"request-reply", "serial"}) == "serial";
+  cfg.sim.line.baud = b.number("baud", cfg.sim.line.baud, 9600, 10e6);
+  cfg.card.stream.baud = cfg.sim.line.baud;
 }
 
 std::unique_ptr<Machine> make(const DaemonConfig& cfg, const hal::Clock& clock, bool force_reboot) {

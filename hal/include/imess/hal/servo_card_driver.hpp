@@ -1,8 +1,13 @@
 // ServoCardDriver: the MotionBackend for an MCU-style servo card that closes the position
 // loops and runs trapezoid profiles or follows per-period setpoints itself; spoken to only
-// through a Link.
+// through a Link (request/reply) and, when it has one, a StreamLink: then set-up still uses
+// the Link, and every real-time call goes through the stream without waiting for the card
+// (CardStreamSession: timed setpoints ahead, periodic status frames).
 #pragma once
+#include <optional>
 #include <string>
+
+#include "imess/hal/card_stream_session.hpp"
 
 #include "imess/hal/link.hpp"
 #include "imess/hal/link_codec.hpp"
@@ -18,11 +23,12 @@ struct ServoCardConfig {
   AxisArray<double> max_following_error{5, 5, 5};     // mm
   bool tip_reversed = false;                          // probe switch opens on contact
   int boot_retries = 3;
+  StreamSettings stream;                              // used when the driver has a StreamLink
 };
 
 class ServoCardDriver final : public MotionBackend {
  public:
-  ServoCardDriver(Link& link, ServoCardConfig config);
+  ServoCardDriver(Link& link, ServoCardConfig config, StreamLink* stream = nullptr);
 
   void initialise(bool force_reboot) override;
   std::string describe() const override;
@@ -41,7 +47,9 @@ class ServoCardDriver final : public MotionBackend {
   bool reset_faults() noexcept override;
 
   // Link transactions that failed or were refused since start (for Stats and -dt).
-  unsigned long errors() const noexcept { return errors_; }
+  unsigned long errors() const noexcept { return errors_ + (session_ ? session_->errors() : 0); }
+  // The stream's side, when the driver has one (counters for tests and Stats).
+  const CardStreamSession* stream() const noexcept { return session_ ? &*session_ : nullptr; }
 
  private:
   LinkWriter& begin(card::Op op) noexcept;
@@ -49,12 +57,17 @@ class ServoCardDriver final : public MotionBackend {
   // Sends writer_, checks the status byte; on success reply_ holds the payload after it.
   bool exchange(std::span<const std::uint8_t>& payload) noexcept;
   bool simple() noexcept;
+  // A real-time command: on the stream when there is one, else a request/reply exchange.
+  bool command(CardStreamSession::Effect effect) noexcept;
+  void start_stream();
   bool parse_state(std::span<const std::uint8_t> payload, MachineState& out) noexcept;
   [[noreturn]] void fail(const std::string& what) const;
   void set_up_call(const char* what);
 
   Link& link_;
   ServoCardConfig config_;
+  StreamLink* stream_link_;
+  std::optional<CardStreamSession> session_;
   LinkWriter writer_;
   std::array<std::uint8_t, kMaxFrame> reply_{};
   std::string revision_;

@@ -1,6 +1,7 @@
 // The servo card's link protocol (see docs/servo-card-link.md): one opcode byte, an axis
 // table {count, axis...} for multi-axis operations, then little-endian u32 / f64 values.
-// Replies start with a status byte. Shared by the driver (hal) and the emulated card (sim).
+// Replies start with a status byte. Once streaming, frames on the stream link carry
+// {seq, op, arguments} host to card and Status frames card to host (hal/card_stream.hpp). Shared by the driver (hal) and the emulated card (sim).
 #pragma once
 #include <cstdint>
 
@@ -16,11 +17,17 @@ enum class Op : std::uint8_t {
   JogAbsolute = 0x21,   // table, per axis f64 target, f64 velocity, f64 accel -> status
   JogStop = 0x22,       // table, per axis f64 decel -> status
   SetPosition = 0x23,   // table, per axis f64 value -> status
+  Segment = 0x25,       // stream only: u32 tick, table, per axis i32 position (0.1 µm), f32 velocity
+                        // (a setpoint stamped with the card clock, sent ahead; hal/card_stream.hpp)
+  ShiftPosition = 0x26, // table, per axis f64 delta -> status (the current position becomes position + delta)
   Follow = 0x24,        // table, per axis f64 position, f64 velocity (the setpoint one motion period
                         // ahead) -> status, then the ReadState reply: one round trip per cycle
   ReadState = 0x30,     // table -> status, per axis f64 position, u32 status word, u8 inputs
   ReadLatch = 0x31,     // table -> status, per axis f64 latched position (clears latch-valid)
   WriteOutputs = 0x40,  // table, per axis u8 output bits -> status
+  StartStream = 0x50,   // u16 status period (card ticks), table -> status, u32 card ticks per second;
+                        // from then on the card sends Status frames and takes host frames on the stream
+  Status = 0x32,        // card -> host on the stream, unasked, every status period (hal/card_stream.hpp)
 };
 
 enum class Status : std::uint8_t {

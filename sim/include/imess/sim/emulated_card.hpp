@@ -2,11 +2,15 @@
 // hal/servo_card_protocol.hpp. Its firmware closes the position loops, runs trapezoid
 // profiles or follows the host's per-period setpoints, stops axes at limit switches,
 // watches the following error and latches all axes on the probe edge; the Mechanics
-// behind it is the machine.
+// behind it is the machine. Once streaming (Op::StartStream) it also takes host frames on
+// a stream — timed setpoints (Op::Segment) executed on its own clock — and sends a status
+// frame every status period (emulated_card_stream.cpp).
 #pragma once
+#include <array>
 #include <span>
 #include <string>
 
+#include "imess/hal/card_stream.hpp"
 #include "imess/hal/link.hpp"
 #include "imess/hal/link_codec.hpp"
 #include "imess/hal/servo_card_protocol.hpp"
@@ -35,6 +39,20 @@ class EmulatedCard {
   // Handles one link request; returns the reply length (-1: the reply does not fit).
   int handle(std::span<const std::uint8_t> request, std::span<std::uint8_t> reply) noexcept;
 
+  // The stream (a transport such as sim::TimedCardLink calls these between ticks).
+  // One firmware tick (after advance_to has set the card's time once).
+  void step() noexcept;
+  double tick_period() const noexcept { return config_.tick; }
+  // A host frame {seq, op, arguments} that arrived intact / a frame that failed its CRC.
+  void on_stream_frame(std::span<const std::uint8_t> frame) noexcept;
+  void on_damaged_frame() noexcept;
+  // The status frame the last tick produced, if it produced one (valid until the next tick).
+  bool take_stream_frame(std::span<const std::uint8_t>& frame) noexcept;
+  // Counters for tests: setpoint buffer underruns, setpoints buffered, the card clock.
+  unsigned long starvations() const noexcept { return starvations_; }
+  int knots_buffered() const noexcept { return knot_count_; }
+  std::uint32_t clock() const noexcept { return clock_; }
+
  private:
   struct Axis {
     hal::TrapezoidPlanner profile;  // the firmware runs the same profile law as the host planners
@@ -61,6 +79,16 @@ class EmulatedCard {
   // at rest, brakes at amax when the setpoints stop coming (kCommTimeout) or a limit closes.
   void follow_tick() noexcept;
   void end_following(bool brake) noexcept;
+  // The cubic Hermite from (p0, v0) to (p1, v1) of every following axis at s of span
+  // seconds (s = 1 at the end), going on at v1 for late seconds past it.
+  void track_cubic(double s, double span, double late) noexcept;
+  bool following_into_limit() const noexcept;
+  // Streaming: per tick the interpolated command between timed setpoints; on arrival at the
+  // last one at rest following ends, without one (starved) the axes brake (kCommTimeout).
+  void knot_tick() noexcept;
+  void stream_fault() noexcept;
+  void emit_status() noexcept;
+  void shift_axis(int a, double new_offset) noexcept;
   void write_state(unsigned mask, hal::LinkWriter& out) const noexcept;
 
   // The link operations (hal/servo_card_protocol.hpp), one each: read the request's
@@ -80,6 +108,9 @@ class EmulatedCard {
   Status read_state(hal::LinkReader& r, hal::LinkWriter& out) const noexcept;
   Status read_latch(hal::LinkReader& r, hal::LinkWriter& out) noexcept;
   Status write_outputs(hal::LinkReader& r) noexcept;
+  Status shift_position(hal::LinkReader& r) noexcept;
+  Status start_stream(hal::LinkReader& r, hal::LinkWriter& out) noexcept;
+  Status segment(hal::LinkReader& r) noexcept;
 
   CardConfig config_;
   Mechanics& machine_;
@@ -90,6 +121,23 @@ class EmulatedCard {
   bool following_ = false;   // some axis follows setpoints
   double follow_age_ = 0;    // s since the last setpoint arrived
   double follow_span_ = 0;   // s, the host period: measured between Follow frames (averaged)
+
+  // Streaming.
+  std::uint32_t clock_ = 0;  // ticks since power-on
+  bool streaming_ = false;
+  unsigned stream_mask_ = 0;
+  std::uint32_t status_ticks_ = 50, since_status_ = 0;
+  bool have_seq_ = false, stream_error_ = false;
+  std::uint8_t ack_ = 0;
+  Status frame_status_ = Status::Ok;  // the first refusal since the last status frame
+  unsigned long starvations_ = 0;
+  // Timed setpoints: the span being interpolated (ticks t0_ to t1_, the axes' p0/v0 to
+  // p1/v1) and those buffered behind it.
+  std::uint32_t t0_ = 0, t1_ = 0;
+  std::array<hal::card::Knot, 64> knots_{};
+  int knot_head_ = 0, knot_count_ = 0;
+  hal::LinkWriter outbox_;
+  bool outbox_ready_ = false;
 };
 
 // The transport to the emulated card: brings the card up to the clock's time, then lets

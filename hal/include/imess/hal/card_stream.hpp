@@ -1,0 +1,65 @@
+// The servo card's stream operations (docs/servo-card-link.md, "Streaming"): the frames the
+// driver and the card exchange once the stream runs — host frames {seq, op, arguments}, the
+// timed setpoint (Op::Segment) among them, and the card's periodic status frame
+// (Op::Status). Shared by the driver (hal) and the emulated card (sim). No allocation.
+#pragma once
+#include <cmath>
+#include <cstdint>
+#include <span>
+
+#include "imess/hal/link_codec.hpp"
+#include "imess/hal/servo_card_protocol.hpp"
+#include "imess/hal/types.hpp"
+
+namespace imess::hal::card {
+
+// Positions on the stream are i32 in units of 0.1 µm (±214 m).
+inline constexpr double kStreamUnit = 1e-4;  // mm
+inline std::int32_t to_units(double mm) noexcept { return static_cast<std::int32_t>(std::lround(mm / kStreamUnit)); }
+inline double from_units(std::int32_t u) noexcept { return u * kStreamUnit; }
+
+// Axis table {count, axis...}: write the axes of mask; read back the mask (each axis at most
+// once, count 1..kAxes).
+void write_table(LinkWriter& w, unsigned mask) noexcept;
+Status read_table(LinkReader& r, unsigned& mask) noexcept;
+
+// Status frame flags.
+namespace flag {
+inline constexpr std::uint8_t kStreamError = 0x1;  // a host frame failed its CRC or a sequence number was skipped
+inline constexpr std::uint8_t kLatchData = 0x2;    // latched positions follow the axis data
+}
+
+// The card's periodic status frame: Op::Status, u32 clock (card ticks when sampled), u8 ack
+// (sequence number of the last host frame handled), u8 ack_status (its Status), u8 flags,
+// u8 starvations (saturating count), u8 knots (setpoints buffered), u16 margin (ticks from
+// now to the last buffered setpoint), table, per axis i32 position, u32 status word,
+// u8 inputs; with kLatchData per axis i32 latched position.
+struct StatusFrame {
+  std::uint32_t clock = 0;
+  std::uint8_t ack = 0, ack_status = 0, flags = 0, starvations = 0, knots = 0;
+  std::uint16_t margin = 0;
+  unsigned mask = 0;
+  AxisArray<double> position{}, latched{};
+  AxisArray<std::uint32_t> status{};
+  AxisArray<std::uint8_t> inputs{};
+};
+void write_status(LinkWriter& w, const StatusFrame& s) noexcept;
+// Parses a whole status frame (opcode included); false when it is not one or is malformed.
+bool read_status(std::span<const std::uint8_t> frame, StatusFrame& s) noexcept;
+
+// Op::Segment's arguments: u32 tick (the card clock at which the axes reach the setpoint),
+// table, per axis i32 position, f32 velocity (mm/s).
+struct Knot {
+  std::uint32_t tick = 0;
+  unsigned mask = 0;
+  AxisArray<double> position{}, velocity{};
+};
+void write_knot(LinkWriter& w, const Knot& k) noexcept;
+// Reads the arguments after the opcode; the frame must end after them.
+Status read_knot(LinkReader& r, Knot& k) noexcept;
+
+// Wrap-around order of card ticks and sequence numbers: a is later than b.
+inline bool tick_after(std::uint32_t a, std::uint32_t b) noexcept { return static_cast<std::int32_t>(a - b) > 0; }
+inline bool seq_after(std::uint8_t a, std::uint8_t b) noexcept { return static_cast<std::int8_t>(a - b) > 0; }
+
+}  // namespace imess::hal::card

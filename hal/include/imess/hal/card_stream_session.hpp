@@ -1,0 +1,96 @@
+// CardStreamSession: the driver's side of the servo card's stream (docs/servo-card-link.md,
+// "Streaming"). Nothing here waits for the card: commands and timed setpoints are queued on
+// the StreamLink, the card's periodic status frames are taken as they arrive, and the state
+// handed to the motion core is the newest status frame with what the frames still on their
+// way will change laid over it (a move sent clears "profile end" until the card has it). A
+// lost or damaged frame in either direction, a status frame that does not come, a frame the
+// card does not acknowledge in time, or a card that reports a stream error or starvation
+// latches a communication timeout (status bit 0 on every axis, the core's CommLost) until
+// reset(). Real-time calls are noexcept and allocate nothing.
+#pragma once
+#include <array>
+#include <cstdint>
+
+#include "imess/hal/card_stream.hpp"
+#include "imess/hal/motion_backend.hpp"
+#include "imess/hal/stream_link.hpp"
+
+namespace imess::hal {
+
+struct StreamSettings {
+  double period = 0.001;          // s, the motion period: one read_state() per period
+  double status_period = 0.005;   // s, the card's status frames
+  int segment_cycles = 4;         // a timed setpoint every this many periods (and when the path comes to rest)
+  double lead = 0.012;            // s, setpoints are stamped this far ahead of the card's clock
+  double baud = 115200;           // the line, for the age of a status frame when it is read (0: no delay)
+  int timeout_cycles = 20;        // periods without a status frame, or without the ack of a frame: CommLost
+};
+
+class CardStreamSession {
+ public:
+  CardStreamSession(StreamLink& link, StreamSettings settings) : link_(link), settings_(settings) {}
+
+  // Set-up (after StartStream): the card's ticks per second, its clock and state right now.
+  void start(std::uint32_t ticks_per_second, std::uint32_t clock, const MachineState& state, bool tip_reversed) noexcept;
+
+  // The newest state (see above). False never: a dead link shows as CommLost.
+  bool read_state(MachineState& out) noexcept;
+  // Queues one command (op and arguments, built by the driver); what it will change is laid
+  // over the state until the card acknowledges it. False: the transmit queue is full.
+  enum class Effect { None, Motion, CloseLoops, OpenLoops, Reset, ClearLatch };
+  bool command(std::span<const std::uint8_t> op_frame, Effect effect) noexcept;
+  // The setpoint of this period, stamped with the card tick it is due at; sent every
+  // segment_cycles periods and when the path comes to rest.
+  bool follow(const Setpoint& sp) noexcept;
+  // The latched positions of the newest status frame; false when it carries none.
+  bool latched(Vec3& out) noexcept;
+  // Positions are redefined relatively on the stream (Op::ShiftPosition, exact however old
+  // the newest status frame is): the delta that makes axis read value now, and, once its
+  // command is queued, the note that lays it over the positions until the card has it.
+  double shift_for(int axis, double value) noexcept;
+  void note_shift(int axis, double delta) noexcept;
+
+  // For tests, Stats and the bench.
+  const card::StatusFrame& newest() const noexcept { return newest_; }
+  unsigned long frames_sent() const noexcept { return frames_sent_; }
+  unsigned long status_frames() const noexcept { return status_frames_; }
+  unsigned long knots_sent() const noexcept { return knots_sent_; }
+  unsigned long errors() const noexcept { return errors_; }
+  bool comm_lost() const noexcept { return comm_lost_; }
+  unsigned starvations() const noexcept { return newest_.starvations; }
+
+ private:
+  struct Pending {
+    bool on = false;
+    std::uint8_t seq = 0;
+  };
+  bool send(std::span<const std::uint8_t> op_frame) noexcept;
+  void take(std::span<const std::uint8_t> frame) noexcept;
+  void lost() noexcept;
+  bool pending(Pending& p) const noexcept;  // clears p once the card has acknowledged it
+  std::uint32_t card_now() const noexcept;  // the card clock, estimated
+
+  StreamLink& link_;
+  StreamSettings settings_;
+  bool tip_reversed_ = false;
+  std::uint32_t ticks_per_cycle_ = 10, status_ticks_ = 50, lead_ticks_ = 120, delay_ticks_ = 0;
+  LinkWriter frame_;
+  std::array<std::uint8_t, kMaxFrame> rx_{};
+  std::uint8_t seq_ = 0;                     // of the last frame sent
+  std::array<std::uint32_t, 256> sent_at_{};  // the cycle each sequence number went out
+  card::StatusFrame newest_{};
+  bool stream_status_ = false;  // newest_ came on the stream (not from set-up)
+  std::uint32_t cycle_ = 0, status_cycle_ = 0;
+  bool comm_lost_ = false, refused_ = false;
+  Pending motion_, loops_, reset_, latch_;
+  bool loops_closed_ = false;
+  AxisArray<Pending> shift_pending_{};
+  AxisArray<double> shift_{};
+  // Following: the path's tick for cycle base_cycle_, the last follow() cycle, the last knot.
+  bool following_ = false;
+  std::uint32_t base_tick_ = 0, base_cycle_ = 0, follow_cycle_ = 0, last_knot_tick_ = 0;
+  bool last_knot_rest_ = false;
+  unsigned long frames_sent_ = 0, status_frames_ = 0, knots_sent_ = 0, errors_ = 0;
+};
+
+}  // namespace imess::hal

@@ -1,0 +1,206 @@
+// The driver's side of the card stream: status frames in, commands and timed setpoints out,
+// the state laid over with what is still on its way, and the link watched for gaps.
+#include "imess/hal/card_stream_session.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "imess/hal/stream_frame.hpp"
+
+namespace imess::hal {
+
+namespace {
+constexpr unsigned kAllAxes = (1u << kAxes) - 1;
+constexpr double kBitsPerByte = 10;  // start, 8 data, stop
+
+std::uint32_t ticks(double seconds, std::uint32_t per_second) {
+  return static_cast<std::uint32_t>(std::lround(seconds * per_second));
+}
+}  // namespace
+
+void CardStreamSession::start(std::uint32_t ticks_per_second, std::uint32_t clock, const MachineState& state,
+                              bool tip_reversed) noexcept {
+  tip_reversed_ = tip_reversed;
+  ticks_per_cycle_ = std::max<std::uint32_t>(1, ticks(settings_.period, ticks_per_second));
+  status_ticks_ = std::max<std::uint32_t>(1, ticks(settings_.status_period, ticks_per_second));
+  lead_ticks_ = ticks(settings_.lead, ticks_per_second);
+  // A status frame is read up to a period after its last byte arrived, which took its length
+  // on the line after it was sampled: half a period plus that, on average.
+  const double bytes = kFrameOverhead + 13 + kAxes + 9.0 * kAxes;
+  const double line = settings_.baud > 0 ? bytes * kBitsPerByte / settings_.baud : 0;
+  delay_ticks_ = ticks(line + 0.5 * settings_.period, ticks_per_second);
+  newest_ = card::StatusFrame{};
+  newest_.clock = clock;
+  newest_.mask = kAllAxes;
+  for (int a = 0; a < kAxes; ++a) {
+    newest_.position[a] = state.position[a];
+    newest_.status[a] = state.status[a];
+    newest_.inputs[a] = state.inputs[a];
+  }
+  stream_status_ = comm_lost_ = refused_ = following_ = false;
+  seq_ = 0;
+  cycle_ = status_cycle_ = 0;
+  motion_ = loops_ = reset_ = latch_ = Pending{};
+  shift_pending_ = {};
+  shift_ = {};
+}
+
+bool CardStreamSession::pending(Pending& p) const noexcept {
+  if (p.on && !card::seq_after(p.seq, newest_.ack)) p.on = false;
+  return p.on;
+}
+
+void CardStreamSession::lost() noexcept {
+  comm_lost_ = true;
+  ++errors_;
+}
+
+void CardStreamSession::take(std::span<const std::uint8_t> frame) noexcept {
+  card::StatusFrame s;
+  if (!card::read_status(frame, s)) return lost();
+  if (stream_status_ && s.clock - newest_.clock != status_ticks_) lost();  // one went missing
+  if (stream_status_ && s.starvations != newest_.starvations) lost();      // the card ran dry
+  newest_ = s;
+  stream_status_ = true;
+  status_cycle_ = cycle_;
+  ++status_frames_;
+  // Until the card has a reset sent, what it reports is of the frames before it.
+  if (pending(reset_)) return;
+  if (s.ack_status != static_cast<std::uint8_t>(card::Status::Ok)) {  // the card refused a command
+    refused_ = true;
+    ++errors_;
+  }
+  if (s.flags & card::flag::kStreamError) lost();  // it saw a damaged or missing host frame
+}
+
+bool CardStreamSession::read_state(MachineState& out) noexcept {
+  ++cycle_;
+  for (;;) {
+    const int n = link_.poll(rx_);
+    if (n == 0) break;
+    if (n < 0) lost();
+    else take(std::span<const std::uint8_t>(rx_.data(), static_cast<std::size_t>(n)));
+  }
+  const auto timeout = static_cast<std::uint32_t>(settings_.timeout_cycles);
+  if (cycle_ - status_cycle_ > timeout) lost();  // the status frames stopped coming
+  if (card::seq_after(seq_, newest_.ack) && cycle_ - sent_at_[static_cast<std::uint8_t>(newest_.ack + 1)] > timeout)
+    lost();  // a frame the card never acknowledged
+
+  const bool reset = pending(reset_), loops = pending(loops_), motion = pending(motion_), latch = pending(latch_);
+  for (int a = 0; a < kAxes; ++a) {
+    if (!pending(shift_pending_[a])) shift_[a] = 0;
+    out.position[a] = newest_.position[a] + shift_[a];
+    out.inputs[a] = newest_.inputs[a];
+    std::uint32_t s = newest_.status[a];
+    if (reset) s &= ~(status::kFaultMask | status::kClosedLoop);
+    if (loops) s = loops_closed_ ? s | status::kClosedLoop : s & ~status::kClosedLoop;
+    if (motion) s &= ~(status::kProfileEnd | status::kInPosition);
+    if (latch) s &= ~status::kLatchValid;
+    if (comm_lost_) s |= status::kCommTimeout;
+    if (refused_) s |= status::kDataError;
+    out.status[a] = s;
+  }
+  const bool contact = (out.inputs[0] & input::kTip) != 0;  // wired to every module; axis 0 carries it
+  out.tip_touched = tip_reversed_ ? !contact : contact;
+  return true;
+}
+
+bool CardStreamSession::send(std::span<const std::uint8_t> op_frame) noexcept {
+  frame_.clear();
+  frame_.u8(static_cast<std::uint8_t>(seq_ + 1));
+  for (std::uint8_t b : op_frame) frame_.u8(b);
+  if (!frame_.ok() || !link_.send(frame_.bytes())) {
+    ++errors_;
+    return false;
+  }
+  ++seq_;
+  sent_at_[seq_] = cycle_;
+  ++frames_sent_;
+  return true;
+}
+
+bool CardStreamSession::command(std::span<const std::uint8_t> op_frame, Effect effect) noexcept {
+  if (!send(op_frame)) return false;
+  const Pending now{true, seq_};
+  switch (effect) {
+    case Effect::None: break;
+    case Effect::Motion:
+      motion_ = now;
+      following_ = false;
+      break;
+    case Effect::CloseLoops:
+    case Effect::OpenLoops:
+      loops_ = now;
+      loops_closed_ = effect == Effect::CloseLoops;
+      following_ = following_ && loops_closed_;
+      break;
+    case Effect::Reset:
+      reset_ = now;
+      loops_ = Pending{};
+      following_ = comm_lost_ = refused_ = false;
+      stream_status_ = false;  // a gap before the reset is not held against the frames after it
+      status_cycle_ = cycle_;
+      // Frames lost before the reset are not waited for: the card acknowledges this one.
+      for (std::uint8_t s = static_cast<std::uint8_t>(newest_.ack + 1); s != seq_; ++s) sent_at_[s] = cycle_;
+      break;
+    case Effect::ClearLatch: latch_ = now; break;
+  }
+  return true;
+}
+
+std::uint32_t CardStreamSession::card_now() const noexcept {
+  return newest_.clock + delay_ticks_ + (cycle_ - status_cycle_) * ticks_per_cycle_;
+}
+
+bool CardStreamSession::follow(const Setpoint& sp) noexcept {
+  const bool fresh = !following_ || cycle_ != follow_cycle_ + 1;  // a new path (or a gap in one)
+  follow_cycle_ = cycle_;
+  if (fresh) {
+    std::uint32_t start = card_now() + lead_ticks_;
+    if (knots_sent_ > 0 && !card::tick_after(start, last_knot_tick_)) start = last_knot_tick_ + ticks_per_cycle_;
+    base_tick_ = start;
+    base_cycle_ = cycle_;
+    following_ = true;
+  }
+  const std::uint32_t n = cycle_ - base_cycle_;
+  const bool rest = sp.velocity.isZero(0);
+  const bool due = fresh || n % static_cast<std::uint32_t>(settings_.segment_cycles) == 0 || (rest && !last_knot_rest_);
+  if (!due) return !comm_lost_;
+  card::Knot k;
+  k.tick = base_tick_ + n * ticks_per_cycle_;
+  k.mask = kAllAxes;
+  for (int a = 0; a < kAxes; ++a) {
+    k.position[a] = sp.position[a];
+    k.velocity[a] = sp.velocity[a];
+  }
+  LinkWriter w;
+  w.u8(static_cast<std::uint8_t>(card::Op::Segment));
+  card::write_knot(w, k);
+  if (!send(w.bytes())) {
+    lost();
+    return false;
+  }
+  if (fresh) motion_ = Pending{true, seq_};
+  last_knot_tick_ = k.tick;
+  last_knot_rest_ = rest;
+  ++knots_sent_;
+  return !comm_lost_;
+}
+
+bool CardStreamSession::latched(Vec3& out) noexcept {
+  if (!(newest_.flags & card::flag::kLatchData)) return false;
+  for (int a = 0; a < kAxes; ++a) out[a] = newest_.latched[a] + (pending(shift_pending_[a]) ? shift_[a] : 0.0);
+  return true;
+}
+
+double CardStreamSession::shift_for(int axis, double value) noexcept {
+  const double shown = newest_.position[axis] + (pending(shift_pending_[axis]) ? shift_[axis] : 0.0);
+  return value - shown;
+}
+
+void CardStreamSession::note_shift(int axis, double delta) noexcept {
+  shift_[axis] = (pending(shift_pending_[axis]) ? shift_[axis] : 0.0) + delta;
+  shift_pending_[axis] = Pending{true, seq_};
+}
+
+}  // namespace imess::hal
