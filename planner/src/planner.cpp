@@ -57,6 +57,8 @@ std::string describe(const AppendResult& r, const Machine& m) {
     case PlanError::ArcRadiusMismatch:
       return seg + "arc end is not on the circle (radius differs by " + std::to_string(r.value) + ")";
     case PlanError::ArcDegenerate: return seg + "arc start lies on its centre";
+    case PlanError::ProbeNoDirection:
+      return seg + "probe target must lie at least 0.001 mm from where the probe starts (it gives the direction)";
   }
   return seg + "refused";
 }
@@ -138,6 +140,7 @@ AppendResult Planner::queue_line(const Line& l) {
   PlannedSegment seg;
   seg.id = l.id;
   seg.kind = SegmentKind::Line;
+  seg.probe = l.probe;
   seg.start = position_;
   seg.end = target;
   if (!(L > kZeroLength)) {  // zero-length: no motion, completes with its id

@@ -21,10 +21,13 @@ using protocol::format_ok;
 namespace {
 constexpr double kFlushLead = 0.05;  // s of motion the loop should hold before the plan must end at rest
 
-// The number of a queued id in an event, and the Failed line.
-std::string failed_line(std::uint32_t id, core::FailReason why) {
-  auto w = fail_wording(why);
-  return protocol::format_event("Failed", std::to_string(id) + " " + std::string(w.name) + " " + std::string(w.text));
+std::uint32_t id_of(const QueuedCommand& c) {
+  return std::visit([](const auto& q) { return q.id; }, c);
+}
+
+std::string_view verb_of(const QueuedCommand& c) {
+  static constexpr std::string_view kVerbs[] = {"MoveTo", "ArcTo", "Dwell", "Probe"};
+  return kVerbs[c.index()];
 }
 }  // namespace
 
@@ -43,70 +46,79 @@ bool Server::plan_from_here(std::string& why) {
   return true;
 }
 
-void Server::queue_move(Session& s, std::uint32_t slot, std::string_view verb, const planner::Request& r) {
+// One queued command: Ok when planned (or held behind a running Probe), Err when refused.
+void Server::queue_command(Session& s, std::uint32_t slot, const QueuedCommand& c) {
+  const std::string_view verb = verb_of(c);
+  if (probe_open_) {  // its start is the Probe's end: checked now as far as possible, planned then
+    if (auto res = check_held(c); !res.ok()) {
+      reply(s, slot, format_err(ErrorCode::OutOfTravel, planner::describe(res, planner_.machine())));
+      return;
+    }
+    held_.push_back(c);
+    if (config_.log_motion) spdlog::info("client {}: {} {} held until Probe {} is done", s.id(), verb, id_of(c), *probe_open_);
+    reply(s, slot, format_ok(std::string(verb)));
+    return;
+  }
   std::string why;
   if (!plan_from_here(why)) {
     reply(s, slot, format_err(ErrorCode::Busy, why));
     return;
   }
-  auto res = planner_.append(r);
+  auto res = plan(c);
   if (!res.ok()) {
     const auto code = res.error == planner::PlanError::OutOfTravel ? ErrorCode::OutOfTravel : ErrorCode::BadValue;
     reply(s, slot, format_err(code, planner::describe(res, planner_.machine())));
     if (unsent_.empty() && in_loop_.empty()) planning_ = false;
     return;
   }
-  const std::uint32_t id = std::visit([](const auto& q) { return q.id; }, r);
-  unsent_.push_back(id);
-  if (config_.log_motion) spdlog::info("client {}: {} {} queued", s.id(), verb, id);
+  if (config_.log_motion) spdlog::info("client {}: {} {} queued", s.id(), verb, id_of(c));
   reply(s, slot, format_ok(std::string(verb)));
   schedule_flush_check();
 }
 
-void Server::move_to(Session& s, std::uint32_t slot, const protocol::MoveTo& c) {
-  std::string why;
-  if (!plan_from_here(why)) {
-    reply(s, slot, format_err(ErrorCode::Busy, why));
-    return;
-  }
-  planner::Line l;
-  l.id = c.id;
-  l.target = planner_.position();
-  if (c.words.x) l.target[0] = *c.words.x;
-  if (c.words.y) l.target[1] = *c.words.y;
-  if (c.words.z) l.target[2] = *c.words.z;
-  const auto& p = core_.params();
-  l.feed = c.words.f ? *c.words.f : p.goto_speed * p.speed_level;
-  queue_move(s, slot, "MoveTo", l);
-}
-
-// ArcTo id CW|CCW X Y Z I J [F]: the end (unnamed axes keep their position), the centre at
-// start + (I, J) in the XY plane (a missing I or J is 0); a Z change makes a helix.
-void Server::arc_to(Session& s, std::uint32_t slot, const protocol::ArcTo& c) {
-  std::string why;
-  if (!plan_from_here(why)) {
-    reply(s, slot, format_err(ErrorCode::Busy, why));
-    return;
-  }
+// The command's planner request(s) from where the planned path ends; its id into unsent_.
+planner::AppendResult Server::plan(const QueuedCommand& c) {
   const planner::Pose start = planner_.position();
-  planner::Arc a;
-  a.id = c.id;
-  a.target = start;
-  if (c.words.x) a.target[0] = *c.words.x;
-  if (c.words.y) a.target[1] = *c.words.y;
-  if (c.words.z) a.target[2] = *c.words.z;
-  a.centre = {start[0] + c.words.i.value_or(0), start[1] + c.words.j.value_or(0), start[2]};
-  a.normal = {0, 0, 1};
-  a.plane_axes = {0, 1, 2};
-  a.ccw = c.ccw;
   const auto& p = core_.params();
-  a.feed = c.words.f ? *c.words.f : p.goto_speed * p.speed_level;
-  queue_move(s, slot, "ArcTo", a);
+  const double move_feed = p.goto_speed * p.speed_level;
+  planner::AppendResult res;
+  if (const auto* m = std::get_if<protocol::MoveTo>(&c)) {
+    planner::Line l;
+    l.id = m->id;
+    l.target = start;
+    if (m->words.x) l.target[0] = *m->words.x;
+    if (m->words.y) l.target[1] = *m->words.y;
+    if (m->words.z) l.target[2] = *m->words.z;
+    l.feed = m->words.f.value_or(move_feed);
+    res = planner_.append(l);
+  } else if (const auto* c_arc = std::get_if<protocol::ArcTo>(&c)) {
+    // ArcTo id CW|CCW X Y Z I J [F]: the end (unnamed axes keep their position), the centre
+    // at start + (I, J) in the XY plane (a missing I or J is 0); a Z change makes a helix.
+    planner::Arc a;
+    a.id = c_arc->id;
+    a.target = start;
+    if (c_arc->words.x) a.target[0] = *c_arc->words.x;
+    if (c_arc->words.y) a.target[1] = *c_arc->words.y;
+    if (c_arc->words.z) a.target[2] = *c_arc->words.z;
+    a.centre = {start[0] + c_arc->words.i.value_or(0), start[1] + c_arc->words.j.value_or(0), start[2]};
+    a.normal = {0, 0, 1};
+    a.plane_axes = {0, 1, 2};
+    a.ccw = c_arc->ccw;
+    a.feed = c_arc->words.f.value_or(move_feed);
+    res = planner_.append(a);
+  } else if (const auto* d = std::get_if<protocol::Dwell>(&c)) {
+    res = planner_.append(planner::Dwell{d->id, d->seconds});
+  } else {
+    res = plan_probe(std::get<protocol::Probe>(c));
+    if (res.ok()) probe_open_ = res.id;
+  }
+  if (res.ok()) unsent_.push_back(id_of(c));
+  return res;
 }
 
 void Server::queue_status(Session& s, std::uint32_t slot) {
   const auto& snap = core_.snapshot();
-  const std::size_t pending = unsent_.size() + in_loop_.size();
+  const std::size_t pending = unsent_.size() + in_loop_.size() + held_.size();
   reply(s, slot, format_ok("Queue", "Pending " + std::to_string(pending) + " Running " +
                                         (snap.path_running ? std::to_string(snap.path_id) : std::string("none")) +
                                         " Held " + (snap.path_held ? "yes" : "no")));
@@ -119,6 +131,11 @@ void Server::feed_segments() {
       // cannot happen (room was checked, one producer); never lose an id silently
       broadcast(failed_line(seg.id, core::FailReason::Faulted));
       if (!unsent_.empty()) unsent_.pop_front();
+      continue;
+    }
+    // A Probe's search after its approach: the same id, one entry (its approach took it from unsent_).
+    if (seg.probe == planner::ProbePhase::Search && !in_loop_.empty() && in_loop_.back().first == seg.id) {
+      in_loop_.back().second += seg.duration();
       continue;
     }
     if (!unsent_.empty()) unsent_.pop_front();
@@ -147,6 +164,7 @@ void Server::flush_check() {
 void Server::on_segment_end(const core::Event& e) {
   auto it = std::find_if(in_loop_.begin(), in_loop_.end(), [&](const auto& x) { return x.first == e.id; });
   if (it != in_loop_.end()) in_loop_.erase(it);
+  const bool probe_closed = probe_open_ && *probe_open_ == e.id && (e.kind == core::EventKind::Failed || e.probe_end);
   if (e.kind == core::EventKind::Done) {
     broadcast(protocol::format_event("Done", std::to_string(e.id)));
     if (config_.log_motion) spdlog::info("move {} done", e.id);
@@ -157,12 +175,21 @@ void Server::on_segment_end(const core::Event& e) {
   }
   if (unsent_.empty() && in_loop_.empty() && planner_.pending() == 0 && planner_.ready() == 0)
     planning_ = false;  // the queue ran out: the next one starts where the machine stands
+  if (probe_closed) {
+    probe_open_.reset();
+    if (e.kind == core::EventKind::Done)
+      plan_held(e.p);
+    else
+      fail_held(core::FailReason::Stopped);  // the cycle failed: what was to follow it never runs
+  }
   flush_check();
 }
 
 void Server::drop_planned(core::FailReason why) {
   for (auto id : unsent_) broadcast(failed_line(id, why));
   unsent_.clear();
+  probe_open_.reset();
+  fail_held(why);
   planner::Pose here{};
   planner_.set_position(here);  // discards what was not taken; the next queue starts anew
   planning_ = false;

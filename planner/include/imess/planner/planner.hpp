@@ -35,6 +35,7 @@ enum class PlanError : std::uint8_t {
   ArcBadPlane = 5,        // plane axes not three distinct linear axes, or normal zero
   ArcRadiusMismatch = 6,  // the end is not on the circle through the start
   ArcDegenerate = 7,      // start on the centre (radius 0)
+  ProbeNoDirection = 8,   // a probing move's target on its start (the daemon's Probe)
 };
 
 struct AppendResult {
