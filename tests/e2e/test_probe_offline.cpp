@@ -60,7 +60,7 @@ static void offline_sequence(const std::string& config) {
   CHECK(seen(c, "Done 10"));
   CHECK(seen(c, "Done 2"));
   CHECK(seen(c, "Done 3"));
-  CHECK(seen(c, "Failed 4 PartNotFound no probe edge up to SearchDist beyond the target; the machine stands at the end of the search"));
+  CHECK(seen(c, "Failed 4 PartNotFound no edge up to SearchDist past the target"));
   CHECK(seen(c, "Failed 5 Stopped a stop dropped the queue"));  // behind a failed Probe: never planned
   CHECK(seen(c, "Failed 6 Stopped a stop dropped the queue"));
 

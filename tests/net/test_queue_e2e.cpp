@@ -329,7 +329,7 @@ TEST_CASE("Probe through the Server: a miss is Failed PartNotFound; what was sen
   h.send("Probe 2 X150 F50\nMoveTo 3 Y120\nDwell 4 0.1");
   REQUIRE(run_wall_until(h, 1e9, "Failed 4 Stopped a stop dropped the queue", 30));
   CHECK(h.starting("Failed ") ==
-        std::vector<std::string>{"Failed 2 PartNotFound no probe edge up to SearchDist beyond the target; the machine stands at the end of the search",
+        std::vector<std::string>{"Failed 2 PartNotFound no edge up to SearchDist past the target",
                                  "Failed 3 Stopped a stop dropped the queue", "Failed 4 Stopped a stop dropped the queue"});
   CHECK(h.starting("Done ").empty());
   CHECK(h.starting("Hit ").empty());
@@ -345,9 +345,12 @@ TEST_CASE("Probe through the Server: refused when the search would leave the tra
   CHECK(h.starting("Err 105 segment 7: probe target must lie").size() == 1);
   h.send("Probe 8 X150\nMoveTo 9 Y900");
   CHECK(h.has("Err 206 segment 9: axis Y leaves its travel at 900.000000"));
+  h.send("ArcTo 10 CW X200 Y200 I50");  // held: its circle depends on where the Probe ends
+  CHECK(h.has("Ok ArcTo"));
   REQUIRE(run_wall_until(h, 151, "Done 8", 30));
   h.run(0.1);
-  CHECK(h.starting("Failed").empty());
+  // from (150.5, 100) the centre is (200.5, 100): the end (200, 200) is not on that circle
+  CHECK(h.starting("Failed") == std::vector<std::string>{"Failed 10 Refused not plannable from where the Probe ended"});
 }
 
 TEST_CASE("Probe through the Server: StopMv mid-probe fails the Probe and what waited behind it, Stopped") {

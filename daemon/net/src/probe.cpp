@@ -61,9 +61,8 @@ void Server::plan_held(const core::Vec3& from) {
     auto res = plan(c);
     if (!res.ok()) {
       const bool travel = res.error == planner::PlanError::OutOfTravel;
-      const std::uint32_t id = std::visit([](const auto& q) { return q.id; }, c);
-      broadcast(protocol::format_event("Failed", std::to_string(id) + (travel ? " OutOfTravel " : " Refused ") +
-                                                     planner::describe(res, planner_.machine())));
+      log_limited(spdlog::level::warn, "held-refused", planner::describe(res, planner_.machine()));
+      broadcast(failed_line(res.id, travel ? core::FailReason::OutOfTravel : core::FailReason::Refused));
     }
   }
   if (unsent_.empty() && in_loop_.empty() && planner_.pending() == 0 && planner_.ready() == 0) planning_ = false;

@@ -81,7 +81,8 @@ Wording fail_wording(core::FailReason f) {
     case core::FailReason::TipTouched: return {"TipTouched", "probe deflected: the queue did not start"};
     case core::FailReason::OffPath: return {"OffPath", "the machine is not at the queue's start"};
     case core::FailReason::PartNotFound:
-      return {"PartNotFound", "no probe edge up to SearchDist beyond the target; the machine stands at the end of the search"};
+      return {"PartNotFound", "no edge up to SearchDist past the target"};
+    case core::FailReason::Refused: return {"Refused", "not plannable from where the Probe ended"};
   }
   return {"Unknown", ""};
 }

@@ -21,13 +21,14 @@ enum class Mode : std::uint8_t { Free, Idle, Jog, Move, Retract, Home, Fault, St
 // words are in net/wording.cpp (fail_wording).
 enum class FailReason : std::uint8_t {
   Stopped,        // a stop (StopMv, Release, a dropped owner, the dead-man) dropped the queue
-  OutOfTravel,    // the planner refused it (io side; the core never sends it)
+  OutOfTravel,    // held behind a Probe, it leaves the travel from the Probe's end (io side)
   IntoLimit,      // a limit switch stopped the machine
   Faulted,        // a fault, or the backend cannot follow a planned path
   UnexpectedHit,  // the probe touched during a queued segment: stopped, retracted, no point
   TipTouched,     // the queue could not start: the probe is deflected
   OffPath,        // the queue does not start where the machine stands (it was moved meanwhile)
   PartNotFound,   // a Probe's search ran SearchDist beyond the target without an edge
+  Refused,        // held behind a Probe, the planner refused it from the Probe's end (io side)
 };
 
 // Why the loop refused a command; net maps each to a protocol error code.
