@@ -63,6 +63,8 @@ std::string describe(const AppendResult& r, const Machine& m) {
       return seg + "arc end is " + std::to_string(r.value) + " off the plane through the start (accepted: up to " +
              std::to_string(r.limit) + "; a planar arc has no helix)";
     case PlanError::ArcBadTurns: return seg + "arc extra turns must be 0 or more";
+    case PlanError::ProbeNoDirection:
+      return seg + "probe target must lie at least 0.001 mm from where the probe starts (it gives the direction)";
   }
   return seg + "refused";
 }
@@ -144,6 +146,7 @@ AppendResult Planner::queue_line(const Line& l) {
   PlannedSegment seg;
   seg.id = l.id;
   seg.kind = SegmentKind::Line;
+  seg.probe = l.probe;
   seg.start = position_;
   seg.end = target;
   if (!(L > kZeroLength)) {  // zero-length: no motion, completes with its id

@@ -122,6 +122,13 @@ const std::array kVerbs{
              args(move_id(), number("seconds", 0, kMaxDwellSeconds, "Dwell takes seconds from {min} to {max}, got '{got}'")),
              "queue a pause of the given seconds (the path stops there)", false, Access::Controlling,
              command_index<Dwell>(), [](const Args& a) -> Command { return Dwell{id_of(a), a.number(1)}; }},
+    VerbSpec{"Probe",
+             args(move_id(), axis_words("X.. Y.. Z.. F..", "XYZF",
+                                        "Probe takes words X Y Z (target, mm) and F (approach mm/s), each at most once, got '{got}'; usage: {usage}")),
+             "queue a probing cycle: toward the target (F, then ProbeSpeed from PrehitDist before it), on to SearchDist "
+             "beyond; at the edge Hit, retract RetractDist from the hit, Done (no edge: Failed PartNotFound)",
+             false, Access::Controlling, command_index<Probe>(),
+             [](const Args& a) -> Command { return Probe{id_of(a), path_words(a)}; }},
     VerbSpec{"Queue", args(), "queued moves: how many are pending, the running id, held or not", false, Access::Open,
              command_index<Queue>(), [](const Args&) -> Command { return Queue{}; }},
     VerbSpec{"Pause", args(), "feed hold: queued moves brake to rest on their path", false, Access::Controlling,

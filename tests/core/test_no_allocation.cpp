@@ -5,6 +5,7 @@
 #include "core_rig.hpp"
 #include "ideal_follower.hpp"
 #include "imess/core/event_fd.hpp"
+#include "imess/planner/probe.hpp"
 
 #include "allocation_counter.hpp"
 
@@ -79,4 +80,45 @@ TEST_CASE("no motion cycle allocates while running queued segments: follow, Done
   CHECK(allocations_over_cycles(rig, 500) == 0);
   CHECK(rig.mode() == Mode::Idle);
   CHECK(rig.hw.follow_calls > 1500);
+}
+
+TEST_CASE("no motion cycle allocates in a Probe cycle: approach, search, hit, retract, Done; a miss; an early touch") {
+  FollowerRig rig;
+  rig.hw.record = false;
+  const auto& p = rig.core().params();
+  const planner::ProbeGeometry g{p.prehit_distance, p.search_distance, 50, p.probe_speed};
+  auto queue = [&](std::uint32_t id, double x) {
+    auto c = planner::probe_cycle(id, rig.planner().position(), {x, 100, 100}, g);
+    REQUIRE(c);
+    if (c->approach) rig.append(*c->approach);
+    rig.append(c->search);
+    rig.feed(true);
+  };
+  // a hit in the search: the edge comes while the loop runs (latched where the axes are)
+  queue(1, 130);
+  CHECK(allocations_over_cycles(rig, 700) == 0);  // approach, into the search
+  REQUIRE(rig.mode() == Mode::Path);
+  rig.hw.touch();
+  CHECK(allocations_over_cycles(rig, 1) == 0);  // the hit: MeasPt, the retract starts
+  CHECK(rig.mode() == Mode::Retract);
+  rig.hw.tip = false;
+  CHECK(allocations_over_cycles(rig, 600) == 0);  // the retract, Done
+  REQUIRE(rig.mode() == Mode::Idle);
+  // a miss: the search runs out (PartNotFound)
+  planner::Pose here{};
+  for (int a = 0; a < 3; ++a) here[a] = rig.position()[a];
+  rig.planner().set_position(here);
+  queue(2, here[0] + 5);
+  CHECK(allocations_over_cycles(rig, 4000) == 0);
+  CHECK(rig.mode() == Mode::Idle);  // (the events are drained by the counter: test_probe_cycle.cpp checks them)
+  // an early touch on the approach: UnexpectedHit, one Failed for the two segments
+  for (int a = 0; a < 3; ++a) here[a] = rig.position()[a];
+  rig.planner().set_position(here);
+  queue(3, here[0] + 60);
+  CHECK(allocations_over_cycles(rig, 100) == 0);
+  rig.hw.touch();
+  CHECK(allocations_over_cycles(rig, 1) == 0);
+  rig.hw.tip = false;
+  CHECK(allocations_over_cycles(rig, 600) == 0);
+  CHECK(rig.mode() == Mode::Idle);
 }

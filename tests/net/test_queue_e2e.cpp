@@ -423,3 +423,78 @@ TEST_CASE("ArcTo: the session of docs/protocol.md (\"Arcs\") line for line") {
     CHECK(h.lines() == std::vector<std::string>{reply});
   }
 }
+
+namespace {
+// Steps with a wall of material at x >= wall: crossing it latches the crossing point.
+bool run_wall_until(QueueHarness& h, double wall, const std::string& line, double seconds) {
+  for (long i = 0, n = static_cast<long>(seconds * 1000); i < n; ++i) {
+    if (h.has(line)) return true;
+    const hal::Vec3 before = h.rig.hw.where();
+    h.step();
+    const hal::Vec3 after = h.rig.hw.where();
+    if (!h.rig.hw.tip && before.x() < wall && after.x() >= wall)
+      h.rig.hw.touch_at(before + (wall - before.x()) / (after.x() - before.x()) * (after - before));
+    else if (h.rig.hw.tip && after.x() < wall)
+      h.rig.hw.tip = false;
+  }
+  return h.has(line);
+}
+}  // namespace
+
+TEST_CASE("Probe through the Server: Hit with its id, Done; a MoveTo sent behind it starts where the Probe ended") {
+  QueueHarness h;  // at (100, 100, 100); tip radius 2, RetractDist 0.5
+  h.send("Probe 2 X150 F50\nMoveTo 3 Y120");
+  CHECK(h.has("Ok Probe"));
+  CHECK(h.has("Ok MoveTo"));
+  REQUIRE(run_wall_until(h, 151, "Done 3", 30));
+  auto hits = h.starting("Hit ");
+  REQUIRE(hits.size() == 1);
+  INFO(hits[0]);
+  CHECK(hits[0].rfind("Hit 1 2 153.000", 0) == 0);  // the first hit of the journal, the Probe's id, the edge + r
+  CHECK(h.has("MeasPt 153.000 100.000 100.000"));
+  CHECK(h.starting("Done ") == std::vector<std::string>{"Done 2", "Done 3"});
+  CHECK(h.starting("Failed").empty());
+  h.step();
+  // the MoveTo's unnamed axes kept the Probe's end: 0.5 back from the hit at x = 151
+  CHECK(h.rig.position().isApprox(hal::Vec3(150.5, 120, 100), 1e-9));
+}
+
+TEST_CASE("Probe through the Server: a miss is Failed PartNotFound; what was sent behind it fails Stopped") {
+  QueueHarness h;
+  h.send("Probe 2 X150 F50\nMoveTo 3 Y120\nDwell 4 0.1");
+  REQUIRE(run_wall_until(h, 1e9, "Failed 4 Stopped a stop dropped the queue", 30));
+  CHECK(h.starting("Failed ") ==
+        std::vector<std::string>{"Failed 2 PartNotFound no edge up to SearchDist past the target",
+                                 "Failed 3 Stopped a stop dropped the queue", "Failed 4 Stopped a stop dropped the queue"});
+  CHECK(h.starting("Done ").empty());
+  CHECK(h.starting("Hit ").empty());
+  h.step();
+  CHECK(h.rig.position().isApprox(hal::Vec3(160, 100, 100), 1e-9));  // SearchDist beyond the target
+}
+
+TEST_CASE("Probe through the Server: refused when the search would leave the travel or has no direction; a held move is checked") {
+  QueueHarness h;
+  h.send("Probe 6 X495");
+  CHECK(h.has("Err 206 segment 6: axis X leaves its travel at 505.000000"));
+  h.send("Probe 7 X100 Y100 Z100");
+  CHECK(h.starting("Err 105 segment 7: probe target must lie").size() == 1);
+  h.send("Probe 8 X150\nMoveTo 9 Y900");
+  CHECK(h.has("Err 206 segment 9: axis Y leaves its travel at 900.000000"));
+  h.send("ArcTo 10 CW X200 Y200 I50");  // held: its circle depends on where the Probe ends
+  CHECK(h.has("Ok ArcTo"));
+  REQUIRE(run_wall_until(h, 151, "Done 8", 30));
+  h.run(0.1);
+  // from (150.5, 100) the centre is (200.5, 100): the end (200, 200) is not on that circle
+  CHECK(h.starting("Failed") == std::vector<std::string>{"Failed 10 Refused not plannable from where the Probe ended"});
+}
+
+TEST_CASE("Probe through the Server: StopMv mid-probe fails the Probe and what waited behind it, Stopped") {
+  QueueHarness h;
+  h.send("Probe 2 X150 F50\nMoveTo 3 Y120");
+  h.run(0.5);
+  h.send("StopMv");
+  REQUIRE(run_wall_until(h, 1e9, "Failed 3 Stopped a stop dropped the queue", 5));
+  CHECK(h.has("Failed 2 Stopped a stop dropped the queue"));
+  CHECK(h.starting("Failed ").size() == 2);
+  CHECK(h.starting("Done ").empty());
+}

@@ -79,7 +79,14 @@ class IdealFollower final : public hal::MotionBackend {
     latch_ = pos_;
     latch_valid_ = true;
   }
+  // The probe edge at a given point (a scene's surface crossed between two cycles).
+  void touch_at(const hal::Vec3& where) {
+    tip = true;
+    latch_ = where;
+    latch_valid_ = true;
+  }
   const hal::Vec3& velocity() const { return vel_; }
+  const hal::Vec3& where() const { return pos_; }  // where the axes are now
 
   bool can_follow = true;
   long fail_at_call = -1;  // follow() call number (1-based) that returns false

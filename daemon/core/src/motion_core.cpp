@@ -390,6 +390,8 @@ void MotionCore::on_probe_latch(Nanos now) noexcept {
       retract_from(latched, motion_dir_, now);
       return;
     case Mode::Path:
+      if (held_count_ > 0 && held_probe_[0] == planner::ProbePhase::Search) return probe_hit(latched, now);
+      [[fallthrough]];  // an edge on a move, or on a Probe's fast approach: unexpected
     case Mode::Move:
     case Mode::Home:
     case Mode::Stopping: {
@@ -426,6 +428,36 @@ void MotionCore::on_probe_latch(Nanos now) noexcept {
   }
 }
 
+void MotionCore::probe_hit(const Vec3& latched, Nanos now) noexcept {
+  const std::uint32_t id = held_ids_[0];
+  const Vec3 d = probe_dir_;
+  measured(latched + config_.params.tip_radius * d, d, true, now, id);
+  held_count_ = 0;  // the search ends here; nothing queued follows it in the ring (the io side holds it)
+  QueuedSegment q;
+  while (segments_.pop(q))
+    if (q.seg.id != id) segment_event(EventKind::Failed, q.seg.id, FailReason::Stopped, now);
+  planner::Pose here{};
+  for (int a = 0; a < kAxes; ++a) here[a] = ms_.position[a];
+  sampler_.set_position(here);
+  probe_retracting_ = true;
+  probe_id_ = id;
+  approach_dir_ = d;
+  retract_from(latched, d, now);
+}
+
+void MotionCore::close_probe(EventKind k, FailReason why, Nanos now) noexcept {
+  if (!probe_retracting_) return;
+  probe_retracting_ = false;
+  Event e;
+  e.kind = k;
+  e.id = probe_id_;
+  e.fail = why;
+  e.p = retract_target_;  // Done: where the machine stands, the start of what was queued after
+  e.probe_end = true;
+  e.time = now;
+  emit(e);
+}
+
 void MotionCore::retract_from(const Vec3& latched, const Vec3& dir, Nanos now) noexcept {
   // Once referenced, a retract stays within the soft limits too: it is shortened to end
   // at the travel's edge (or does not move) rather than leave it.
@@ -438,6 +470,7 @@ void MotionCore::retract_from(const Vec3& latched, const Vec3& dir, Nanos now) n
       if (d < 0) distance = std::min(distance, std::max(0.0, (latched[a] - ax.travel_min) / -d));
     }
   Vec3 target = latched - distance * dir;
+  retract_target_ = target;
   motion_dir_ = -dir;
   // The retract first brakes the motion that hit: the configured acceleration, like a stop.
   if (!hw_.move(straight_moves(target, -dir, config_.params.retract_speed, true), moving_axes(-dir))) ++hardware_errors_;
@@ -524,8 +557,10 @@ void MotionCore::launch_pending_or_idle(Nanos now) noexcept {
 // opens the loops (free), and a motion that waited for the retract is refused.
 void MotionCore::update_retract(double in_mode, Nanos now) noexcept {
   if (ms_.motion_done() && ms_.all(st::kInPosition) && !ms_.tip_touched) {
+    close_probe(EventKind::Done, FailReason::Stopped, now);
     launch_pending_or_idle(now);
   } else if (in_mode > config_.params.retract_timeout) {
+    close_probe(EventKind::Failed, FailReason::TipTouched, now);
     if (pending_ != Pending::None) warn(Warning::MoveRefused, ms_.position, now);
     pending_ = Pending::None;
     warn(Warning::TipNotFree, ms_.position, now);
@@ -596,7 +631,7 @@ bool MotionCore::fresh_segments_waiting(Nanos now) noexcept {
   while (!segments_.empty() && stale(segments_.front())) {
     QueuedSegment q;
     segments_.pop(q);
-    segment_event(EventKind::Failed, q.seg.id, FailReason::Stopped, now);
+    fail_segment(q.seg.id, q.seg.probe, FailReason::Stopped, now);
   }
   return !segments_.empty();
 }
@@ -607,20 +642,27 @@ bool MotionCore::pop_segment(planner::PlannedSegment& out) noexcept {
   QueuedSegment q;
   while (segments_.pop(q)) {
     if (stale(q)) {
-      segment_event(EventKind::Failed, q.seg.id, FailReason::Stopped, path_now_);
+      fail_segment(q.seg.id, q.seg.probe, FailReason::Stopped, path_now_);
       continue;
     }
     if (check_start_) {
       check_start_ = false;
       for (int a = 0; a < kAxes; ++a)
         if (std::abs(q.seg.start[a] - ms_.position[a]) > kPathStartTolerance) {
-          segment_event(EventKind::Failed, q.seg.id, FailReason::OffPath, path_now_);
+          fail_segment(q.seg.id, q.seg.probe, FailReason::OffPath, path_now_);
           check_start_ = true;  // the next one must start here too
           break;
         }
       if (check_start_) continue;
     }
-    if (held_count_ < static_cast<int>(held_ids_.size())) held_ids_[held_count_++] = q.seg.id;
+    if (held_count_ < static_cast<int>(held_ids_.size())) {
+      held_probe_[held_count_] = q.seg.probe;
+      held_ids_[held_count_++] = q.seg.id;
+    }
+    if (q.seg.probe != planner::ProbePhase::None) {
+      Vec3 d(q.seg.end[0] - q.seg.start[0], q.seg.end[1] - q.seg.start[1], q.seg.end[2] - q.seg.start[2]);
+      if (d.norm() > 1e-9) probe_dir_ = d / d.norm();
+    }
     low_sent_ = false;
     out = q.seg;
     return true;
@@ -653,9 +695,17 @@ void MotionCore::run_path(Nanos now) noexcept {
   path_now_ = now;
   const planner::Sample& smp = sampler_.advance(config_.period_s, [this](planner::PlannedSegment& s) { return pop_segment(s); });
   for (int i = 0; i < smp.done_count; ++i) {
-    segment_event(EventKind::Done, smp.done[i].id, FailReason::Stopped, now);
+    // A Probe's approach ends in its search (one id, one Done or Failed); a search that ends
+    // without an edge is PartNotFound, the machine at rest at its end.
+    if (smp.done[i].probe == planner::ProbePhase::Search)
+      segment_event(EventKind::Failed, smp.done[i].id, FailReason::PartNotFound, now);
+    else if (smp.done[i].probe == planner::ProbePhase::None)
+      segment_event(EventKind::Done, smp.done[i].id, FailReason::Stopped, now);
     if (held_count_ > 0) {
-      for (int k = 1; k < held_count_; ++k) held_ids_[k - 1] = held_ids_[k];
+      for (int k = 1; k < held_count_; ++k) {
+        held_ids_[k - 1] = held_ids_[k];
+        held_probe_[k - 1] = held_probe_[k];
+      }
       --held_count_;
     }
   }
@@ -694,10 +744,11 @@ void MotionCore::run_path(Nanos now) noexcept {
 // comes to rest. Segments the io side sends before it hears of this are failed on arrival.
 void MotionCore::fail_queue(FailReason why, Nanos now, bool tell) noexcept {
   path_now_ = now;
-  for (int i = 0; i < held_count_; ++i) segment_event(EventKind::Failed, held_ids_[i], why, now);
+  close_probe(EventKind::Failed, why, now);
+  for (int i = 0; i < held_count_; ++i) fail_segment(held_ids_[i], held_probe_[i], why, now);
   held_count_ = 0;
   QueuedSegment q;
-  while (segments_.pop(q)) segment_event(EventKind::Failed, q.seg.id, stale(q) ? FailReason::Stopped : why, now);
+  while (segments_.pop(q)) fail_segment(q.seg.id, q.seg.probe, stale(q) ? FailReason::Stopped : why, now);
   planner::Pose here{};
   for (int a = 0; a < kAxes; ++a) here[a] = ms_.position[a];
   sampler_.set_position(here);
@@ -709,6 +760,14 @@ void MotionCore::fail_queue(FailReason why, Nanos now, bool tell) noexcept {
   e.fail = why;
   e.time = now;
   emit(e);
+}
+
+// A Probe's search follows its approach with the same id: one Failed for the two.
+void MotionCore::fail_segment(std::uint32_t id, planner::ProbePhase phase, FailReason why, Nanos now) noexcept {
+  const bool second_half = phase == planner::ProbePhase::Search && failed_approach_ && failed_id_ == id;
+  failed_approach_ = phase == planner::ProbePhase::Approach;
+  failed_id_ = id;
+  if (!second_half) segment_event(EventKind::Failed, id, why, now);
 }
 
 void MotionCore::segment_event(EventKind k, std::uint32_t id, FailReason why, Nanos now) noexcept {
@@ -739,9 +798,10 @@ void MotionCore::reply(const Command& c, Refusal r) noexcept {
   emit(e);
 }
 
-void MotionCore::measured(const Vec3& point, const Vec3& dir, bool compensated, Nanos now) noexcept {
+void MotionCore::measured(const Vec3& point, const Vec3& dir, bool compensated, Nanos now, std::uint32_t id) noexcept {
   Event e;
   e.kind = EventKind::MeasPt;
+  e.id = id;
   e.p = point;
   e.dir = dir;
   e.compensated = compensated;

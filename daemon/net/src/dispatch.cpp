@@ -113,9 +113,10 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
             reply(s, slot, format_ok("Watch"));
           },
           [&](const protocol::Version&) { reply(s, slot, format_ok("Version", config_.version)); },
-          [&](const protocol::MoveTo& c) { move_to(s, slot, c); },
-          [&](const protocol::ArcTo& c) { arc_to(s, slot, c); },
-          [&](const protocol::Dwell& c) { queue_move(s, slot, "Dwell", planner::Dwell{c.id, c.seconds}); },
+          [&](const protocol::MoveTo& c) { queue_command(s, slot, c); },
+          [&](const protocol::ArcTo& c) { queue_command(s, slot, c); },
+          [&](const protocol::Dwell& c) { queue_command(s, slot, c); },
+          [&](const protocol::Probe& c) { queue_command(s, slot, c); },
           [&](const protocol::Queue&) { queue_status(s, slot); },
           [&](const protocol::Pause&) { to_core(s, slot, {CommandKind::Pause}); },
           [&](const protocol::Resume&) { to_core(s, slot, {CommandKind::Resume}); },

@@ -8,7 +8,7 @@
 namespace imess::net {
 
 void Server::send_hit(const core::Event& e) {
-  protocol::HitMsg hit{0, 0, {e.p.x(), e.p.y(), e.p.z()}, {e.dir.x(), e.dir.y(), e.dir.z()}, e.radius,
+  protocol::HitMsg hit{0, e.id, {e.p.x(), e.p.y(), e.p.z()}, {e.dir.x(), e.dir.y(), e.dir.z()}, e.radius,
                        hal::seconds(e.time)};
   std::string line;
   try {

@@ -24,6 +24,15 @@ using protocol::format_ok;
 namespace {
 constexpr double kFlushLead = 0.05;  // s of motion the loop should hold before the plan must end at rest
 
+std::uint32_t id_of(const QueuedCommand& c) {
+  return std::visit([](const auto& q) { return q.id; }, c);
+}
+
+std::string_view verb_of(const QueuedCommand& c) {
+  static constexpr std::string_view kVerbs[] = {"MoveTo", "ArcTo", "Dwell", "Probe"};
+  return kVerbs[c.index()];
+}
+
 // A number as a person typed it: 2.5, 0, 1e+06.
 std::string as_typed(double v) {
   char buf[32];
@@ -31,10 +40,36 @@ std::string as_typed(double v) {
   return buf;
 }
 
-// The number of a queued id in an event, and the Failed line.
-std::string failed_line(std::uint32_t id, core::FailReason why) {
-  auto w = fail_wording(why);
-  return protocol::format_event("Failed", std::to_string(id) + " " + std::string(w.name) + " " + std::string(w.text));
+// An arc's plane and turns from its words: N when given (any orientation; a planar arc, as
+// DirectCMM's MoveInArc), else by the offsets named: I J or neither XY, I K ZX, J K YZ
+// (G17 / G18 / G19), where the third axis makes a helix. P is LinuxCNC's: the number of
+// turns, P1 the arc alone. Empty why: the words make an arc.
+struct ArcShape {
+  std::array<double, 3> normal{0, 0, 1};
+  int extra_turns = 0;
+};
+
+ArcShape arc_shape(const protocol::ArcTo& c, std::string& why) {
+  const auto& w = c.words;
+  ArcShape shape;
+  const std::string name = "ArcTo " + std::to_string(c.id) + ": ";
+  if (w.n) {
+    shape.normal = *w.n;
+  } else if (w.k && w.i && w.j) {
+    why = name + "I J K together need N i j k, the plane's normal; I J is the XY plane, I K the ZX plane, J K the YZ plane";
+  } else if (w.k && !w.i && !w.j) {
+    why = name + "K alone names no plane; give I K (ZX plane) or J K (YZ plane), with I0 or J0 if need be, or N i j k";
+  } else if (w.k) {
+    shape.normal = w.i ? std::array<double, 3>{0, 1, 0} : std::array<double, 3>{1, 0, 0};
+  }
+  if (w.p) {
+    if (!(*w.p >= 1 && *w.p <= protocol::kMaxArcTurns && *w.p == std::floor(*w.p)))
+      why = name + "P is the number of turns, a whole number from 1 (the arc alone) to " +
+            std::to_string(protocol::kMaxArcTurns) + ", got " + as_typed(*w.p);
+    else
+      shape.extra_turns = static_cast<int>(*w.p) - 1;
+  }
+  return shape;
 }
 }  // namespace
 
@@ -53,103 +88,93 @@ bool Server::plan_from_here(std::string& why) {
   return true;
 }
 
-void Server::queue_move(Session& s, std::uint32_t slot, std::string_view verb, const planner::Request& r) {
+// One queued command: Ok when planned (or held behind a running Probe), Err when refused.
+void Server::queue_command(Session& s, std::uint32_t slot, const QueuedCommand& c) {
+  const std::string_view verb = verb_of(c);
+  if (const auto* arc = std::get_if<protocol::ArcTo>(&c)) {  // words that make no arc, wherever it starts
+    std::string bad;
+    arc_shape(*arc, bad);
+    if (!bad.empty()) {
+      reply(s, slot, format_err(ErrorCode::BadValue, bad));
+      return;
+    }
+  }
+  if (probe_open_) {  // its start is the Probe's end: checked now as far as possible, planned then
+    if (auto res = check_held(c); !res.ok()) {
+      reply(s, slot, format_err(ErrorCode::OutOfTravel, planner::describe(res, planner_.machine())));
+      return;
+    }
+    held_.push_back(c);
+    if (config_.log_motion) spdlog::info("client {}: {} {} held until Probe {} is done", s.id(), verb, id_of(c), *probe_open_);
+    reply(s, slot, format_ok(std::string(verb)));
+    return;
+  }
   std::string why;
   if (!plan_from_here(why)) {
     reply(s, slot, format_err(ErrorCode::Busy, why));
     return;
   }
-  auto res = planner_.append(r);
+  auto res = plan(c);
   if (!res.ok()) {
     const auto code = res.error == planner::PlanError::OutOfTravel ? ErrorCode::OutOfTravel : ErrorCode::BadValue;
     reply(s, slot, format_err(code, planner::describe(res, planner_.machine())));
     if (unsent_.empty() && in_loop_.empty()) planning_ = false;
     return;
   }
-  const std::uint32_t id = std::visit([](const auto& q) { return q.id; }, r);
-  unsent_.push_back(id);
-  if (config_.log_motion) spdlog::info("client {}: {} {} queued", s.id(), verb, id);
+  if (config_.log_motion) spdlog::info("client {}: {} {} queued", s.id(), verb, id_of(c));
   reply(s, slot, format_ok(std::string(verb)));
   schedule_flush_check();
 }
 
-void Server::move_to(Session& s, std::uint32_t slot, const protocol::MoveTo& c) {
-  std::string why;
-  if (!plan_from_here(why)) {
-    reply(s, slot, format_err(ErrorCode::Busy, why));
-    return;
-  }
-  planner::Line l;
-  l.id = c.id;
-  l.target = planner_.position();
-  if (c.words.x) l.target[0] = *c.words.x;
-  if (c.words.y) l.target[1] = *c.words.y;
-  if (c.words.z) l.target[2] = *c.words.z;
-  const auto& p = core_.params();
-  l.feed = c.words.f ? *c.words.f : p.goto_speed * p.speed_level;
-  queue_move(s, slot, "MoveTo", l);
-}
-
-// ArcTo id CW|CCW X Y Z I J K [N i j k] [P] [F]: the end (unnamed axes keep their
-// position), the centre at start + (I, J, K) (a missing one is 0). The plane: N when given
-// (any orientation; a planar arc, as DirectCMM's MoveInArc), else by the offsets named:
-// I J or neither XY, I K ZX, J K YZ (G17 / G18 / G19), where the third axis makes a helix.
-// P is LinuxCNC's: the number of turns, P1 the arc alone.
-void Server::arc_to(Session& s, std::uint32_t slot, const protocol::ArcTo& c) {
-  const auto& w = c.words;
-  std::array<double, 3> normal{0, 0, 1};
-  if (w.n) {
-    normal = *w.n;
-  } else if (w.k && w.i && w.j) {
-    reply(s, slot, format_err(ErrorCode::BadValue, "ArcTo " + std::to_string(c.id) +
-                                                       ": I J K together need N i j k, the plane's normal; "
-                                                       "I J is the XY plane, I K the ZX plane, J K the YZ plane"));
-    return;
-  } else if (w.k && !w.i && !w.j) {
-    reply(s, slot, format_err(ErrorCode::BadValue, "ArcTo " + std::to_string(c.id) +
-                                                       ": K alone names no plane; give I K (ZX plane) or J K "
-                                                       "(YZ plane), with I0 or J0 if need be, or N i j k"));
-    return;
-  } else if (w.k) {
-    normal = w.i ? std::array<double, 3>{0, 1, 0} : std::array<double, 3>{1, 0, 0};
-  }
-  int turns = 0;
-  if (w.p) {
-    if (!(*w.p >= 1 && *w.p <= protocol::kMaxArcTurns && *w.p == std::floor(*w.p))) {
-      reply(s, slot, format_err(ErrorCode::BadValue, "ArcTo " + std::to_string(c.id) +
-                                                         ": P is the number of turns, a whole number from 1 (the arc "
-                                                         "alone) to " + std::to_string(protocol::kMaxArcTurns) +
-                                                         ", got " + as_typed(*w.p)));
-      return;
-    }
-    turns = static_cast<int>(*w.p) - 1;
-  }
-  std::string why;
-  if (!plan_from_here(why)) {
-    reply(s, slot, format_err(ErrorCode::Busy, why));
-    return;
-  }
+// The command's planner request(s) from where the planned path ends; its id into unsent_.
+planner::AppendResult Server::plan(const QueuedCommand& c) {
   const planner::Pose start = planner_.position();
-  planner::Arc a;
-  a.id = c.id;
-  a.target = start;
-  if (w.x) a.target[0] = *w.x;
-  if (w.y) a.target[1] = *w.y;
-  if (w.z) a.target[2] = *w.z;
-  a.centre = {start[0] + w.i.value_or(0), start[1] + w.j.value_or(0), start[2] + w.k.value_or(0)};
-  a.normal = normal;
-  a.planar = w.n.has_value();
-  a.plane_axes = {0, 1, 2};
-  a.ccw = c.ccw;
-  a.turns = turns;
   const auto& p = core_.params();
-  a.feed = w.f ? *w.f : p.goto_speed * p.speed_level;
-  queue_move(s, slot, "ArcTo", a);
+  const double move_feed = p.goto_speed * p.speed_level;
+  planner::AppendResult res;
+  if (const auto* m = std::get_if<protocol::MoveTo>(&c)) {
+    planner::Line l;
+    l.id = m->id;
+    l.target = start;
+    if (m->words.x) l.target[0] = *m->words.x;
+    if (m->words.y) l.target[1] = *m->words.y;
+    if (m->words.z) l.target[2] = *m->words.z;
+    l.feed = m->words.f.value_or(move_feed);
+    res = planner_.append(l);
+  } else if (const auto* c_arc = std::get_if<protocol::ArcTo>(&c)) {
+    // ArcTo id CW|CCW X Y Z I J K [N i j k] [P] [F]: the end (unnamed axes keep their
+    // position), the centre at start + (I, J, K) (a missing one is 0); the plane and turns
+    // as arc_shape says (queue_command refused words that make no arc).
+    const auto& w = c_arc->words;
+    std::string unused;
+    const ArcShape shape = arc_shape(*c_arc, unused);
+    planner::Arc a;
+    a.id = c_arc->id;
+    a.target = start;
+    if (w.x) a.target[0] = *w.x;
+    if (w.y) a.target[1] = *w.y;
+    if (w.z) a.target[2] = *w.z;
+    a.centre = {start[0] + w.i.value_or(0), start[1] + w.j.value_or(0), start[2] + w.k.value_or(0)};
+    a.normal = shape.normal;
+    a.planar = w.n.has_value();
+    a.plane_axes = {0, 1, 2};
+    a.ccw = c_arc->ccw;
+    a.turns = shape.extra_turns;
+    a.feed = w.f.value_or(move_feed);
+    res = planner_.append(a);
+  } else if (const auto* d = std::get_if<protocol::Dwell>(&c)) {
+    res = planner_.append(planner::Dwell{d->id, d->seconds});
+  } else {
+    res = plan_probe(std::get<protocol::Probe>(c));
+    if (res.ok()) probe_open_ = res.id;
+  }
+  if (res.ok()) unsent_.push_back(id_of(c));
+  return res;
 }
 
 void Server::queue_status(Session& s, std::uint32_t slot) {
   const auto& snap = core_.snapshot();
-  const std::size_t pending = unsent_.size() + in_loop_.size();
+  const std::size_t pending = unsent_.size() + in_loop_.size() + held_.size();
   reply(s, slot, format_ok("Queue", "Pending " + std::to_string(pending) + " Running " +
                                         (snap.path_running ? std::to_string(snap.path_id) : std::string("none")) +
                                         " Held " + (snap.path_held ? "yes" : "no")));
@@ -162,6 +187,11 @@ void Server::feed_segments() {
       // cannot happen (room was checked, one producer); never lose an id silently
       broadcast(failed_line(seg.id, core::FailReason::Faulted));
       if (!unsent_.empty()) unsent_.pop_front();
+      continue;
+    }
+    // A Probe's search after its approach: the same id, one entry (its approach took it from unsent_).
+    if (seg.probe == planner::ProbePhase::Search && !in_loop_.empty() && in_loop_.back().first == seg.id) {
+      in_loop_.back().second += seg.duration();
       continue;
     }
     if (!unsent_.empty()) unsent_.pop_front();
@@ -190,6 +220,7 @@ void Server::flush_check() {
 void Server::on_segment_end(const core::Event& e) {
   auto it = std::find_if(in_loop_.begin(), in_loop_.end(), [&](const auto& x) { return x.first == e.id; });
   if (it != in_loop_.end()) in_loop_.erase(it);
+  const bool probe_closed = probe_open_ && *probe_open_ == e.id && (e.kind == core::EventKind::Failed || e.probe_end);
   if (e.kind == core::EventKind::Done) {
     broadcast(protocol::format_event("Done", std::to_string(e.id)));
     if (config_.log_motion) spdlog::info("move {} done", e.id);
@@ -200,12 +231,21 @@ void Server::on_segment_end(const core::Event& e) {
   }
   if (unsent_.empty() && in_loop_.empty() && planner_.pending() == 0 && planner_.ready() == 0)
     planning_ = false;  // the queue ran out: the next one starts where the machine stands
+  if (probe_closed) {
+    probe_open_.reset();
+    if (e.kind == core::EventKind::Done)
+      plan_held(e.p);
+    else
+      fail_held(core::FailReason::Stopped);  // the cycle failed: what was to follow it never runs
+  }
   flush_check();
 }
 
 void Server::drop_planned(core::FailReason why) {
   for (auto id : unsent_) broadcast(failed_line(id, why));
   unsent_.clear();
+  probe_open_.reset();
+  fail_held(why);
   planner::Pose here{};
   planner_.set_position(here);  // discards what was not taken; the next queue starts anew
   planning_ = false;

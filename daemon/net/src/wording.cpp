@@ -1,6 +1,8 @@
 // Wire words for the motion loop's enums, in one place.
 #include "imess/net/wording.hpp"
 
+#include "imess/protocol/messages.hpp"
+
 namespace imess::net {
 
 using core::CommandKind;
@@ -78,6 +80,9 @@ Wording fail_wording(core::FailReason f) {
     case core::FailReason::UnexpectedHit: return {"UnexpectedHit", "probe touched: stopped, retracted, no point"};
     case core::FailReason::TipTouched: return {"TipTouched", "probe deflected: the queue did not start"};
     case core::FailReason::OffPath: return {"OffPath", "the machine is not at the queue's start"};
+    case core::FailReason::PartNotFound:
+      return {"PartNotFound", "no edge up to SearchDist past the target"};
+    case core::FailReason::Refused: return {"Refused", "not plannable from where the Probe ended"};
   }
   return {"Unknown", ""};
 }
@@ -98,6 +103,11 @@ RefusalWording refusal_wording(Refusal r) {
     case Refusal::TooSlow: return {ErrorCode::BadValue, "speed below the minimum of 0.01 mm/s (per axis for StartMv)"};
   }
   return {ErrorCode::Internal, "unknown refusal"};
+}
+
+std::string failed_line(std::uint32_t id, core::FailReason why) {
+  auto w = fail_wording(why);
+  return protocol::format_event("Failed", std::to_string(id) + " " + std::string(w.name) + " " + std::string(w.text));
 }
 
 }  // namespace imess::net

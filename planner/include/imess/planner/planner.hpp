@@ -38,6 +38,7 @@ enum class PlanError : std::uint8_t {
   ArcZeroNormal = 8,      // the plane's normal is zero or not finite
   ArcOffPlane = 9,        // a planar arc whose end is off the plane through the start
   ArcBadTurns = 10,       // extra turns below 0
+  ProbeNoDirection = 11,  // a probing move's target on its start (the daemon's Probe)
 };
 
 struct AppendResult {

@@ -21,6 +21,7 @@ struct Completion {
   SegmentKind kind = SegmentKind::Line;
   std::uint16_t output = 0;
   double value = 0;
+  ProbePhase probe = ProbePhase::None;
 };
 
 inline constexpr int kMaxCompletionsPerTick = 16;

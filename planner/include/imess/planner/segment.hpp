@@ -14,10 +14,17 @@ namespace imess::planner {
 // Requests. Ids are the client's; poses are absolute and full (the caller fills the axes a
 // command does not name with their current position). Feeds follow the feed rule
 // (axes.hpp AxisGroup): mm/s along XYZ (else UVW), else deg/s over ABC.
+// The part of a probing cycle a segment is (Probe: a fast approach up to PrehitDist before
+// the target, then the search at ProbeSpeed up to SearchDist beyond it, both with the
+// Probe's id). The motion loop treats a probe edge by it: a hit in the search, an
+// unexpected hit anywhere else; the search running out is PartNotFound.
+enum class ProbePhase : std::uint8_t { None, Approach, Search };
+
 struct Line {
   std::uint32_t id = 0;
   Pose target{};
   double feed = 0;
+  ProbePhase probe = ProbePhase::None;
 };
 
 // A circular arc or helix. The circle lies in the plane through the three linear axes
@@ -71,6 +78,7 @@ struct ArcGeometry {
 struct PlannedSegment {
   std::uint32_t id = 0;
   SegmentKind kind = SegmentKind::Line;
+  ProbePhase probe = ProbePhase::None;  // kind Line
   std::uint16_t output = 0;    // SetOutput
   double output_value = 0;     // SetOutput
   Pose start{}, end{};         // end of one segment == start of the next, bit for bit

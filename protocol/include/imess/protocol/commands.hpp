@@ -50,6 +50,7 @@ struct PathWords {  // named words; an axis not named keeps its planned position
 struct MoveTo { std::uint32_t id = 0; PathWords words; };          // straight line, mm, F mm/s
 struct ArcTo { std::uint32_t id = 0; bool ccw = true; PathWords words; };  // end XYZ, centre offset IJK, N, P
 struct Dwell { std::uint32_t id = 0; double seconds = 0; };
+struct Probe { std::uint32_t id = 0; PathWords words; };           // move until the probe edge: target XYZ, F
 struct Queue {};                                            // pending count, running id
 struct Pause {};                                            // feed hold on the path
 struct Resume {};
@@ -61,6 +62,6 @@ inline constexpr int kWatchMaxMs = 60000;
 
 using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo, Home, Free,
                              Reset, Set, Get, Stats, HandMv, Quit, Replay, Take, Release, Watch, Version,
-                             MoveTo, ArcTo, Dwell, Queue, Pause, Resume>;
+                             MoveTo, ArcTo, Dwell, Queue, Pause, Resume, Probe>;
 
 }  // namespace imess::protocol

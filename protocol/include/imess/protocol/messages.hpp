@@ -17,7 +17,7 @@ namespace imess::protocol {
 // point has dir 0 0 0 and radius 0. time: seconds on the daemon's monotonic clock.
 struct HitMsg {
   std::uint64_t seq = 0;  // the journal's sequence number (gap-free, survives restarts)
-  std::uint64_t id = 0;   // the command that took it; 0 = none (hand hits, and until command ids exist)
+  std::uint64_t id = 0;   // the Probe that took it; 0 = none (hand and jog hits)
   Xyz p;                  // surface point, mm
   Xyz dir;                // unit approach direction
   double radius = 0;      // tip radius applied, mm

@@ -21,12 +21,14 @@ enum class Mode : std::uint8_t { Free, Idle, Jog, Move, Retract, Home, Fault, St
 // words are in net/wording.cpp (fail_wording).
 enum class FailReason : std::uint8_t {
   Stopped,        // a stop (StopMv, Release, a dropped owner, the dead-man) dropped the queue
-  OutOfTravel,    // the planner refused it (io side; the core never sends it)
+  OutOfTravel,    // held behind a Probe, it leaves the travel from the Probe's end (io side)
   IntoLimit,      // a limit switch stopped the machine
   Faulted,        // a fault, or the backend cannot follow a planned path
   UnexpectedHit,  // the probe touched during a queued segment: stopped, retracted, no point
   TipTouched,     // the queue could not start: the probe is deflected
   OffPath,        // the queue does not start where the machine stands (it was moved meanwhile)
+  PartNotFound,   // a Probe's search ran SearchDist beyond the target without an edge
+  Refused,        // held behind a Probe, the planner refused it from the Probe's end (io side)
 };
 
 // Why the loop refused a command; net maps each to a protocol error code.
@@ -143,7 +145,9 @@ struct Event {
   Vec3 dir = Vec3::Zero();            // MeasPt: approach direction used
   const char* reason = nullptr;       // Warn: a static text saying why (HomingFailed), or none
   double radius = 0;                  // MeasPt: tip radius applied (0: ForcePt)
-  std::uint32_t id = 0;               // Done, Failed: the segment's id; QueueDropped: drops
+  std::uint32_t id = 0;               // Done, Failed: the segment's id; QueueDropped: drops;
+                                      // MeasPt: the Probe's id (0: a jog or hand hit)
+  bool probe_end = false;             // Done: closes a Probe cycle, p = where the machine stands
   FailReason fail = FailReason::Stopped;  // Failed, QueueDropped
   Nanos time{0};
 };

@@ -72,6 +72,10 @@ class MotionCore {
   void stop_motion() noexcept;
   void on_probe_latch(Nanos now) noexcept;
   void retract_from(const Vec3& latched, const Vec3& dir, Nanos now) noexcept;
+  // A probe edge in a Probe's search: the hit (with the Probe's id), then the retract from it.
+  void probe_hit(const Vec3& latched, Nanos now) noexcept;
+  // The Failed or Done that closes a Probe whose hit has been reported (after its retract).
+  void close_probe(EventKind k, FailReason why, Nanos now) noexcept;
   void check_limits(Nanos now) noexcept;
   void update_mode(Nanos now) noexcept;
   void stand_still(Nanos now) noexcept;
@@ -91,10 +95,11 @@ class MotionCore {
   bool stale(const QueuedSegment& q) const noexcept;
   void fail_queue(FailReason why, Nanos now, bool tell = true) noexcept;
   void segment_event(EventKind k, std::uint32_t id, FailReason why, Nanos now) noexcept;
+  void fail_segment(std::uint32_t id, planner::ProbePhase phase, FailReason why, Nanos now) noexcept;
   void fault(FaultKind f, Nanos now) noexcept;
   void emit(const Event& e) noexcept;
   void reply(const Command& c, Refusal r) noexcept;
-  void measured(const Vec3& point, const Vec3& dir, bool compensated, Nanos now) noexcept;
+  void measured(const Vec3& point, const Vec3& dir, bool compensated, Nanos now, std::uint32_t id = 0) noexcept;
   void warn(Warning w, const Vec3& where, Nanos now, const char* reason = nullptr) noexcept;
   void publish(Nanos now) noexcept;
   // Per-axis speeds and accelerations for a straight path along unit direction u at the
@@ -146,7 +151,14 @@ class MotionCore {
   SegmentQueue segments_;
   planner::Sampler sampler_;
   std::array<std::uint32_t, 4> held_ids_{};
+  std::array<planner::ProbePhase, 4> held_probe_{};  // the probe phase of each held segment
   int held_count_ = 0;
+  Vec3 probe_dir_ = Vec3::Zero();  // unit approach of the Probe being run (set as it is popped)
+  bool probe_retracting_ = false;  // a Probe hit: its Done follows the retract
+  std::uint32_t probe_id_ = 0;     // that Probe's id
+  Vec3 retract_target_ = Vec3::Zero();  // where the last retract ends
+  bool failed_approach_ = false;   // the last segment failed was a Probe's approach ...
+  std::uint32_t failed_id_ = 0;    // ... with this id (its search is not failed again)
   std::uint32_t drops_ = 0;       // queue drops by the loop (stamped on segments by the io side)
   bool check_start_ = false;      // the next segment popped must start where the machine stands
   bool low_sent_ = false;         // QueueLow sent since the last segment popped

@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <variant>
 #include <string>
 
 #include "imess/core/event_fd.hpp"
@@ -58,6 +59,10 @@ struct ServerConfig {
   double period_us = 1000;          // the motion loop's period (Get Period)
   std::string backend = "unknown";  // the backend type (Get Backend): one word
 };
+
+// A queued command on the wire; after an unfinished Probe it waits in the server, unplanned
+// (its start is the Probe's end, known only after the hit).
+using QueuedCommand = std::variant<protocol::MoveTo, protocol::ArcTo, protocol::Dwell, protocol::Probe>;
 
 class Server {
  public:
@@ -115,10 +120,14 @@ class Server {
   void send_hit(const core::Event& e);
   void on_replay(Session& s, std::uint32_t slot, std::uint64_t from);
   // queue.cpp: queued moves — the planner on the io thread, the segment ring's producer
-  void queue_move(Session& s, std::uint32_t slot, std::string_view verb, const planner::Request& r);
-  void move_to(Session& s, std::uint32_t slot, const protocol::MoveTo& c);
-  void arc_to(Session& s, std::uint32_t slot, const protocol::ArcTo& c);
+  void queue_command(Session& s, std::uint32_t slot, const QueuedCommand& c);
+  planner::AppendResult plan(const QueuedCommand& c);  // appended to planner_ from its position
   void queue_status(Session& s, std::uint32_t slot);
+  // probe.cpp: the Probe cycle's requests, the commands held behind a running Probe
+  planner::AppendResult plan_probe(const protocol::Probe& c);
+  planner::AppendResult check_held(const QueuedCommand& c) const;  // what can be checked before the start is known
+  void plan_held(const core::Vec3& from);  // after the Probe's Done: plan what waited, from where it ended
+  void fail_held(core::FailReason why);
   bool plan_from_here(std::string& why);  // the planner starts where the machine stands
   void feed_segments();                   // final segments into the ring while it has room
   void schedule_flush_check();            // after the lines that arrived together
@@ -157,6 +166,8 @@ class Server {
   std::deque<std::uint32_t> unsent_;
   std::deque<std::pair<std::uint32_t, double>> in_loop_;
   std::uint32_t drops_ = 0;  // the loop's queue drops known here (stamped on every segment)
+  std::optional<std::uint32_t> probe_open_;  // a Probe planned whose Done has not come yet
+  std::deque<QueuedCommand> held_;           // commands queued after it, unplanned
   bool flush_check_posted_ = false;
 };
 

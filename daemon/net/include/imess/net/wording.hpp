@@ -20,6 +20,8 @@ Wording warning_wording(core::Warning w);
 Wording fault_wording(core::FaultKind f);
 // The reason word of `Failed id <Reason> <text>` (the one list of them: core::FailReason).
 Wording fail_wording(core::FailReason f);
+// The event `Failed id <Reason> <text>`.
+std::string failed_line(std::uint32_t id, core::FailReason why);
 
 struct RefusalWording {
   protocol::ErrorCode code;
