@@ -3,6 +3,7 @@
 // probe edges, limits, a backend that cannot follow.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "ideal_follower.hpp"
@@ -57,6 +58,67 @@ TEST_CASE("a queue of lines, a dwell and an arc runs to its end: Done ids in ord
   REQUIRE(states.size() == 2);
   CHECK(states[0].mode == Mode::Path);
   CHECK(states[1].mode == Mode::Idle);
+}
+
+// Cycles from the last follow() of a path to the first Done of its last segment.
+static int cycles_to_arrival(FollowerRig& rig) {
+  rig.append(rig.line(41, 120, 100, 100, 50));
+  rig.append(rig.line(42, 140, 110, 100, 50));
+  rig.feed(true);
+  long calls = -1;
+  int after = 0;
+  for (int i = 0; i < 5000 && rig.ids(EventKind::Done).size() < 2; ++i) {
+    if (rig.hw.follow_calls != calls) calls = rig.hw.follow_calls, after = 0;
+    else ++after;
+    rig.step();
+  }
+  return after;
+}
+
+TEST_CASE("the last Done of a queue comes when the machine reports in position, with the idle state") {
+  for (int lag : {0, 1, 7, 40, 300}) {
+    FollowerRig rig;
+    rig.hw.lag_cycles = lag;
+    const int cycles = cycles_to_arrival(rig);
+    INFO("axes in position " << lag << " cycles after the path's end");
+    CHECK(rig.ids(EventKind::Done) == std::vector<std::uint32_t>{41, 42});
+    CHECK(cycles >= lag);
+    CHECK(cycles <= lag + 2);
+    CHECK(rig.mode() == Mode::Idle);
+    // Done 41 went out on the way (the path went on); Done 42 and idle in the same cycle
+    const auto& ev = rig.events();
+    const auto done = std::find_if(ev.begin(), ev.end(), [](const Event& e) { return e.kind == EventKind::Done && e.id == 42; });
+    const auto idle = std::find_if(ev.begin(), ev.end(), [](const Event& e) { return e.kind == EventKind::State && e.mode == Mode::Idle; });
+    REQUIRE(done != ev.end());
+    REQUIRE(idle != ev.end());
+    CHECK(done < idle);
+    CHECK(done->time == idle->time);
+  }
+}
+
+TEST_CASE("a backend that never reports in position ends the queue all the same, half a second later") {
+  FollowerRig rig;
+  rig.hw.lag_cycles = -1;
+  const int cycles = cycles_to_arrival(rig);
+  CHECK(rig.ids(EventKind::Done) == std::vector<std::uint32_t>{41, 42});
+  CHECK(cycles >= 499);
+  CHECK(cycles <= 502);
+  CHECK(rig.mode() == Mode::Idle);
+}
+
+TEST_CASE("a stop while the machine settles answers Done, not Failed: the path was complete") {
+  FollowerRig rig;
+  rig.hw.lag_cycles = 100;
+  rig.append(rig.line(43, 120, 100, 100, 50));
+  rig.feed(true);
+  const long before = rig.hw.follow_calls;
+  REQUIRE(rig.run_until([&] { return rig.hw.follow_calls > before && rig.hw.velocity().isZero() && rig.hw.where() == Vec3(120, 100, 100); }, 5));
+  rig.run(0.01);
+  REQUIRE(rig.ids(EventKind::Done).empty());  // still settling
+  rig.stop();
+  rig.run(0.01);
+  CHECK(rig.ids(EventKind::Done) == std::vector<std::uint32_t>{43});
+  CHECK(rig.ids(EventKind::Failed).empty());
 }
 
 TEST_CASE("followed setpoints stay within every axis' speed and acceleration (finite differences)") {

@@ -26,11 +26,14 @@
 
 namespace imess::test {
 
-// In a forked child: becomes messd on an ephemeral loopback port without real-time
-// scheduling, with the test's extra arguments; never returns.
-[[noreturn]] inline void exec_messd(const std::vector<std::string>& args) {
+// In a forked child: becomes messd on an ephemeral loopback port, with the test's extra
+// arguments; never returns. Without real-time scheduling unless asked for (then messd takes
+// SCHED_FIFO and locked memory where it is permitted, as scripts/run does, and runs without
+// them where not).
+[[noreturn]] inline void exec_messd(const std::vector<std::string>& args, bool realtime = false) {
   std::string bin = std::string(IMESS_BIN_DIR) + "/messd";
-  std::vector<std::string> all{bin, "--port", "0", "--listen", "127.0.0.1", "--no-rt"};
+  std::vector<std::string> all{bin, "--port", "0", "--listen", "127.0.0.1"};
+  if (!realtime) all.push_back("--no-rt");
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (auto& a : all) argv.push_back(a.data());
@@ -41,7 +44,8 @@ namespace imess::test {
 
 class DaemonProcess {
  public:
-  explicit DaemonProcess(std::vector<std::string> args = {}) {
+  enum class Scheduling { Plain, RealtimeIfPermitted };
+  explicit DaemonProcess(std::vector<std::string> args = {}, Scheduling sched = Scheduling::Plain) {
     // Parallel tests never share a journal: each daemon gets a new one, removed afterwards.
     if (std::find(args.begin(), args.end(), "--journal") == args.end()) {
       std::string dir = (std::filesystem::temp_directory_path() / "imess-test-journal-XXXXXX").string();
@@ -58,7 +62,7 @@ class DaemonProcess {
       int devnull = open("/dev/null", O_WRONLY);
       if (!std::getenv("IMESS_TEST_DAEMON_LOG")) dup2(devnull, STDERR_FILENO);
       close(out[0]);
-      exec_messd(args);
+      exec_messd(args, sched == Scheduling::RealtimeIfPermitted);
     }
     close(out[1]);
     out_ = fdopen(out[0], "r");

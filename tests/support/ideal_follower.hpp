@@ -26,7 +26,8 @@ class IdealFollower final : public hal::MotionBackend {
     out.position = pos_;
     for (int a = 0; a < 3; ++a) {
       std::uint32_t st = loops_ ? hal::status::kClosedLoop : 0;
-      if (kind_ == Kind::Rest) st |= hal::status::kProfileEnd | hal::status::kInPosition;
+      if (kind_ == Kind::Rest) st |= hal::status::kProfileEnd;
+      if (kind_ == Kind::Rest && lag_left_ == 0) st |= hal::status::kInPosition;
       if (latch_valid_) st |= hal::status::kLatchValid;
       out.status[a] = st;
       out.inputs[a] = static_cast<std::uint8_t>((tip ? hal::input::kTip : 0) | inputs[a]);
@@ -96,18 +97,22 @@ class IdealFollower final : public hal::MotionBackend {
   hal::AxisArray<std::uint8_t> inputs{};
   bool record = true;
   std::vector<hal::Setpoint> setpoints;
+  // Cycles from the end of a followed path until the axes report in position (a servo's
+  // following error dying out); negative: never.
+  int lag_cycles = 0;
 
  private:
   enum class Kind { Rest, Follow, Brake, Move };
   // One period of the backend's own motion: a followed setpoint holds until the next
   // follow(); braking lowers every axis' speed by its deceleration; a move runs at its speed.
   void tick() {
+    if (kind_ == Kind::Rest && lag_left_ > 0) --lag_left_;
     if (kind_ == Kind::Follow && fresh_) {  // the setpoint of the last cycle holds
       fresh_ = false;
       return;
     }
     if (kind_ == Kind::Follow) {  // no new setpoint came last cycle: the path ended
-      if (vel_.isZero()) kind_ = Kind::Rest;
+      if (vel_.isZero()) kind_ = Kind::Rest, lag_left_ = lag_cycles;
       else kind_ = Kind::Brake;  // a backend left without setpoints brakes (never happens on a planned path)
       return;
     }
@@ -138,6 +143,7 @@ class IdealFollower final : public hal::MotionBackend {
   hal::Vec3 pos_ = hal::Vec3(100, 100, 100), vel_ = hal::Vec3::Zero(), decel_ = hal::Vec3::Zero();
   hal::Vec3 target_ = hal::Vec3::Zero(), speed_ = hal::Vec3::Zero(), latch_ = hal::Vec3::Zero();
   bool loops_ = true, latch_valid_ = false, fresh_ = false;
+  int lag_left_ = 0;
 };
 
 class FollowerRig final : public MotionRig {

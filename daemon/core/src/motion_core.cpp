@@ -694,13 +694,22 @@ void MotionCore::start_path(Nanos now) noexcept {
 void MotionCore::run_path(Nanos now) noexcept {
   path_now_ = now;
   const planner::Sample& smp = sampler_.advance(config_.period_s, [this](planner::PlannedSegment& s) { return pop_segment(s); });
+  // The queue ran out at rest: the last Done waits until the machine has arrived (settle).
+  const bool resting = sampler_.idle() && !smp.busy;
+  if (!resting) release_arrivals(now);  // more came while settling: the machine goes on
   for (int i = 0; i < smp.done_count; ++i) {
     // A Probe's approach ends in its search (one id, one Done or Failed); a search that ends
     // without an edge is PartNotFound, the machine at rest at its end.
-    if (smp.done[i].probe == planner::ProbePhase::Search)
-      segment_event(EventKind::Failed, smp.done[i].id, FailReason::PartNotFound, now);
-    else if (smp.done[i].probe == planner::ProbePhase::None)
-      segment_event(EventKind::Done, smp.done[i].id, FailReason::Stopped, now);
+    const auto phase = smp.done[i].probe;
+    if (phase != planner::ProbePhase::Approach) {
+      const bool missed = phase == planner::ProbePhase::Search;
+      const Arrival end{smp.done[i].id, missed ? EventKind::Failed : EventKind::Done,
+                        missed ? FailReason::PartNotFound : FailReason::Stopped};
+      if (resting && arrivals_count_ < static_cast<int>(arrivals_.size()))
+        arrivals_[arrivals_count_++] = end;
+      else
+        segment_event(end.kind, end.id, end.why, now);
+    }
     if (held_count_ > 0) {
       for (int k = 1; k < held_count_; ++k) {
         held_ids_[k - 1] = held_ids_[k];
@@ -709,8 +718,8 @@ void MotionCore::run_path(Nanos now) noexcept {
       --held_count_;
     }
   }
-  if (smp.done_count == 0 && !smp.busy && held_count_ == 0 && sampler_.idle()) {  // nothing came: nothing to run
-    enter(Mode::Idle, now);
+  if (smp.done_count == 0 && resting && held_count_ == 0) {  // nothing came: settle, then idle
+    settle(now);
     return;
   }
   hal::Setpoint sp;
@@ -726,8 +735,8 @@ void MotionCore::run_path(Nanos now) noexcept {
     enter(Mode::Stopping, now);
     return;
   }
-  if (sampler_.idle() && !smp.busy) {
-    enter(Mode::Idle, now);
+  if (resting) {
+    settle_since_ = now;  // the last setpoint went out: the machine arrives from here
     return;
   }
   if (held_count_ <= 1 && segments_.empty() && !low_sent_) {
@@ -739,11 +748,29 @@ void MotionCore::run_path(Nanos now) noexcept {
   }
 }
 
+// The path ended at rest: the machine arrives when every axis reports its profile done and
+// in position (the backend's window: 5 µm on the card and the drive kits; steppers at once).
+// Then the last Done ids go out and the state is idle, so a client that plans from Done (or
+// probes from there) starts where the machine stands, not where it still lags. A backend
+// that never reports arrival ends the path after kSettleLimit all the same.
+void MotionCore::settle(Nanos now) noexcept {
+  const bool arrived = ms_.motion_done() && ms_.all(hal::status::kInPosition);
+  if (!arrived && hal::seconds(now - settle_since_) < kSettleLimit) return;
+  release_arrivals(now);
+  enter(Mode::Idle, now);
+}
+
+void MotionCore::release_arrivals(Nanos now) noexcept {
+  for (int i = 0; i < arrivals_count_; ++i) segment_event(arrivals_[i].kind, arrivals_[i].id, arrivals_[i].why, now);
+  arrivals_count_ = 0;
+}
+
 // Fails every queued id (the running one, the buffered one, those in the ring) with why, and
 // tells the io side, which fails what it has not sent and plans anew from where the machine
 // comes to rest. Segments the io side sends before it hears of this are failed on arrival.
 void MotionCore::fail_queue(FailReason why, Nanos now, bool tell) noexcept {
   path_now_ = now;
+  release_arrivals(now);  // paths already complete and arriving: Done, not failed
   close_probe(EventKind::Failed, why, now);
   for (int i = 0; i < held_count_; ++i) fail_segment(held_ids_[i], held_probe_[i], why, now);
   held_count_ = 0;

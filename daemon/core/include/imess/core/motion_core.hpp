@@ -90,6 +90,8 @@ class MotionCore {
   // every queued id with a reason (the stop lane, limits, faults, hits).
   void start_path(Nanos now) noexcept;
   void run_path(Nanos now) noexcept;
+  void settle(Nanos now) noexcept;            // the queue ended: wait for arrival, then idle
+  void release_arrivals(Nanos now) noexcept;  // the Done ids that waited for arrival
   bool pop_segment(planner::PlannedSegment& out) noexcept;  // fails stale segments on the way
   bool fresh_segments_waiting(Nanos now) noexcept;
   bool stale(const QueuedSegment& q) const noexcept;
@@ -162,6 +164,16 @@ class MotionCore {
   std::uint32_t drops_ = 0;       // queue drops by the loop (stamped on segments by the io side)
   bool check_start_ = false;      // the next segment popped must start where the machine stands
   bool low_sent_ = false;         // QueueLow sent since the last segment popped
+  // Arrival: the ids whose path ended at rest, answered Done once the machine is in position.
+  static constexpr double kSettleLimit = 0.5;  // s: a backend that never reports arrival
+  struct Arrival {
+    std::uint32_t id = 0;
+    EventKind kind = EventKind::Done;  // Done, or Failed PartNotFound (a search that ended at rest)
+    FailReason why = FailReason::Stopped;
+  };
+  std::array<Arrival, planner::kMaxCompletionsPerTick> arrivals_{};
+  int arrivals_count_ = 0;
+  Nanos settle_since_{0};
   Nanos path_now_{0};             // the cycle's time, for events raised inside pop_segment
 };
 
