@@ -114,7 +114,7 @@ void run(const std::string& name, const std::string& path, const Stats& kernel) 
 
   planner::Planner planner(core::path_machine(core.config()), core::path_options(core.config()));
   planner::Pose here{};
-  for (int a = 0; a < core::kAxes; ++a) here[a] = core.machine().position[a];
+  for (int a = 0; a < core.config().layout.count; ++a) here[a] = core.machine().position[a];
   planner.set_position(here);
   const double feed = 0.5 * core.config().axes[0].max_velocity;
   for (const auto& r : workload(here, feed)) {

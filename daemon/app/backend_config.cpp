@@ -116,8 +116,8 @@ void read_stepper_section(JsonObject& b, DaemonConfig& cfg, bool simulated) {
   if (b.has("initial_position")) cfg.ports.initial_position_set = true;
   s.initial_position = b.vec3("initial_position", s.initial_position, 1e5);
   if (auto axes = b.object("axes")) {
-    for (int a = 0; a < hal::kAxes; ++a) {
-      auto ax = axes->object(std::string(1, hal::kAxisNames[a]));
+    for (int a = 0; a < hal::kParportAxes; ++a) {
+      auto ax = axes->object(std::string(1, hal::kAxisLetters[a]));
       if (!ax) continue;
       auto& x = s.axes[a];
       x.steps_per_mm = ax->number("steps_per_mm", x.steps_per_mm, 0.01, 1e6);
@@ -152,8 +152,10 @@ void read_drive_section(JsonObject& b, DaemonConfig& cfg, bool simulated) {
   auto& d = cfg.ports.drive;
   cfg.ports.port_io.base = 0x300;  // BRIEF §5
   read_port_io(b, cfg.ports, simulated);
+  const auto& layout = cfg.core.layout;
   auto map = b.text("port_map", "mrm-b", {"mrm-a", "mrm-b"});
-  d = *hal::named_drive_kit_map(map);
+  d = *hal::named_drive_kit_map(map, layout.count);
+  d.layout = layout;
   d.mode = static_cast<int>(b.whole("mode", d.mode, 1, 2));
   d.sync_port = port_address(b, "sync_port", d.sync_port);
   d.inputs_port = port_address(b, "inputs_port", d.inputs_port);
@@ -172,10 +174,11 @@ void read_drive_section(JsonObject& b, DaemonConfig& cfg, bool simulated) {
     }
   }
   if (b.has("initial_position")) cfg.ports.initial_position_set = true;
-  d.initial_position = b.vec3("initial_position", d.initial_position, 1e5);
+  d.initial_position = b.axis_values("initial_position", d.initial_position, layout, 1e5);
+  if (b.has("inputs2_port") || layout.count > 3) d.inputs2_port = port_address(b, "inputs2_port", d.inputs2_port);
   if (auto axes = b.object("axes")) {
-    for (int a = 0; a < hal::kAxes; ++a) {
-      auto ax = axes->object(std::string(1, hal::kAxisNames[a]));
+    for (int a = 0; a < layout.count; ++a) {
+      auto ax = axes->object(std::string(1, layout.letters[a]));
       if (!ax) continue;
       auto& x = d.axes[a];
       x.command_port = port_address(*ax, "command_port", x.command_port);
@@ -197,10 +200,11 @@ void read_drive_section(JsonObject& b, DaemonConfig& cfg, bool simulated) {
       x.limit_pos_bit = bits(*ax, "limit_pos_bit", x.limit_pos_bit);
       x.home_bit = bits(*ax, "home_bit", x.home_bit);
       x.enable_bit = bits(*ax, "enable_bit", x.enable_bit);
+      x.inputs_bank = static_cast<std::uint8_t>(ax->whole("inputs_bank", x.inputs_bank, 0, 1));
       if (simulated) cfg.ports.drive_sim.mm_s_per_volt[a] = ax->number("sim_mm_s_per_volt", cfg.ports.drive_sim.mm_s_per_volt[a], 1e-3, 1e4);
       ax->finish();
     }
-    axes->finish();
+    axes->finish("one object per axis letter of axes.letters (" + layout.names() + ")");
   }
   if (simulated) cfg.ports.drive_sim.period_ns = b.number("sim_period_us", cfg.ports.drive_sim.period_ns / 1000, 1, 10000) * 1000;
 }
@@ -211,14 +215,14 @@ void finish_stepper_config(DaemonConfig& cfg, bool simulated) {
   s.servo_period_ns = cfg.period_us * 1000;
   s.tip_reversed = cfg.card.tip_reversed;
   // The simulator knows where the machine stands; a real one starts at the configured place.
-  if (simulated && !p.initial_position_set) s.initial_position = cfg.sim.mechanics.start;
-  for (int a = 0; a < hal::kAxes; ++a) {
+  if (simulated && !p.initial_position_set) s.initial_position = cfg.sim.mechanics.start.head<3>();
+  for (int a = 0; a < hal::kParportAxes; ++a) {
     s.axes[a].home_direction = cfg.core.axes[a].home_direction;
   }
   auto& ss = p.stepper_sim;
   ss.pins = s.pins;
   ss.base = s.base;
-  for (int a = 0; a < hal::kAxes; ++a) {
+  for (int a = 0; a < hal::kParportAxes; ++a) {
     ss.steps_per_mm[a] = s.axes[a].steps_per_mm;
     ss.home_direction[a] = cfg.core.axes[a].home_direction;
   }
@@ -230,7 +234,8 @@ void finish_drive_config(DaemonConfig& cfg, bool simulated) {
   d.servo_period_ns = cfg.period_us * 1000;
   d.tip_reversed = cfg.card.tip_reversed;
   if (simulated && !p.initial_position_set) d.initial_position = cfg.sim.mechanics.start;
-  for (int a = 0; a < hal::kAxes; ++a) d.axes[a].home_direction = cfg.core.axes[a].home_direction;
+  d.layout = cfg.core.layout;
+  for (int a = 0; a < d.layout.count; ++a) d.axes[a].home_direction = cfg.core.axes[a].home_direction;
   p.drive_sim.ports = d;
 }
 

@@ -15,6 +15,7 @@ struct BackendType {
   const char* name;         // the "backend.type" value
   const char* description;  // one line for people
   bool absolute_scales;     // referenced at start when sim.absolute_scales is set
+  bool any_axes;            // drives the axes of axes.letters (else exactly X Y Z)
   // Reads its keys of "backend" (type and tip_reversed already read); nullptr: none.
   void (*load_section)(JsonObject& backend, DaemonConfig& cfg);
   // Derives its settings from the rest of the configuration (axes, period, sim); nullptr: none.

@@ -127,8 +127,13 @@ void read_motion_section(JsonObject& m, DaemonConfig& cfg) {
   m.finish();
 }
 
-// One axis of "axes"; its speed and acceleration default to the motion section's.
-void read_axis(JsonObject& ax, const DaemonConfig& cfg, core::AxisSettings& s) {
+// One axis of "axes"; its speed and acceleration default to the motion section's. Rotary
+// axes: degrees and deg/s throughout.
+void read_axis(JsonObject& ax, DaemonConfig& cfg, int a, core::AxisSettings& s) {
+  auto& kind = cfg.core.layout.kinds[a];
+  kind = ax.text("kind", kind == hal::AxisKind::Rotary ? "rotary" : "linear", {"linear", "rotary"}) == "rotary"
+             ? hal::AxisKind::Rotary
+             : hal::AxisKind::Linear;
   s.travel_min = ax.number("travel_min", s.travel_min, -1e5, 1e5);
   s.travel_max = ax.number("travel_max", s.travel_max, -1e5, 1e5);
   if (s.travel_max <= s.travel_min) ax.fail("travel_max", "greater than travel_min");
@@ -143,12 +148,21 @@ void read_axis(JsonObject& ax, const DaemonConfig& cfg, core::AxisSettings& s) {
   ax.finish();
 }
 
+// "letters": the machine's axes in their order ("XYZ" when absent: the 1996 machine), then
+// one object per letter. An axis beyond the third starts from the first's defaults.
 void read_axes_section(JsonObject& axes, DaemonConfig& cfg) {
-  for (int a = 0; a < core::kAxes; ++a) {
-    auto ax = axes.object(std::string(1, hal::kAxisNames[a]));
-    if (ax) read_axis(*ax, cfg, cfg.core.axes[a]);
+  const std::string letters = axes.text("letters", cfg.core.layout.names());
+  try {
+    cfg.core.layout = hal::make_layout(letters);
+  } catch (const std::invalid_argument& e) {
+    axes.fail("letters", e.what());
   }
-  axes.finish();
+  for (int a = 3; a < cfg.core.layout.count; ++a) cfg.core.axes[a] = core::AxisSettings{};
+  for (int a = 0; a < cfg.core.layout.count; ++a) {
+    auto ax = axes.object(std::string(1, cfg.core.layout.letters[a]));
+    if (ax) read_axis(*ax, cfg, a, cfg.core.axes[a]);
+  }
+  axes.finish();  // names what it accepts: the letters' objects and "letters"
 }
 
 void read_backend_section(JsonObject& b, DaemonConfig& cfg) {
@@ -170,9 +184,10 @@ void read_journal_section(JsonObject& jn, DaemonConfig& cfg) {
 
 void read_sim_section(JsonObject& s, DaemonConfig& cfg) {
   auto& m = cfg.sim.mechanics;
-  m.start = s.vec3("start", m.start, 1e5);
+  m.start = s.axis_values("start", m.start, cfg.core.layout, 1e5);
   cfg.sim.card.absolute_scales = s.boolean("absolute_scales", cfg.sim.card.absolute_scales);
   cfg.sim.card.firmware = s.text("firmware", cfg.sim.card.firmware);
+  cfg.sim.card.follow_watchdog = s.number("watchdog_ms", cfg.sim.card.follow_watchdog * 1e3, 1, 1000) / 1e3;
   if (auto pr = s.object("probe")) {
     m.probe.ball_radius = pr->number("ball_radius", m.probe.ball_radius, 0, 50);
     m.probe.pretravel = pr->number("pretravel", m.probe.pretravel, 0, 5);
@@ -203,6 +218,10 @@ void load_config_text(const std::string& text, const std::string& path, DaemonCo
   if (auto jn = top.object("journal")) read_journal_section(*jn, cfg);
   if (auto s = top.object("sim")) read_sim_section(*s, cfg);
   top.finish();
+  const auto* type = find_backend(cfg.backend);
+  if (type && !type->any_axes && !cfg.core.layout.is_xyz())
+    throw ConfigError(path + ": backend '" + cfg.backend + "' drives the three linear axes X Y Z; axes.letters \"" +
+                      cfg.core.layout.names() + "\" needs a drive-kit backend (portio-drive, sim-portio-drive)");
   cfg.notes.push_back("configuration read from " + path);
 }
 
@@ -263,7 +282,10 @@ std::string default_journal_dir() {
 }
 
 void finish_config(DaemonConfig& cfg) {
-  for (int a = 0; a < core::kAxes; ++a) {
+  const auto& layout = cfg.core.layout;
+  cfg.core.homing.order = core::default_home_order(layout);
+  cfg.sim.mechanics.layout = layout;
+  for (int a = 0; a < layout.count; ++a) {
     auto& m = cfg.sim.mechanics.axes[a];
     const auto& c = cfg.core.axes[a];
     m.travel_min = c.travel_min;
@@ -274,13 +296,13 @@ void finish_config(DaemonConfig& cfg) {
   const auto* type = find_backend(cfg.backend);
   cfg.core.referenced_at_start = type && type->absolute_scales && cfg.sim.card.absolute_scales;
   finish_backend_config(cfg);
-  for (int a = 0; a < core::kAxes; ++a) {
+  for (int a = 0; a < layout.count; ++a) {
     auto& s = cfg.core.axes[a];
     if (s.max_velocity <= 0) s.max_velocity = cfg.core.max_velocity;
     if (s.max_accel <= 0) s.max_accel = cfg.core.params.max_accel;
     cfg.card.max_velocity[a] = s.max_velocity;
   }
-  for (int a = 0; a < core::kAxes; ++a) cfg.card.max_accel[a] = 20000;  // the drives' limit; MaxAccel shapes moves
+  for (int a = 0; a < layout.count; ++a) cfg.card.max_accel[a] = 20000;  // the drives' limit; MaxAccel shapes moves
   cfg.server.period_us = cfg.period_us;  // the read-only parameters Period and Backend
   cfg.core.period_s = cfg.period_us * 1e-6;  // the time step of queued segments
   cfg.server.backend = cfg.backend;

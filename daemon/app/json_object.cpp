@@ -78,6 +78,32 @@ hal::Vec3 JsonObject::vec3(const std::string& key, const hal::Vec3& def, double 
   return out;
 }
 
+hal::AxisVec JsonObject::axis_values(const std::string& key, const hal::AxisVec& def, const hal::AxisLayout& layout,
+                                     double limit) {
+  if (layout.is_xyz()) {
+    hal::AxisVec out = def;
+    out.head<3>() = vec3(key, def.head<3>(), limit);
+    return out;
+  }
+  read_.insert(key);
+  if (!j_.contains(key)) return def;
+  const auto& v = j_.at(key);
+  const auto n = static_cast<std::size_t>(layout.count);
+  std::string names;
+  for (std::size_t i = 0; i < n; ++i) names += std::string(i ? ", " : "") + layout.letters[i];
+  const std::string expected = "an array of " + std::to_string(n) + " numbers [" + names + "] (the axes' order), each from " +
+                               compact(-limit) + " to " + compact(limit);
+  if (!v.is_array() || v.size() != n) fail(key, expected);
+  hal::AxisVec out = hal::AxisVec::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!v[i].is_number()) fail(key, expected);
+    const double x = v[i].get<double>();
+    if (!std::isfinite(x) || std::abs(x) > limit) fail(key, expected);
+    out[static_cast<int>(i)] = x;
+  }
+  return out;
+}
+
 std::optional<std::vector<std::string>> JsonObject::texts(const std::string& key, const std::string& expected) {
   read_.insert(key);
   if (!j_.contains(key)) return std::nullopt;

@@ -31,6 +31,9 @@ class JsonObject {
   std::string text(const std::string& key, const std::string& def, const std::vector<std::string>& allowed = {});
   // Three numbers [x, y, z], each from -limit to limit.
   hal::Vec3 vec3(const std::string& key, const hal::Vec3& def, double limit = 1e6);
+  // One number per axis of the layout, in its order ([x, y, z] on the X Y Z machine: vec3's
+  // form and message), each from -limit to limit.
+  hal::AxisVec axis_values(const std::string& key, const hal::AxisVec& def, const hal::AxisLayout& layout, double limit = 1e6);
   // Array of strings (may be absent: nullopt); `expected` describes an entry for the error.
   std::optional<std::vector<std::string>> texts(const std::string& key, const std::string& expected);
   std::optional<JsonObject> object(const std::string& key);

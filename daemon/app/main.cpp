@@ -162,8 +162,8 @@ void serve_until_signal(boost::asio::io_context& io, net::Server& server, const 
 // At exit: every axis brakes with its configured deceleration, the loops open, the base
 // thread ends.
 void stop_machine(core::MotionCore& core, app::Machine& machine) {
-  hal::Vec3 decel;
-  for (int a = 0; a < core::kAxes; ++a) decel[a] = core.config().axes[a].max_accel;
+  hal::AxisVec decel = hal::AxisVec::Zero();
+  for (int a = 0; a < core.config().layout.count; ++a) decel[a] = core.config().axes[a].max_accel;
   machine.backend().stop(decel);
   machine.backend().set_loops(false);
   machine.stop_base_thread();

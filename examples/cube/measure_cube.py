@@ -45,6 +45,7 @@ class Messd:
         self.buf = b""
         self.hits = {}      # command id -> [(surface point, approach direction)]
         self.ended = {}     # command id -> "Done" or the Failed line
+        self.fault = None   # the last Fault event
 
     def _line(self):
         while b"\n" not in self.buf:
@@ -66,6 +67,8 @@ class Messd:
             self.ended[int(words[1])] = "Done"
         elif words[0] == "Failed":
             self.ended[int(words[1])] = line
+        elif words[0] == "Fault":
+            self.fault = line
 
     def command(self, text):
         self.sock.sendall((text + "\n").encode())
@@ -81,7 +84,16 @@ class Messd:
         while cmd not in self.ended:
             self._event(self._line())
         if self.ended[cmd] != "Done":
-            raise ProbeFailed(self.ended[cmd])
+            failed = self.ended[cmd]
+            if " Faulted" in failed:  # which fault: its event follows the Failed line
+                self.sock.settimeout(2)
+                try:
+                    while self.fault is None:
+                        self._event(self._line())
+                except OSError:
+                    pass
+                failed += f" ({self.fault})" if self.fault else ""
+            raise ProbeFailed(failed)
 
 
 class Operator:

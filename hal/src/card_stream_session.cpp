@@ -9,6 +9,8 @@
 
 namespace imess::hal {
 
+using card::kAxes;
+
 namespace {
 constexpr unsigned kAllAxes = (1u << kAxes) - 1;
 constexpr double kBitsPerByte = 10;  // start, 8 data, stop
@@ -87,6 +89,7 @@ bool CardStreamSession::read_state(MachineState& out) noexcept {
     lost();  // a frame the card never acknowledged
 
   const bool reset = pending(reset_), loops = pending(loops_), motion = pending(motion_), latch = pending(latch_);
+  out.count = kAxes;
   for (int a = 0; a < kAxes; ++a) {
     if (!pending(shift_pending_[a])) shift_[a] = 0;
     out.position[a] = newest_.position[a] + shift_[a];
@@ -187,7 +190,7 @@ bool CardStreamSession::follow(const Setpoint& sp) noexcept {
   return !comm_lost_;
 }
 
-bool CardStreamSession::latched(Vec3& out) noexcept {
+bool CardStreamSession::latched(AxisVec& out) noexcept {
   if (!(newest_.flags & card::flag::kLatchData)) return false;
   for (int a = 0; a < kAxes; ++a) out[a] = newest_.latched[a] + (pending(shift_pending_[a]) ? shift_[a] : 0.0);
   return true;

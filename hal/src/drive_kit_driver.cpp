@@ -21,8 +21,10 @@ std::int16_t counts_since(std::uint16_t raw, std::uint16_t last_raw) noexcept {
 }
 }  // namespace
 
-std::optional<DriveKitConfig> named_drive_kit_map(std::string_view name) {
+std::optional<DriveKitConfig> named_drive_kit_map(std::string_view name, int count) {
+  if (count < 1 || count > kMaxAxes) return std::nullopt;
   DriveKitConfig c;
+  c.layout.count = count;
   std::uint16_t command, position, latch;
   if (name == "mrm-a") {
     c.sync_port = 0x300;
@@ -31,7 +33,6 @@ std::optional<DriveKitConfig> named_drive_kit_map(std::string_view name) {
     c.inputs_port = 0x30B;
     c.outputs_port = 0x30C;
     latch = 0x30D;
-    c.latch_status_port = 0x310;
   } else if (name == "mrm-b") {
     c.sync_port = 0x300;
     c.outputs_port = 0x303;
@@ -39,19 +40,24 @@ std::optional<DriveKitConfig> named_drive_kit_map(std::string_view name) {
     command = 0x306;
     position = 0x30B;
     latch = 0x310;
-    c.latch_status_port = 0x313;
   } else {
     return std::nullopt;
   }
-  for (int a = 0; a < kAxes; ++a) {
+  c.latch_status_port = static_cast<std::uint16_t>(latch + count);
+  if (count > 3) c.inputs2_port = static_cast<std::uint16_t>(c.latch_status_port + 1);
+  for (int a = 0; a < count; ++a) {
     auto& ax = c.axes[a];
     auto i = static_cast<std::uint16_t>(a);
     ax.command_port = static_cast<std::uint16_t>(command + i);
     ax.position_port = static_cast<std::uint16_t>(position + i);
     ax.latch_port = static_cast<std::uint16_t>(latch + i);
-    ax.limit_neg_bit = static_cast<std::uint16_t>(0x1u << (3 * a));
-    ax.limit_pos_bit = static_cast<std::uint16_t>(0x2u << (3 * a));
-    ax.home_bit = static_cast<std::uint16_t>(0x4u << (3 * a));
+    ax.inputs_bank = a < 3 ? 0 : 1;
+    const int slot = a < 3 ? a : a - 3;  // three bits per axis, five axes per bank at most
+    if (slot < 5) {
+      ax.limit_neg_bit = static_cast<std::uint16_t>(0x1u << (3 * slot));
+      ax.limit_pos_bit = static_cast<std::uint16_t>(0x2u << (3 * slot));
+      ax.home_bit = static_cast<std::uint16_t>(0x4u << (3 * slot));
+    }
     ax.enable_bit = static_cast<std::uint16_t>(1u << a);
   }
   return c;
@@ -60,9 +66,9 @@ std::optional<DriveKitConfig> named_drive_kit_map(std::string_view name) {
 DriveKitDriver::DriveKitDriver(PortIo& port, const Clock& clock, DriveKitConfig config)
     : port_(port), clock_(clock), config_(std::move(config)) {
   if (config_.mode != 1 && config_.mode != 2) throw std::invalid_argument("drive kit mode must be 1 (DAC mV) or 2 (increments)");
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < n(); ++a) {
     const auto& ax = config_.axes[a];
-    std::string name = std::string("axis ") + kAxisNames[a];
+    std::string name = std::string("axis ") + config_.layout.letters[a];
     if (!(ax.position_unit_mm > 0) || !(ax.mv_per_mm_s > 0) || !(ax.max_speed > 0) || !(ax.max_accel > 0) ||
         !(ax.max_following_error > 0))
       throw std::invalid_argument(name + ": position_unit_mm, mv_per_mm_s, max_speed, max_accel and max_following_error must be positive");
@@ -81,12 +87,12 @@ double DriveKitDriver::position(int a) const noexcept {
 
 std::uint16_t DriveKitDriver::enable_bits() const noexcept {
   std::uint16_t b = 0;
-  for (const auto& ax : config_.axes) b |= ax.enable_bit;
+  for (int a = 0; a < n(); ++a) b |= config_.axes[a].enable_bit;
   return b;
 }
 
 void DriveKitDriver::initialise(bool) {
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < n(); ++a) {
     const auto& ax = config_.axes[a];
     port_.out16(ax.command_port, 0);
     // Place the 16 bits read nearest to where the machine is said to stand.
@@ -129,7 +135,7 @@ void DriveKitDriver::write_command(int a, double velocity) noexcept {
 }
 
 void DriveKitDriver::safe_state(std::uint16_t outputs) noexcept {
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < n(); ++a) {
     port_.out16(config_.axes[a].command_port, 0);
     axes_[a].profile.reset(position(a));
     axes_[a].integral = axes_[a].remainder = 0;
@@ -145,20 +151,22 @@ void DriveKitDriver::safe_state(std::uint16_t outputs) noexcept {
 bool DriveKitDriver::read_state(MachineState& out) noexcept {
   const double dt = servo_interval_.next(clock_.now());
   const std::uint16_t in = port_.in16(config_.inputs_port);
+  const std::array<std::uint16_t, 2> banks{in, config_.inputs2_port ? port_.in16(config_.inputs2_port) : std::uint16_t{0}};
   trip_safety_inputs(in);  // safety first
   widen_counters();
   const bool raw_probe = (in & config_.probe_bit) != 0;
   const bool contact = config_.tip_reversed ? !raw_probe : raw_probe;
   latch_probe(contact);
   bool following_fault = false;
-  for (int a = 0; a < kAxes; ++a) {
-    out.inputs[a] = sample_inputs(a, in, raw_probe);
+  for (int a = 0; a < n(); ++a) {
+    out.inputs[a] = sample_inputs(a, banks, raw_probe);
     following_fault |= servo_axis(a, out.input(a, input::kLimitNeg), out.input(a, input::kLimitPos), dt);
   }
   if (following_fault) safe_state(config_.safe_outputs);
   follow_fresh_ = false;
+  out.count = n();
   if (config_.sync_port) port_.out16(config_.sync_port, ++strobe_);
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < n(); ++a) {
     out.status[a] = axis_status(a, out);
     out.position[a] = position(a);
   }
@@ -182,7 +190,7 @@ void DriveKitDriver::trip_safety_inputs(std::uint16_t in) noexcept {
 
 // Counters: 16 bits widened by the signed difference since the last read.
 void DriveKitDriver::widen_counters() noexcept {
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < n(); ++a) {
     std::uint16_t raw = port_.in16(config_.axes[a].position_port);
     axes_[a].count += counts_since(raw, axes_[a].last_raw);
     axes_[a].last_raw = raw;
@@ -193,7 +201,7 @@ void DriveKitDriver::widen_counters() noexcept {
 void DriveKitDriver::latch_probe(bool contact) noexcept {
   if (config_.latch_status_port) {
     if (!latch_valid_ && (port_.in16(config_.latch_status_port) & 1)) {
-      for (int a = 0; a < kAxes; ++a) {
+      for (int a = 0; a < n(); ++a) {
         const auto& ax = config_.axes[a];
         std::int64_t c = axes_[a].count + counts_since(port_.in16(ax.latch_port), axes_[a].last_raw);
         latched_[a] = static_cast<double>(c) * ax.position_unit_mm - axes_[a].offset;
@@ -201,7 +209,7 @@ void DriveKitDriver::latch_probe(bool contact) noexcept {
       latch_valid_ = true;
     }
   } else if (contact && !last_contact_ && !latch_valid_) {
-    for (int a = 0; a < kAxes; ++a) latched_[a] = position(a);
+    for (int a = 0; a < n(); ++a) latched_[a] = position(a);
     latch_valid_ = true;
   }
   last_contact_ = contact;
@@ -209,8 +217,9 @@ void DriveKitDriver::latch_probe(bool contact) noexcept {
 
 // The axis' input bits in the card's layout; notes where the home switch released (the
 // synthesised index counts from there).
-std::uint8_t DriveKitDriver::sample_inputs(int a, std::uint16_t in, bool raw_probe) noexcept {
+std::uint8_t DriveKitDriver::sample_inputs(int a, const std::array<std::uint16_t, 2>& banks, bool raw_probe) noexcept {
   const auto& ax = config_.axes[a];
+  const std::uint16_t in = banks[ax.inputs_bank & 1u];
   Axis& s = axes_[a];
   const bool home = ax.home_bit && (in & ax.home_bit);
   if (s.last_home && !home) s.release_count = s.count;
@@ -283,7 +292,7 @@ std::uint32_t DriveKitDriver::axis_status(int a, const MachineState& out) const 
                      s.faults | safety_faults_);
 }
 
-bool DriveKitDriver::read_latch(Vec3& latched) noexcept {
+bool DriveKitDriver::read_latch(AxisVec& latched) noexcept {
   latched = latched_;
   latch_valid_ = false;
   if (config_.latch_status_port) port_.out16(config_.latch_status_port, 0);  // re-arm the counters' latch
@@ -294,7 +303,7 @@ bool DriveKitDriver::set_loops(bool closed) noexcept {
   bool faulted = safety_faults_ != 0;
   for (const auto& s : axes_) faulted = faulted || (s.faults & status::kFaultMask);
   if (closed && faulted) return true;  // like the card: a faulted axis stays open
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < n(); ++a) {
     axes_[a].profile.reset(position(a));
     axes_[a].integral = axes_[a].last_error = axes_[a].remainder = 0;
     axes_[a].following = false;
@@ -307,11 +316,11 @@ bool DriveKitDriver::set_loops(bool closed) noexcept {
 }
 
 bool DriveKitDriver::move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept {
-  for (int a = 0; a < kAxes; ++a)
+  for (int a = 0; a < n(); ++a)
     if ((axis_mask & (1u << a)) && (!std::isfinite(moves[a].target) || !(moves[a].velocity > 0) || !(moves[a].accel > 0)))
       return false;
   if (!loops_closed_) return true;
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < n(); ++a) {
     Axis& s = axes_[a];
     if (axis_mask & (1u << a))
       s.profile.start(moves[a].target, std::min(moves[a].velocity, config_.axes[a].max_speed),
@@ -326,10 +335,10 @@ bool DriveKitDriver::move(const AxisArray<AxisMove>& moves, unsigned axis_mask) 
 // The setpoint is for the end of this period, which is when the next read_state runs the
 // PID: it is compared with the counters read then, and its velocity is the feed-forward.
 bool DriveKitDriver::follow(const Setpoint& sp) noexcept {
-  for (int a = 0; a < kAxes; ++a)
+  for (int a = 0; a < n(); ++a)
     if (!std::isfinite(sp.position[a]) || !std::isfinite(sp.velocity[a])) return false;
   if (!loops_closed_) return true;  // like move(): an open axis ignores it
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < n(); ++a) {
     Axis& s = axes_[a];
     const double v = sp.velocity[a];
     const double d = sp.position[a] - s.profile.position();
@@ -349,10 +358,10 @@ bool DriveKitDriver::follow(const Setpoint& sp) noexcept {
   return true;
 }
 
-bool DriveKitDriver::stop(const Vec3& decel) noexcept {
-  for (int a = 0; a < kAxes; ++a)
+bool DriveKitDriver::stop(const AxisVec& decel) noexcept {
+  for (int a = 0; a < n(); ++a)
     if (!(decel[a] > 0)) return false;
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < n(); ++a) {
     axes_[a].profile.stop(std::min(decel[a], config_.axes[a].max_accel));  // from the path's velocity too
     axes_[a].following = false;
   }
@@ -360,7 +369,7 @@ bool DriveKitDriver::stop(const Vec3& decel) noexcept {
 }
 
 bool DriveKitDriver::set_position(int axis, double value) noexcept {
-  if (axis < 0 || axis >= kAxes || !std::isfinite(value)) return false;
+  if (axis < 0 || axis >= n() || !std::isfinite(value)) return false;
   double old = position(axis);
   axes_[axis].offset += old - value;
   axes_[axis].profile.shift(value - old);

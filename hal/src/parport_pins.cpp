@@ -87,8 +87,8 @@ PinAssignment parse_pin_signal(std::string_view text) {
     a.signal = n.s;
     if (n.per_axis) {
       if (axis.size() != 1) fail();
-      for (int i = 0; i < kAxes; ++i)
-        if (axis[0] == kAxisNames[i]) a.axis = static_cast<std::int8_t>(i);
+      for (int i = 0; i < kParportAxes; ++i)
+        if (axis[0] == kAxisLetters[i]) a.axis = static_cast<std::int8_t>(i);
       if (a.axis < 0) fail();
     } else if (!axis.empty()) {
       fail();
@@ -113,7 +113,7 @@ std::string pin_signal_text(const PinAssignment& a) {
     case PinSignal::Stop: s = "stop"; break;
     case PinSignal::Enable: s = "enable"; break;
   }
-  if (a.axis >= 0) s += std::string(" ") + kAxisNames[a.axis];
+  if (a.axis >= 0) s += std::string(" ") + kAxisLetters[a.axis];
   if (a.invert) s += " (inverted)";
   return s;
 }
@@ -139,9 +139,9 @@ void validate_pin_map(const PinMap& map) {
     probes += a.signal == PinSignal::Probe;
     stops += a.signal == PinSignal::Stop;
   }
-  for (int ax = 0; ax < kAxes; ++ax)
+  for (int ax = 0; ax < kParportAxes; ++ax)
     if (steps[ax] != 1 || dirs[ax] != 1)
-      throw std::invalid_argument(std::string("axis ") + kAxisNames[ax] + " needs exactly one step and one dir pin");
+      throw std::invalid_argument(std::string("axis ") + kAxisLetters[ax] + " needs exactly one step and one dir pin");
   if (probes > 1 || stops > 1) throw std::invalid_argument("at most one probe pin and one stop pin");
 }
 

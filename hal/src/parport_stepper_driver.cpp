@@ -10,7 +10,7 @@
 namespace imess::hal {
 
 namespace {
-constexpr unsigned kAllAxes = (1u << kAxes) - 1;
+constexpr unsigned kAllAxes = (1u << kParportAxes) - 1;
 std::uint32_t ticks(double ns, double base_ns) { return static_cast<std::uint32_t>(std::ceil(ns / base_ns - 1e-9)); }
 }  // namespace
 
@@ -28,14 +28,14 @@ ParportStepperDriver::ParportStepperDriver(PortIo& port, const Clock& clock, Par
   t.dir_hold = std::max(1u, ticks(config_.dir_hold_ns, base));
   gen_.configure(pins_, t);
   ticks_per_servo_ = static_cast<std::uint64_t>(std::llround(config_.servo_period_ns / base));
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < kParportAxes; ++a) {
     const auto& ax = config_.axes[a];
     if (!(ax.steps_per_mm > 0) || !(ax.max_speed > 0) || !(ax.max_accel > 0))
-      throw std::invalid_argument(std::string("axis ") + kAxisNames[a] + ": steps_per_mm, max_speed and max_accel must be positive");
+      throw std::invalid_argument(std::string("axis ") + kAxisLetters[a] + ": steps_per_mm, max_speed and max_accel must be positive");
     vmax_[a] = ax.max_speed * ax.steps_per_mm;
     amax_[a] = ax.max_accel * ax.steps_per_mm;
     if (vmax_[a] > max_step_rate() * (1 + 1e-9))
-      throw std::invalid_argument(std::string("axis ") + kAxisNames[a] + ": max_speed " + std::to_string(ax.max_speed) +
+      throw std::invalid_argument(std::string("axis ") + kAxisLetters[a] + ": max_speed " + std::to_string(ax.max_speed) +
                                   " mm/s needs " + std::to_string(static_cast<long>(vmax_[a])) +
                                   " steps/s, but step length + step space of " +
                                   std::to_string(t.step_len + t.step_space) + " base periods of " +
@@ -67,7 +67,7 @@ void ParportStepperDriver::initialise(bool) {
   if (port_.errors() != 0)
     throw std::runtime_error("parallel port at " + std::to_string(config_.base) + ": the registers did not answer (" +
                              port_.describe() + ")");
-  for (int a = 0; a < kAxes; ++a) gen_.command(a, gen_.count(a), 0);
+  for (int a = 0; a < kParportAxes; ++a) gen_.command(a, gen_.count(a), 0);
   loops_closed_ = false;
 }
 
@@ -87,12 +87,12 @@ void ParportStepperDriver::base_tick() noexcept {
   bool contact = config_.tip_reversed ? !raw : raw;
   if (!base_started_) last_contact_ = contact;
   if (contact && !last_contact_ && !latch_valid_.load(std::memory_order_acquire)) {
-    for (int a = 0; a < kAxes; ++a) latched_[a].store(gen_.count(a), std::memory_order_relaxed);
+    for (int a = 0; a < kParportAxes; ++a) latched_[a].store(gen_.count(a), std::memory_order_relaxed);
     latch_valid_.store(true, std::memory_order_release);
   }
   last_contact_ = contact;
   // Home-side switch releases anchor the synthesised index marks.
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < kParportAxes; ++a) {
     bool sw = active(st, static_cast<std::uint8_t>(pins_.endref[a] | pins_.home[a]));
     if (base_started_ && last_switch_[a] && !sw) release_count_[a].store(gen_.count(a), std::memory_order_relaxed);
     last_switch_[a] = sw;
@@ -115,7 +115,7 @@ bool ParportStepperDriver::read_state(MachineState& out) noexcept {
   const bool halted = halted_.load(std::memory_order_relaxed);
   const bool latch = latch_valid_.load(std::memory_order_acquire);
   const bool raw_probe = active(st, pins_.probe);
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < kParportAxes; ++a) {
     const auto& ax = config_.axes[a];
     const std::int64_t count = gen_.count(a);
     // Inputs in the card's layout; an end/ref switch is the home switch and the limit on its side.
@@ -156,6 +156,7 @@ bool ParportStepperDriver::read_state(MachineState& out) noexcept {
     out.position[a] = static_cast<double>(count - zero_[a]) / ax.steps_per_mm;
   }
   follow_fresh_ = false;
+  out.count = kParportAxes;
   out.tip_touched = config_.tip_reversed ? !raw_probe : raw_probe;
   return port_.errors() == 0;
 }
@@ -186,10 +187,10 @@ void ParportStepperDriver::leave_following(int a) noexcept {
 // Servo rate, once per period (not measured in bench/ yet: three llround and three integer
 // divisions, the same work as a trapezoid period).
 bool ParportStepperDriver::follow(const Setpoint& sp) noexcept {
-  for (int a = 0; a < kAxes; ++a)
+  for (int a = 0; a < kParportAxes; ++a)
     if (!std::isfinite(sp.position[a]) || !std::isfinite(sp.velocity[a])) return false;
   if (!loops_closed_ || halted_.load(std::memory_order_relaxed)) return true;  // like move(): ignored
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < kParportAxes; ++a) {
     const double spm = config_.axes[a].steps_per_mm;
     // Absolute: round(position × steps/mm), so the rounding never accumulates.
     const std::int64_t target = steps_for(a, sp.position[a]);
@@ -214,8 +215,8 @@ bool ParportStepperDriver::follow(const Setpoint& sp) noexcept {
   return true;
 }
 
-bool ParportStepperDriver::read_latch(Vec3& latched) noexcept {
-  for (int a = 0; a < kAxes; ++a)
+bool ParportStepperDriver::read_latch(AxisVec& latched) noexcept {
+  for (int a = 0; a < kParportAxes; ++a)
     latched[a] = static_cast<double>(latched_[a].load(std::memory_order_relaxed) - zero_[a]) / config_.axes[a].steps_per_mm;
   latch_valid_.store(false, std::memory_order_release);
   return true;
@@ -224,7 +225,7 @@ bool ParportStepperDriver::read_latch(Vec3& latched) noexcept {
 bool ParportStepperDriver::set_loops(bool closed) noexcept {
   if (closed && halted_.load(std::memory_order_relaxed)) return true;  // like the card: a faulted axis stays open
   loops_closed_ = closed;
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < kParportAxes; ++a) {
     following_[a] = false;
     std::int64_t c = gen_.count(a);
     profile_[a].reset(static_cast<double>(c));
@@ -235,13 +236,13 @@ bool ParportStepperDriver::set_loops(bool closed) noexcept {
 }
 
 bool ParportStepperDriver::move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept {
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < kParportAxes; ++a) {
     if (!(axis_mask & (1u << a))) continue;
     const auto& m = moves[a];
     if (!std::isfinite(m.target) || !(m.velocity > 0) || !(m.accel > 0)) return false;
   }
   if (!loops_closed_) return true;  // like the card: an open axis ignores jogs
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < kParportAxes; ++a) {
     if (!(axis_mask & (1u << a))) {
       if (following_[a]) {  // a path no longer fed: that axis brakes
         profile_[a].stop(amax_[a]);
@@ -258,10 +259,10 @@ bool ParportStepperDriver::move(const AxisArray<AxisMove>& moves, unsigned axis_
   return true;
 }
 
-bool ParportStepperDriver::stop(const Vec3& decel) noexcept {
-  for (int a = 0; a < kAxes; ++a)
+bool ParportStepperDriver::stop(const AxisVec& decel) noexcept {
+  for (int a = 0; a < kParportAxes; ++a)
     if (!(decel[a] > 0)) return false;
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < kParportAxes; ++a) {
     profile_[a].stop(std::min(decel[a] * config_.axes[a].steps_per_mm, amax_[a]));
     if (following_[a]) leave_following(a);  // brakes from the path's velocity, starting now
   }
@@ -269,7 +270,7 @@ bool ParportStepperDriver::stop(const Vec3& decel) noexcept {
 }
 
 bool ParportStepperDriver::set_position(int axis, double value) noexcept {
-  if (axis < 0 || axis >= kAxes || !std::isfinite(value)) return false;
+  if (axis < 0 || axis >= kParportAxes || !std::isfinite(value)) return false;
   zero_[axis] = gen_.count(axis) - std::llround(value * config_.axes[axis].steps_per_mm);
   return true;
 }
@@ -278,7 +279,7 @@ bool ParportStepperDriver::reset_faults() noexcept {
   // STOP is a level: while it is still pressed the next base tick latches it again.
   if (!active(status_.load(std::memory_order_acquire), pins_.stop)) halted_.store(false, std::memory_order_relaxed);
   loops_closed_ = false;
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < kParportAxes; ++a) {
     following_[a] = false;
     std::int64_t c = gen_.count(a);
     profile_[a].reset(static_cast<double>(c));

@@ -9,6 +9,7 @@
 
 namespace imess::hal {
 
+using card::kAxes;
 using card::Op;
 using card::Status;
 
@@ -183,6 +184,7 @@ bool ServoCardDriver::follow(const Setpoint& sp) noexcept {
 
 bool ServoCardDriver::parse_state(std::span<const std::uint8_t> payload, MachineState& out) noexcept {
   LinkReader r(payload);
+  out.count = kAxes;
   for (int a = 0; a < kAxes; ++a) {
     out.position[a] = r.f64();
     out.status[a] = r.u32();
@@ -198,7 +200,7 @@ bool ServoCardDriver::parse_state(std::span<const std::uint8_t> payload, Machine
   return true;
 }
 
-bool ServoCardDriver::read_latch(Vec3& latched) noexcept {
+bool ServoCardDriver::read_latch(AxisVec& latched) noexcept {
   begin(Op::ReadLatch);
   table(kAllAxes);
   if (session_)  // the status frame carries the latch; the command clears it on the card
@@ -225,7 +227,7 @@ bool ServoCardDriver::move(const AxisArray<AxisMove>& moves, unsigned axis_mask)
   return command(CardStreamSession::Effect::Motion);
 }
 
-bool ServoCardDriver::stop(const Vec3& decel) noexcept {
+bool ServoCardDriver::stop(const AxisVec& decel) noexcept {
   begin(Op::JogStop);
   table(kAllAxes);
   for (int a = 0; a < kAxes; ++a) writer_.f64(decel[a]);

@@ -27,7 +27,7 @@ std::uint8_t StepGenerator::idle_data() const noexcept {
 
 std::uint8_t StepGenerator::tick(bool halted) noexcept {
   std::uint8_t data = halted ? 0 : pins_.enable_data_mask;
-  for (int i = 0; i < kAxes; ++i) {
+  for (int i = 0; i < kParportAxes; ++i) {
     Axis& a = axes_[i];
     // Timers of the pulse in progress.
     if (a.step_high) {

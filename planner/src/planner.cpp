@@ -76,7 +76,8 @@ Planner::Planner(const Machine& machine, const PlannerOptions& options) : machin
   if (!(options_.loop_period > 0)) throw std::invalid_argument("planner: loop_period must be > 0");
   if (!(options_.min_segment_periods >= 1)) throw std::invalid_argument("planner: min_segment_periods must be >= 1");
   if (!(options_.arc_tolerance > 0)) throw std::invalid_argument("planner: arc_tolerance must be > 0");
-  for (int i = 0; i < machine_.count; ++i) group_[i] = group_of(machine_.axes[i].letter);
+  for (int i = 0; i < machine_.count; ++i)  // a rotary U V W (the MRM arm's U1 U2) feeds in deg/s with A B C
+    group_[i] = machine_.axes[i].kind == AxisKind::Rotary ? AxisGroup::Rotary : group_of(machine_.axes[i].letter);
 }
 
 void Planner::set_position(const Pose& pose) {

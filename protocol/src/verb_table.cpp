@@ -28,10 +28,11 @@ PathWords path_words(const Args& a) {
   PathWords w;
   int normal_words = 0;
   for (const auto& x : a.axis_words) {
+    if (auto* word = w.axis(x.letter)) {
+      *word = x.value;
+      continue;
+    }
     switch (x.letter) {
-      case 'X': w.x = x.value; break;
-      case 'Y': w.y = x.value; break;
-      case 'Z': w.z = x.value; break;
       case 'I': w.i = x.value; break;
       case 'J': w.j = x.value; break;
       case 'K': w.k = x.value; break;
@@ -103,8 +104,8 @@ const std::array kVerbs{
     VerbSpec{"Version", args(), "the daemon's version", false, Access::Open,
              command_index<Version>(), [](const Args&) -> Command { return Version{}; }},
     VerbSpec{"MoveTo",
-             args(move_id(), axis_words("X.. Y.. Z.. F..", "XYZF",
-                                        "MoveTo takes words X Y Z (mm) and F (mm/s), each at most once, got '{got}'; usage: {usage}")),
+             args(move_id(), axis_words("X.. Y.. Z.. F..", "XYZABCUVWF",
+                                        "MoveTo takes words X Y Z A B C U V W (the machine's axes: mm, rotary in degrees) and F (mm/s), each at most once, got '{got}'; usage: {usage}")),
              "queue a straight move; axes not named keep their planned position; F mm/s (default GoToSpeed)", false,
              Access::Controlling, command_index<MoveTo>(),
              [](const Args& a) -> Command { return MoveTo{id_of(a), path_words(a)}; }},
@@ -135,6 +136,11 @@ const std::array kVerbs{
              command_index<Pause>(), [](const Args&) -> Command { return Pause{}; }},
     VerbSpec{"Resume", args(), "end a feed hold: queued moves go on", false, Access::Controlling,
              command_index<Resume>(), [](const Args&) -> Command { return Resume{}; }},
+    VerbSpec{"JogAx",
+             args(axis_words("X.. Y.. C..", "XYZABCUVW",
+                             "JogAx takes words of an axis letter X Y Z A B C U V W and a speed in % of MaxSpeed, such as C20 or U-10, each axis at most once, got '{got}'; usage: {usage}")),
+             "jog named axes: % of MaxSpeed (x SpeedLevel), mm/s or deg/s; axes not named stand", false,
+             Access::Controlling, command_index<JogAx>(), [](const Args& a) -> Command { return JogAx{path_words(a)}; }},
 };
 
 }  // namespace

@@ -5,11 +5,10 @@
 
 namespace imess::sim {
 
-using hal::kAxes;
 
 DriveKitSim::DriveKitSim(DriveKitSimConfig config, Mechanics& machine, hal::PortIo& port)
     : config_(std::move(config)), machine_(machine), port_(port) {
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < config_.ports.layout.count; ++a) {
     target_[a] = machine_.carriage()[a];
     port_.out16(config_.ports.axes[a].position_port, encoder(a, machine_.carriage()[a]));
   }
@@ -24,13 +23,16 @@ std::uint16_t DriveKitSim::encoder(int a, double mm) const noexcept {
 
 void DriveKitSim::write_inputs() noexcept {
   const auto& p = config_.ports;
-  std::uint16_t in = 0;
-  for (int a = 0; a < kAxes; ++a) {
+  std::array<std::uint16_t, 2> bank{};  // inputs, inputs 2
+  for (int a = 0; a < p.layout.count; ++a) {
     const auto& ax = p.axes[a];
+    std::uint16_t& in = bank[ax.inputs_bank & 1u];
     if (machine_.limit_neg(a)) in |= ax.limit_neg_bit;
     if (machine_.limit_pos(a)) in |= ax.limit_pos_bit;
     if (machine_.home_switch(a)) in |= ax.home_bit;
   }
+  if (p.inputs2_port) port_.out16(p.inputs2_port, bank[1]);
+  std::uint16_t in = bank[0];
   if (machine_.tip_signal()) in |= p.probe_bit;
   for (int i = 0; i < 4; ++i)
     if (!safety_open_[i]) in |= p.safety_bits[i];  // normally closed: 1 while closed
@@ -43,7 +45,7 @@ void DriveKitSim::sample(std::int64_t t) noexcept {
   last_t_ = t;
   started_ = true;
   const std::uint16_t outputs = port_.in16(p.outputs_port);
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < config_.ports.layout.count; ++a) {
     const auto& ax = p.axes[a];
     const bool enabled = ax.enable_bit == 0 || (outputs & ax.enable_bit);
     auto cmd = static_cast<std::int16_t>(port_.in16(ax.command_port));
@@ -66,11 +68,11 @@ void DriveKitSim::sample(std::int64_t t) noexcept {
   if (dt > 0) machine_.step(dt);
   const auto& edge = machine_.probe_edge();
   if (dt > 0 && edge.valid && edge.contact && p.latch_status_port && !(port_.in16(p.latch_status_port) & 1)) {
-    for (int a = 0; a < kAxes; ++a)
+    for (int a = 0; a < config_.ports.layout.count; ++a)
       if (p.axes[a].latch_port) port_.out16(p.axes[a].latch_port, encoder(a, edge.position[a]));
     port_.out16(p.latch_status_port, 1);
   }
-  for (int a = 0; a < kAxes; ++a) port_.out16(p.axes[a].position_port, encoder(a, machine_.carriage()[a]));
+  for (int a = 0; a < config_.ports.layout.count; ++a) port_.out16(p.axes[a].position_port, encoder(a, machine_.carriage()[a]));
   write_inputs();
 }
 

@@ -9,7 +9,7 @@
 
 namespace imess::sim {
 
-using hal::kAxes;
+using hal::card::kAxes;
 using hal::LinkReader;
 using hal::card::Op;
 using hal::card::Status;
@@ -18,12 +18,11 @@ namespace st = hal::status;
 namespace {
 constexpr double kMaxCatchUp = 0.5;  // s; a stalled caller does not make the card spin for ages
 // Following: the setpoints stopped coming when none arrived for this many host periods, and
-// at least kFollowWatchdogMin. A lost frame the driver sees at once (CommLost); this watchdog
-// is for a host that stalls. Until it fires, a late frame is bridged by going on at the last
-// setpoint's velocity: a host without a real-time kernel wakes up to a millisecond late
-// (messd's Stats: LatMax), which must not fault the machine.
+// at least CardConfig::follow_watchdog. A lost frame the driver sees at once (CommLost); this
+// watchdog is for a host that stalls. Until it fires, a late frame is bridged by going on at
+// the last setpoint's velocity: a host without a real-time kernel wakes up to a millisecond
+// late (messd's Stats: LatMax), which must not fault the machine.
 constexpr double kFollowWatchdogPeriods = 1.5;
-constexpr double kFollowWatchdogMin = 0.005;  // s
 // Follow frames that the firmware refuses as implausible: faster than this many times vmax,
 // or farther from the command than that speed covers in two periods.
 constexpr double kFollowSpeedMargin = 1.1;
@@ -111,7 +110,7 @@ void EmulatedCard::follow_tick() noexcept {
     for (auto& ax : axes_) ax.following = false;
     return;
   }
-  if (follow_age_ > std::max(kFollowWatchdogPeriods * span, kFollowWatchdogMin)) {
+  if (follow_age_ > std::max(kFollowWatchdogPeriods * span, config_.follow_watchdog)) {
     // The setpoints stopped coming: brake on the card, report a communication timeout.
     for (auto& ax : axes_) ax.faults |= st::kCommTimeout;
     return end_following(true);

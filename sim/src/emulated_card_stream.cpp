@@ -8,7 +8,7 @@
 
 namespace imess::sim {
 
-using hal::kAxes;
+using hal::card::kAxes;
 using hal::LinkReader;
 using hal::card::Op;
 using hal::card::Status;

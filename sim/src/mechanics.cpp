@@ -12,8 +12,8 @@ Mechanics::Mechanics(MechanicsConfig config, Scene scene)
   contact_ = deflection() > config_.probe.pretravel;
 }
 
-double Mechanics::deflection_at(const Vec3& p) const noexcept {
-  return config_.probe.ball_radius - scene_.distance(p);
+double Mechanics::deflection_at(const hal::AxisVec& p) const noexcept {
+  return config_.probe.ball_radius - scene_.distance(config_.layout.cartesian(p));
 }
 
 double Mechanics::deflection() const noexcept { return deflection_at(pos_); }
@@ -36,16 +36,16 @@ bool Mechanics::index_mark(int a) const noexcept {
 }
 
 void Mechanics::push_by_hand(const Vec3& delta, double speed) noexcept {
-  hand_target_ = pos_ + delta;
+  hand_target_ = pos_ + config_.layout.machine(delta);
   hand_speed_ = speed;
   hand_active_ = delta.norm() > 0 && speed > 0;
 }
 
 void Mechanics::step(double dt) noexcept {
-  const Vec3 before = pos_;
+  const hal::AxisVec before = pos_;
   const double alpha = 1.0 - std::exp(-dt / config_.motor_time_constant);
   bool any_free = false;
-  for (int a = 0; a < hal::kAxes; ++a) {
+  for (int a = 0; a < config_.layout.count; ++a) {
     if (position_driven_[a])
       vel_[a] = dt > 0 ? (commanded_[a] - pos_[a]) / dt : 0.0;
     else if (driven_[a])
@@ -54,17 +54,17 @@ void Mechanics::step(double dt) noexcept {
       any_free = true;
   }
   if (hand_active_ && any_free) {
-    Vec3 to_go = hand_target_ - pos_;
+    hal::AxisVec to_go = hand_target_ - pos_;
     double dist = to_go.norm(), reach = hand_speed_ * dt;
-    Vec3 v = dist <= reach ? Vec3(to_go / dt) : Vec3(to_go / dist * hand_speed_);
-    for (int a = 0; a < hal::kAxes; ++a)
+    hal::AxisVec v = dist <= reach ? hal::AxisVec(to_go / dt) : hal::AxisVec(to_go / dist * hand_speed_);
+    for (int a = 0; a < config_.layout.count; ++a)
       if (!driven_[a] && !position_driven_[a]) vel_[a] = v[a];
     if (dist <= reach) hand_active_ = false;
   } else {
-    for (int a = 0; a < hal::kAxes; ++a)
+    for (int a = 0; a < config_.layout.count; ++a)
       if (!driven_[a] && !position_driven_[a]) vel_[a] = 0;
   }
-  for (int a = 0; a < hal::kAxes; ++a) {
+  for (int a = 0; a < config_.layout.count; ++a) {
     pos_[a] = position_driven_[a] ? commanded_[a] : pos_[a] + vel_[a] * dt;
     const auto& ax = config_.axes[a];
     double lo = ax.travel_min - ax.hard_margin, hi = ax.travel_max + ax.hard_margin;
@@ -83,7 +83,7 @@ void Mechanics::step(double dt) noexcept {
     find_edge(before, pos_, false);
 }
 
-void Mechanics::find_edge(const Vec3& from, const Vec3& to, bool to_contact) noexcept {
+void Mechanics::find_edge(const hal::AxisVec& from, const hal::AxisVec& to, bool to_contact) noexcept {
   const auto& pr = config_.probe;
   double threshold = to_contact ? pr.pretravel : pr.pretravel - pr.hysteresis;
   auto beyond = [&](double s) {

@@ -5,11 +5,11 @@
 
 namespace imess::sim {
 
-using hal::kAxes;
+using hal::kParportAxes;
 
 StepperMachine::StepperMachine(StepperMachineConfig config, Mechanics& machine, hal::PortIo& port)
     : config_(std::move(config)), machine_(machine), port_(port), pins_(hal::compile_pins(config_.pins)) {
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < kParportAxes; ++a) {
     axes_[a].origin = machine_.carriage()[a];
     machine_.set_position_driven(a, true);
   }
@@ -20,7 +20,7 @@ StepperMachine::StepperMachine(StepperMachineConfig config, Mechanics& machine, 
 std::uint8_t StepperMachine::status_byte() const noexcept {
   // Logical input states -> register bits: active XOR (per-pin and hardware inversion).
   std::uint8_t active = 0;
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < kParportAxes; ++a) {
     bool home_side_limit = config_.home_direction[a] < 0 ? machine_.limit_neg(a) : machine_.limit_pos(a);
     if (machine_.home_switch(a) || home_side_limit) active |= pins_.endref[a];
     if (machine_.limit_neg(a)) active |= pins_.limit_neg[a];
@@ -35,7 +35,7 @@ std::uint8_t StepperMachine::status_byte() const noexcept {
 void StepperMachine::sample(std::int64_t t) noexcept {
   const std::uint8_t data = static_cast<std::uint8_t>(port_.in8(config_.base) ^ pins_.data_invert);
   bool moved = false;
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < kParportAxes; ++a) {
     Axis& ax = axes_[a];
     const bool step = (data & pins_.step_mask[a]) != 0, dir = (data & pins_.dir_mask[a]) != 0;
     if (!ax.seen) {  // the first look sets the levels; no edges yet
@@ -67,10 +67,10 @@ void StepperMachine::sample(std::int64_t t) noexcept {
   if (moved) {
     double dt = started_ ? static_cast<double>(t - last_move_t_) * 1e-9 : 1e-6;
     if (dt <= 0) dt = 1e-9;
-    for (int a = 0; a < kAxes; ++a)
+    for (int a = 0; a < kParportAxes; ++a)
       machine_.command_position(a, axes_[a].origin + static_cast<double>(axes_[a].count) / config_.steps_per_mm[a]);
     machine_.step(dt);
-    for (int a = 0; a < kAxes; ++a) {  // a motor pushing into a hard stop stalls: steps are lost
+    for (int a = 0; a < kParportAxes; ++a) {  // a motor pushing into a hard stop stalls: steps are lost
       Axis& ax = axes_[a];
       double want = ax.origin + static_cast<double>(ax.count) / config_.steps_per_mm[a];
       double off = machine_.carriage()[a] - want;

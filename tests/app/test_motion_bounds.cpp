@@ -47,7 +47,7 @@ class BoundsWatch {
  public:
   explicit BoundsWatch(const app::DaemonConfig& cfg)
       : cfg_(cfg), window_(cfg.sim.streamed ? kStreamedWindow : kWindow), jitter_(cfg.sim.streamed ? kStreamedJitter : 0) {
-    for (int a = 0; a < core::kAxes; ++a) {
+    for (int a = 0; a < n(); ++a) {
       envelope_lo_[a] = cfg.core.axes[a].travel_min;
       envelope_hi_[a] = cfg.core.axes[a].travel_max;
     }
@@ -56,14 +56,14 @@ class BoundsWatch {
   void observe(const core::Snapshot& s, Mode mode) {
     ++cycle_;
     mode_ = mode;
-    const hal::Vec3 step = s.position - history_[(cycle_ - 1) % (window_ + 1)].p;
+    const hal::AxisVec step = s.position - history_[(cycle_ - 1) % (window_ + 1)].p;
     history_[cycle_ % (window_ + 1)] = {s.position, loops_moving(mode)};
     if ((mode == Mode::Home || homing_) && redefined(step))  // homing gave an axis its coordinate: not motion
       for (auto& h : history_) h.motor = false;
     since_hands_ = loops_moving(mode) ? since_hands_ + 1 : 0;
     if (mode == Mode::Home && !homing_) {  // a homing begins: from where the axes stand, or the switches
       referenced_homing_ = s.referenced;
-      for (int a = 0; a < core::kAxes; ++a) {
+      for (int a = 0; a < n(); ++a) {
         const double margin = cfg_.sim.mechanics.axes[a].limit_margin + 1.0;
         homing_lo_[a] = std::min(cfg_.core.axes[a].travel_min - margin, s.position[a]);
         homing_hi_[a] = std::max(cfg_.core.axes[a].travel_max + margin, s.position[a]);
@@ -73,7 +73,7 @@ class BoundsWatch {
     if (mode == Mode::Home) homing_ = true;
     else if (mode != Mode::Stopping) homing_ = false;  // braking after a stopped homing counts as homing
     if (was_homing && !homing_)  // where homing left an axis (at most its creep past the index) counts as inside
-      for (int a = 0; a < core::kAxes; ++a) {
+      for (int a = 0; a < n(); ++a) {
         envelope_lo_[a] = std::min(envelope_lo_[a], s.position[a]);
         envelope_hi_[a] = std::max(envelope_hi_[a], s.position[a]);
       }
@@ -82,20 +82,21 @@ class BoundsWatch {
   }
 
   bool ok() const { return failure_.empty(); }
+  int n() const { return cfg_.core.layout.count; }
   const std::string& failure() const { return failure_; }
   double top_speed_ratio() const { return top_ratio_; }
 
  private:
   struct Sample {
-    hal::Vec3 p = hal::Vec3::Zero();
+    hal::AxisVec p = hal::AxisVec::Zero();
     bool motor = false;  // the loops drive the machine (not pushed by hand, not coasting in a fault)
   };
   static bool loops_moving(Mode m) { return m != Mode::Free && m != Mode::Fault; }
   double resolution(int a) const {
     return cfg_.backend == "sim-portio-drive" ? cfg_.ports.drive.axes[a].position_unit_mm : 0.0;
   }
-  bool redefined(const hal::Vec3& step) const {
-    for (int a = 0; a < core::kAxes; ++a)
+  bool redefined(const hal::AxisVec& step) const {
+    for (int a = 0; a < n(); ++a)
       if (std::abs(step[a]) > 3 * cfg_.core.axes[a].max_velocity * 1e-3) return true;
     return false;
   }
@@ -111,28 +112,28 @@ class BoundsWatch {
     for (int i = 0; i <= window_; ++i)
       if (!history_[i].motor) return;
     const double dt = window_ * 1e-3, tolerance = kSpeedTolerance + jitter_ / dt;
-    hal::Vec3 v = (now.p - then.p) / dt;
-    for (int a = 0; a < core::kAxes; ++a) {
+    hal::AxisVec v = (now.p - then.p) / dt;
+    for (int a = 0; a < n(); ++a) {
       const double limit = cfg_.core.axes[a].max_velocity;
       top_ratio_ = std::max(top_ratio_, std::abs(v[a]) / limit);
       if (std::abs(v[a]) > limit * tolerance + 1.0 + resolution(a) / dt)
-        fail(std::string("axis ") + hal::kAxisNames[a] + " at " + std::to_string(std::abs(v[a])) + " mm/s, limit " +
+        fail(std::string("axis ") + cfg_.core.layout.letters[a] + " at " + std::to_string(std::abs(v[a])) + " mm/s, limit " +
              std::to_string(limit));
     }
     const double path_limit = cfg_.core.max_velocity;
     top_ratio_ = std::max(top_ratio_, v.norm() / path_limit);
     double quantum = 0;
-    for (int a = 0; a < core::kAxes; ++a) quantum += resolution(a) / dt;
+    for (int a = 0; a < n(); ++a) quantum += resolution(a) / dt;
     if (v.norm() > path_limit * tolerance + 1.0 + quantum)
-      fail("path speed " + std::to_string(v.norm()) + " mm/s (" + std::to_string(v.x()) + " " + std::to_string(v.y()) +
-           " " + std::to_string(v.z()) + "), max_velocity " + std::to_string(path_limit));
+      fail("path speed " + std::to_string(v.norm()) + " mm/s (" + std::to_string(v[0]) + " " + std::to_string(v[1]) +
+           " " + std::to_string(v[2]) + "), max_velocity " + std::to_string(path_limit));
   }
 
   // Once referenced the machine stays within the soft limits; homing alone may go beyond
   // them to its switches, by at most the switch margin plus the braking distance, and may
   // leave an axis there — from where it may only come back.
-  void check_travel(const hal::Vec3& p) {
-    for (int a = 0; a < core::kAxes; ++a) {
+  void check_travel(const hal::AxisVec& p) {
+    for (int a = 0; a < n(); ++a) {
       const auto& ax = cfg_.core.axes[a];
       if (homing_ && referenced_homing_) {
         const double settle = 0.05 + resolution(a);  // the loops catching the axis where it stood
@@ -141,7 +142,7 @@ class BoundsWatch {
           homing_hi_[a] = std::max(homing_hi_[a], p[a]);
         }
         if (p[a] < homing_lo_[a] - settle || p[a] > homing_hi_[a] + settle)
-          fail(std::string("homing took axis ") + hal::kAxisNames[a] + " to " + std::to_string(p[a]) +
+          fail(std::string("homing took axis ") + cfg_.core.layout.letters[a] + " to " + std::to_string(p[a]) +
                ", beyond its switches (allowed " + std::to_string(homing_lo_[a]) + " .. " +
                std::to_string(homing_hi_[a]) + ")");
         envelope_lo_[a] = std::min(envelope_lo_[a], p[a]);
@@ -158,7 +159,7 @@ class BoundsWatch {
       }
       const double kOvershoot = 0.05 + resolution(a);  // servo overshoot at a soft limit, plus one count
       if (p[a] < envelope_lo_[a] - kOvershoot || p[a] > envelope_hi_[a] + kOvershoot)
-        fail(std::string("axis ") + hal::kAxisNames[a] + " at " + std::to_string(p[a]) + " outside [" +
+        fail(std::string("axis ") + cfg_.core.layout.letters[a] + " at " + std::to_string(p[a]) + " outside [" +
              std::to_string(envelope_lo_[a]) + ", " + std::to_string(envelope_hi_[a]) + "]");
       envelope_lo_[a] = std::max(ax.travel_min, std::min(envelope_lo_[a], p[a]) );
       envelope_hi_[a] = std::min(ax.travel_max, std::max(envelope_hi_[a], p[a]));
@@ -191,19 +192,20 @@ void send_random(ConfigRig& rig, std::mt19937_64& rng, std::uint32_t seq) {
     if (pick(10) == 0) return pick(2) ? 1e9 : -1e9;
     return std::uniform_real_distribution<double>(ax.travel_min - 0.2 * span, ax.travel_max + 0.2 * span)(rng);
   };
+  const int n = cfg.core.layout.count;
   core::Command c;
   c.client = 1;
   c.seq = seq;
   const int verb = pick(100);
   if (verb < 30) {
     c.kind = core::CommandKind::StartMv;
-    for (int a = 0; a < core::kAxes; ++a) c.v[a] = pick(3) == 0 ? 0.0 : extreme_or_random(rng, -100, 100);
+    for (int a = 0; a < n; ++a) c.v[a] = pick(3) == 0 ? 0.0 : extreme_or_random(rng, -100, 100);
   } else if (verb < 45) {
     core.request_stop();
     return;
   } else if (verb < 63) {
     c.kind = core::CommandKind::GoTo;
-    for (int a = 0; a < core::kAxes; ++a) c.v[a] = travel(a);
+    for (int a = 0; a < n; ++a) c.v[a] = travel(a);
     c.speed = pick(3) == 0 ? 0.0 : extreme_or_random(rng, 1e-300, 1e9);
   } else if (verb < 76) {
     static const auto settable = [] {  // what a client can Set; read-only entries are not drawn
@@ -223,7 +225,7 @@ void send_random(ConfigRig& rig, std::mt19937_64& rng, std::uint32_t seq) {
     c.kind = core::CommandKind::Reset;
   } else if (verb < 99) {
     c.kind = core::CommandKind::HandMv;
-    for (int a = 0; a < core::kAxes; ++a) c.v[a] = extreme_or_random(rng, -60, 60);
+    for (int a = 0; a < 3; ++a) c.v[a] = extreme_or_random(rng, -60, 60);  // X Y Z, by hand
     c.speed = pick(2) ? 0.0 : extreme_or_random(rng, 1e-300, 1e9);
   } else {
     c.kind = core::CommandKind::Home;
@@ -283,12 +285,14 @@ TEST_CASE("bounded motion on sim-parport-3dstep.json") { run_property("sim-parpo
 TEST_CASE("bounded motion on sim-portio-drive.json") { run_property("sim-portio-drive.json", 4); }
 TEST_CASE("bounded motion on sim-portio-drive-map-a.json") { run_property("sim-portio-drive-map-a.json", 5); }
 TEST_CASE("bounded motion on sim-servo-card-serial.json") { run_property("sim-servo-card-serial.json", 6); }
+TEST_CASE("bounded motion on sim-mrm-arm.json") { run_property("sim-mrm-arm.json", 7); }
 
 TEST_CASE("every shipped configuration is covered by the bounded-motion property") {
   std::vector<std::string> shipped;
   for (const auto& f : std::filesystem::directory_iterator(std::string(IMESS_SOURCE_DIR) + "/config"))
     if (f.path().extension() == ".json") shipped.push_back(f.path().filename().string());
   std::sort(shipped.begin(), shipped.end());
-  CHECK(shipped == std::vector<std::string>{"sim-parport-3dstep.json", "sim-parport-shd.json", "sim-portio-drive-map-a.json",
-                                            "sim-portio-drive.json", "sim-servo-card-serial.json", "sim-servo-card.json"});
+  CHECK(shipped == std::vector<std::string>{"sim-mrm-arm.json", "sim-parport-3dstep.json", "sim-parport-shd.json",
+                                            "sim-portio-drive-map-a.json", "sim-portio-drive.json",
+                                            "sim-servo-card-serial.json", "sim-servo-card.json"});
 }

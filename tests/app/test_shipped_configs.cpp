@@ -83,11 +83,16 @@ TEST_CASE("every shipped configuration builds its machine, and it is the machine
     REQUIRE(app::find_backend(type) != nullptr);
     CHECK_FALSE(rig->machine().describe().empty());
 
-    // The axes: the file's axes are the machine's (X, Y, Z), with the travel and limits given.
+    // The axes: the file's axes are the machine's (axes.letters, X Y Z when absent), of the
+    // kind given, with the travel and limits given.
+    const auto& layout = cfg.core.layout;
+    CHECK(rig->core().config().layout.names() == layout.names());
     if (j.contains("axes")) {
-      CHECK(j["axes"].size() == static_cast<std::size_t>(core::kAxes));
-      for (int a = 0; a < core::kAxes; ++a) {
-        const std::string name(1, hal::kAxisNames[a]);
+      const std::string letters = j["axes"].value("letters", "XYZ");
+      CHECK(layout.names() == letters);
+      CHECK(j["axes"].size() == static_cast<std::size_t>(layout.count) + (j["axes"].contains("letters") ? 1 : 0));
+      for (int a = 0; a < layout.count; ++a) {
+        const std::string name(1, layout.letters[a]);
         INFO("axis " << name);
         REQUIRE(j["axes"].contains(name));
         const auto& ja = j["axes"][name];
@@ -98,6 +103,8 @@ TEST_CASE("every shipped configuration builds its machine, and it is the machine
         CHECK(live.travel_min == ca.travel_min);
         CHECK(live.travel_max == ca.travel_max);
         CHECK(ca.home_direction == (ja.value("home_direction", "neg") == std::string("neg") ? -1 : 1));
+        const std::string kind = ja.value("kind", std::string(hal::default_kind(layout.letters[a]) == hal::AxisKind::Rotary ? "rotary" : "linear"));
+        CHECK((layout.kinds[a] == hal::AxisKind::Rotary) == (kind == "rotary"));
         const double vmax = j.contains("motion") ? j["motion"].value("max_velocity", 150.0) : 150.0;
         CHECK(ca.max_velocity == ja.value("max_velocity", vmax));
         CHECK(live.max_velocity == ca.max_velocity);
@@ -113,7 +120,7 @@ TEST_CASE("every shipped configuration builds its machine, and it is the machine
     const auto& snap = rig->core().snapshot();
     CHECK(snap.mode != core::Mode::Fault);
     CHECK(snap.hardware_errors == 0);
-    for (int a = 0; a < core::kAxes; ++a) {
+    for (int a = 0; a < layout.count; ++a) {
       CHECK(snap.position[a] >= cfg.core.axes[a].travel_min - 1e-6);
       CHECK(snap.position[a] <= cfg.core.axes[a].travel_max + 1e-6);
     }

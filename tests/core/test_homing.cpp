@@ -10,7 +10,7 @@ RigOptions relative_scales(Vec3 start) {
   auto o = default_options();
   o.sim.card.absolute_scales = false;
   o.core.referenced_at_start = false;
-  o.sim.mechanics.start = start;
+  o.sim.mechanics.start = axes3(start);
   return o;
 }
 }  // namespace
@@ -28,7 +28,7 @@ TEST_CASE("Home finds switch and index on every axis and zeroes the machine ther
   CHECK(rig.take(EventKind::Warn).empty());
   REQUIRE(rig.take(EventKind::Homed).size() == 1);
   CHECK(rig.mode() == Mode::Idle);
-  Vec3 error = rig.position() - rig.mechanics().carriage();
+  Vec3 error = rig.position() - xyz(rig.mechanics().carriage());
   CHECK(error.cwiseAbs().maxCoeff() < 0.001);
   CHECK(rig.core().snapshot().homed);
 }
@@ -38,7 +38,7 @@ TEST_CASE("Home from close to the switch backs off and searches again") {
   REQUIRE(rig.simple(CommandKind::Home) == imess::core::Refusal::None);
   REQUIRE(rig.run_until([&] { return rig.mode() != Mode::Home; }, 240.0));
   REQUIRE(rig.take(EventKind::Homed).size() == 1);
-  CHECK((rig.position() - rig.mechanics().carriage()).cwiseAbs().maxCoeff() < 0.001);
+  CHECK((rig.position() - xyz(rig.mechanics().carriage())).cwiseAbs().maxCoeff() < 0.001);
 }
 
 TEST_CASE("StopMv aborts homing") {

@@ -13,7 +13,7 @@ namespace {
 RigOptions empty_machine(bool referenced) {
   auto o = default_options();
   o.sim.scene = imess::sim::Scene();  // nothing to hit: this test is about travel
-  o.sim.mechanics.start = Vec3(500, 500, 300);
+  o.sim.mechanics.start = axes3(Vec3(500, 500, 300));
   o.sim.card.absolute_scales = referenced;
   o.core.referenced_at_start = referenced;
   o.core.params.idle_open_time = 1e9;
@@ -42,12 +42,12 @@ TEST_CASE("10000 random jogs without soft limits: switches stop the machine befo
   CoreRig rig(empty_machine(false));
   const auto& axes = rig.options().sim.mechanics.axes;
   long limit_events = 0, fault_cycles = 0;
-  Vec3 lo = rig.mechanics().carriage(), hi = lo;
+  Vec3 lo = xyz(rig.mechanics().carriage()), hi = lo;
   random_jogs(rig, 10000, 1996, [&] {
     limit_events += static_cast<long>(rig.take(EventKind::Limit).size());
     rig.clear_events();
-    lo = lo.cwiseMin(rig.mechanics().carriage());
-    hi = hi.cwiseMax(rig.mechanics().carriage());
+    lo = lo.cwiseMin(xyz(rig.mechanics().carriage()));
+    hi = hi.cwiseMax(xyz(rig.mechanics().carriage()));
     fault_cycles += rig.mode() == Mode::Fault;
   });
   for (int a = 0; a < 3; ++a) {

@@ -19,16 +19,16 @@ void push(MotionRig& rig, Command c) { rig.core().submit(c); }
 
 TEST_CASE("no motion cycle allocates: jog, hit, retract, idle, hand hits, GoTo, homing, fault") {
   CoreRig rig;
-  push(rig, {CommandKind::StartMv, 1, 1, Vec3(0, 0, -20)});
+  push(rig, {CommandKind::StartMv, 1, 1, axes3(Vec3(0, 0, -20))});
   CHECK(allocations_over_cycles(rig, 3000) == 0);  // jog, hit, MeasPt, retract
   CHECK(rig.mode() == Mode::Idle);
   CHECK(allocations_over_cycles(rig, 7500) == 0);  // loops open after 7 s
   CHECK(rig.mode() == Mode::Free);
-  push(rig, {CommandKind::HandMv, 1, 2, Vec3(0, 0, -3), 10});
+  push(rig, {CommandKind::HandMv, 1, 2, axes3(Vec3(0, 0, -3)), 10});
   CHECK(allocations_over_cycles(rig, 1000) == 0);  // hand hit
-  push(rig, {CommandKind::HandMv, 1, 3, Vec3(0, 0, 5), 10});
+  push(rig, {CommandKind::HandMv, 1, 3, axes3(Vec3(0, 0, 5)), 10});
   CHECK(allocations_over_cycles(rig, 1000) == 0);
-  push(rig, {CommandKind::GoTo, 1, 4, Vec3(300, 300, 200), 100});
+  push(rig, {CommandKind::GoTo, 1, 4, axes3(Vec3(300, 300, 200)), 100});
   push(rig, {CommandKind::ForcePt, 1, 5});
   rig.core().set_param(imess::core::ParamId::SpeedLevel, 0.5);
   CHECK(allocations_over_cycles(rig, 4000) == 0);
@@ -36,7 +36,7 @@ TEST_CASE("no motion cycle allocates: jog, hit, retract, idle, hand hits, GoTo, 
   CHECK(allocations_over_cycles(rig, 60000) == 0);
   rig.core().request_stop();
   push(rig, {CommandKind::Free, 1, 9});
-  push(rig, {CommandKind::HandMv, 1, 10, Vec3(0, 0, -700), 100});
+  push(rig, {CommandKind::HandMv, 1, 10, axes3(Vec3(0, 0, -700)), 100});
   CHECK(allocations_over_cycles(rig, 8000) == 0);  // into the table: overtravel fault
   CHECK(rig.mode() == Mode::Fault);
 }
@@ -47,7 +47,7 @@ TEST_CASE("the eventfd wake-up allocates nothing and fires only for cycles that 
   rig.core().set_event_signal(&wake);
   CHECK(allocations_over_cycles(rig, 100) == 0);  // idle: nothing pushed
   CHECK(wake.drain() == 0);
-  push(rig, {CommandKind::StartMv, 1, 1, Vec3(0, 0, -20)});
+  push(rig, {CommandKind::StartMv, 1, 1, axes3(Vec3(0, 0, -20))});
   CHECK(allocations_over_cycles(rig, 3000) == 0);  // reply, hit, MeasPt, retract, State events
   const auto woken = wake.drain();
   CHECK(woken > 0);

@@ -15,7 +15,7 @@ namespace {
 RigOptions open_floor(Vec3 start) {  // no workpiece in the way
   auto o = default_options();
   o.sim.scene = {};
-  o.sim.mechanics.start = start;
+  o.sim.mechanics.start = axes3(start);
   o.core.params.idle_open_time = 1e9;
   return o;
 }
@@ -78,7 +78,7 @@ TEST_CASE("homing with a client-set MaxAccel 20 stays within the switches") {
   auto o = default_options();
   o.sim.card.absolute_scales = false;
   o.core.referenced_at_start = false;
-  o.sim.mechanics.start = {430, 330, 590};
+  o.sim.mechanics.start = axes3({430, 330, 590});
   CoreRig rig(o);
   rig.set(ParamId::MaxAccel, 20);
   REQUIRE(rig.simple(CommandKind::Home) == Refusal::None);
@@ -131,8 +131,8 @@ TEST_CASE("speeds below the minimum are refused, and a GoTo never hangs in move"
 
 TEST_CASE("a stop never waits behind queued commands, and supersedes the motion queued before it") {
   CoreRig rig(open_floor({500, 500, 300}));
-  Command jog{CommandKind::StartMv, 1, 900, Vec3(100, 0, 0)};
-  Command go{CommandKind::GoTo, 1, 901, Vec3(100, 100, 100), 100};
+  Command jog{CommandKind::StartMv, 1, 900, axes3(Vec3(100, 0, 0))};
+  Command go{CommandKind::GoTo, 1, 901, axes3(Vec3(100, 100, 100)), 100};
   rig.core().submit(jog);
   rig.core().submit(go);
   rig.core().request_stop();  // arrives before the loop took either

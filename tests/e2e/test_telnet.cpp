@@ -47,7 +47,10 @@ TEST_CASE("Help lists every command and ends with Ok Help") {
     if (l.rfind("Help ", 0) == 0) help.push_back(l);
     return l == "Ok Help";
   }));
-  CHECK(help.size() == imess::protocol::verb_table().size());  // one line per declared verb
+  // One line per declared verb; JogAx only on machines whose axes are not exactly X Y Z (the
+  // 1996 machine keeps the 1996 list; tests/golden/sim-mrm-arm.txt shows the arm's).
+  CHECK(help.size() == imess::protocol::verb_table().size() - 1);
+  for (const auto& l : help) CHECK(l.rfind("Help JogAx", 0) != 0);
   CHECK(help[0].rfind("Help StartMv vx vy vz - ", 0) == 0);
 }
 

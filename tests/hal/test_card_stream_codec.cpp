@@ -9,6 +9,7 @@
 #include "imess/hal/stream_frame.hpp"
 
 using namespace imess::hal;
+using card::kAxes;
 using Result = FrameDecoder::Result;
 
 namespace {

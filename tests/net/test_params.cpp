@@ -44,7 +44,8 @@ TEST_CASE("net-side parameters are ordinary entries: ReportHz settable, Period, 
   CHECK_FALSE(find("ReportHz").read_only);
   CHECK(find("Period").initial == server.period_us);
   for (auto n : {"Period", "Axes", "Backend"}) CHECK(find(n).read_only);
-  CHECK(find("Axes").initial == core::kAxes);
+  CHECK(find("Axes").initial == 3);  // the X Y Z machine when axes.letters is absent
+  CHECK(find("Axes").max == core::kMaxAxes);
   CHECK(find("Backend").text);
   CHECK(net::find_param("Nonsense") == nullptr);
 }

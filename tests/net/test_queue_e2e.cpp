@@ -323,7 +323,7 @@ TEST_CASE("ArcTo in the YZ plane (J K) and in a tilted plane (N i j k): on the c
   CHECK(h.rig.position().isApprox(hal::Vec3(120, 120, 80), 1e-9));
   int in_first = 0, in_second = 0;
   for (const auto& p : h.rig.hw.setpoints) {
-    const hal::Vec3 q = p.position;
+    const hal::Vec3 q = p.position.head<3>();
     if (std::abs(q.x() - 100) < 1e-12 && q.y() > 100 + 1e-9 && q.y() < 120 - 1e-9) {  // the YZ half circle
       CHECK(std::hypot(q.y() - 110, q.z() - 100) == Approx(10).margin(1e-6));
       CHECK(q.z() > 100 - 1e-9);  // CW seen from +X, from 9 o'clock (-Y) up through 12 (+Z)

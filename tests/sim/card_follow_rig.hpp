@@ -85,7 +85,7 @@ class CardFollowRig {
     }
     return m;
   }
-  Vec3 start() const { return sim_.mechanics.start; }
+  Vec3 start() const { return xyz(sim_.mechanics.start); }
 
   // Plans the requests from the start position and samples them at the motion period: the
   // setpoints for the ends of the periods 1, 2, … until the path rests at its end.

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "card_follow_rig.hpp"
+#include "imess/core/path_machine.hpp"
 
 using namespace imess;
 using namespace imess::test;
@@ -53,14 +54,14 @@ TEST_CASE("card follow: the encoders follow a planned path with a corner and an 
     REQUIRE(rig.driver().follow(sp));
     const hal::MachineState ms = state(rig);  // the Follow reply: no second frame
     REQUIRE(!ms.faulted());
-    max_error = std::max(max_error, (ms.position - previous).norm());
+    max_error = std::max(max_error, (xyz(ms.position) - previous).norm());
     max_speed = std::max(max_speed, sp.velocity.norm());
     for (int a = 0; a < 3; ++a)
       if (sp.position[a] != previous[a]) {  // this axis' setpoint moves: the card must not claim done
         INFO("axis " << a << ", cycle " << (&sp - path.data()));
         CHECK((ms.status[a] & (st::kProfileEnd | st::kInPosition)) == 0);
       }
-    previous = sp.position;
+    previous = xyz(sp.position);
     rig.tick();
   }
   const long cycles = static_cast<long>(path.size());
@@ -79,8 +80,8 @@ TEST_CASE("card follow: the encoders follow a planned path with a corner and an 
 
   // The path ends at rest: the card stops following by itself, no frames needed, no timeout.
   const hal::MachineState end = settle(rig);
-  const Vec3 target = path.back().position;
-  const double end_error = (end.position - target).cwiseAbs().maxCoeff();
+  const Vec3 target = xyz(path.back().position);
+  const double end_error = (xyz(end.position) - target).cwiseAbs().maxCoeff();
   std::printf("card follow: end error %.5f mm\n", end_error);
   CHECK(end_error <= kCount + 1e-9);
   CHECK(end.motion_done());
@@ -100,13 +101,13 @@ TEST_CASE("card follow: stop() mid-path brakes to rest within v²/2a, and move()
     ms = state(rig);
     rig.tick();
   }
-  const Vec3 v = path[at - 1].velocity;
+  const Vec3 v = xyz(path[at - 1].velocity);
   REQUIRE(v.norm() > 99);
   const double decel = 1000;
-  const Vec3 stopped_at = state(rig).position;
-  REQUIRE(rig.driver().stop(Vec3::Constant(decel)));
+  const Vec3 stopped_at = xyz(state(rig).position);
+  REQUIRE(rig.driver().stop(hal::AxisVec::Constant(decel)));
   const hal::MachineState rest = settle(rig);
-  const double travel = (rest.position - stopped_at).norm(), braking = v.squaredNorm() / (2 * decel);
+  const double travel = (xyz(rest.position) - stopped_at).norm(), braking = v.squaredNorm() / (2 * decel);
   std::printf("card follow: stop at %.1f mm/s: %.4f mm to rest, v²/2a = %.4f mm\n", v.norm(), travel, braking);
   CHECK(travel <= braking + 0.25);  // + the tracking lag at the stop
   CHECK(travel >= braking - 0.25);  // it braked at decel, not at once
@@ -144,7 +145,7 @@ TEST_CASE("card follow: a lost or corrupted frame becomes a communication timeou
     CHECK(ms.all(st::kCommTimeout));
     CHECK(ms.faulted());
     // ... and the card, whose setpoints stopped coming, brakes on its own and says so too.
-    const Vec3 from = ms.position;
+    const Vec3 from = xyz(ms.position);
     for (int i = 0; i < 300; ++i) {
       rig.tick();
       ms = state(rig);
@@ -152,7 +153,7 @@ TEST_CASE("card follow: a lost or corrupted frame becomes a communication timeou
     CHECK((rig.card_status()[0] & st::kCommTimeout) != 0);
     CHECK(ms.motion_done());
     // Braked at amax from ≤ 100 mm/s, after going on at that speed for the watchdog's 5 ms.
-    CHECK((ms.position - from).norm() < 100.0 * 100 / (2 * 1000) + 100.0 * 0.005 + 0.5);
+    CHECK((xyz(ms.position) - from).norm() < 100.0 * 100 / (2 * 1000) + 100.0 * 0.005 + 0.5);
     // Reset clears it; the loops close again and a new path can start from rest.
     REQUIRE(rig.driver().reset_faults());
     REQUIRE(rig.driver().set_loops(true));
@@ -221,4 +222,59 @@ TEST_CASE("card follow: the motion core reading the Follow replies faults CommLo
   CHECK(comm_lost);
   const auto card = rig.card_status();
   for (int a = 0; a < 3; ++a) CHECK((card[a] & st::kClosedLoop) == 0);  // the core opened the loops
+}
+
+TEST_CASE("card follow: the motion core rides over a stalled host, the path going on with the clock") {
+  // Every 40 cycles the host wakes 3 ms late (4 ms since the last Follow): the card went on
+  // at the last setpoint's velocity meanwhile, so the core advances the path by the time
+  // that passed; a path advanced one period per cycle would send a setpoint behind the card,
+  // which it refuses as implausible (CommLost).
+  CardFollowRig rig;
+  core::CoreConfig config = default_options().core;
+  config.params.idle_open_time = 60;
+  core::MotionCore core(rig.driver(), config, &rig.mechanics());
+  core.start(rig.clock().now());
+  REQUIRE(core.mode() == Mode::Idle);
+  planner::Planner planner(core::path_machine(core.config()), core::path_options(core.config()));
+  planner.set_position(pose3(rig.start()));
+  for (const auto& r : corner_and_arc_path()) REQUIRE(planner.append(r).ok());
+  planner.flush();
+  std::vector<planner::PlannedSegment> segments;
+  double planned_s = 0;
+  for (planner::PlannedSegment s; planner.take(s);) {
+    segments.push_back(s);
+    planned_s += s.duration();
+  }
+
+  std::vector<Event> events;
+  int cycles = 0, stalls = 0;
+  bool idle = false;
+  std::size_t next = 0;
+  for (; cycles < 20000 && !idle; ++cycles) {
+    while (next < segments.size() && core.segment_room() > 0 && core.submit_segment({segments[next], core.stop_ticket(), 0}))
+      ++next;
+    rig.tick();
+    if (cycles % 40 == 39) {
+      for (int late = 0; late < 3; ++late) rig.tick();
+      ++stalls;
+    }
+    core.cycle(rig.clock().now());
+    Event e;
+    while (core.events().pop(e)) {
+      events.push_back(e);
+      idle = idle || (e.kind == EventKind::State && e.mode == Mode::Idle);
+    }
+    REQUIRE(core.mode() != Mode::Fault);
+  }
+  CHECK(idle);
+  std::vector<std::uint32_t> done;
+  for (const auto& e : events)
+    if (e.kind == EventKind::Done) done.push_back(e.id);
+  CHECK(done == std::vector<std::uint32_t>{1, 2, 3, 4});
+  const hal::MachineState ms = state(rig);
+  CHECK((xyz(ms.position) - Vec3(430, 330, 100)).cwiseAbs().maxCoeff() <= 0.005);  // the in-position window
+  // The path took its planned time in the clock, not in cycles: about 3 cycles fewer per stall.
+  INFO("cycles " << cycles << ", planned " << planned_s << " s, stalls " << stalls);
+  CHECK(stalls > 20);
+  CHECK((cycles + 3 * stalls) * CardFollowRig::kT == Approx(planned_s).margin(0.05));  // + arrival
 }

@@ -20,7 +20,7 @@ TEST_CASE("card follow: follow() and the cycle's read_state() allocate nothing")
   for (std::size_t i = 0; i < path.size(); ++i) {
     if (!rig.driver().follow(path[i]) || !rig.driver().read_state(ms)) ++failures;
     if (i == path.size() / 2) {
-      rig.driver().stop(Vec3::Constant(1000));  // ends following; the next frame starts it again
+      rig.driver().stop(hal::AxisVec::Constant(1000));  // ends following; the next frame starts it again
       rig.driver().read_state(ms);
     }
     rig.tick();
@@ -37,10 +37,10 @@ TEST_CASE("card stream: the driver's real-time calls on the stream and the byte-
   auto& drv = rig.driver();
   hal::MachineState ms;
   hal::Setpoint sp;
-  sp.position = rig.position();
+  sp.position = axes3(rig.position());
   hal::AxisArray<hal::AxisMove> moves{};
   moves[0] = {sp.position.x() - 5, 50, 500};
-  Vec3 latched;
+  hal::AxisVec latched = hal::AxisVec::Zero();
   long failures = 0;
   double v = 0;
   g_allocations = 0;
@@ -52,10 +52,10 @@ TEST_CASE("card stream: the driver's real-time calls on the stream and the byte-
     if (i < 1000) {  // a path along X (setpoints out, status frames in), then a stop, a move, a latch read
       v = std::min(50.0, v + 1.0);
       sp.position.x() += v * 0.001;
-      sp.velocity = Vec3(v, 0, 0);
+      sp.velocity = axes3(Vec3(v, 0, 0));
       if (!drv.follow(sp)) ++failures;
     }
-    if (i == 1000 && !drv.stop(Vec3::Constant(1000))) ++failures;
+    if (i == 1000 && !drv.stop(hal::AxisVec::Constant(1000))) ++failures;
     if (i == 1500 && !drv.move(moves, 1u)) ++failures;
     if (i == 2500) {
       drv.read_latch(latched);  // none latched: false, no frame

@@ -130,19 +130,19 @@ TEST_CASE("card stream: a host that stops sending setpoints starves the card: it
   REQUIRE(drv.set_loops(true));
   const Vec3 start = s.rig.position();
   hal::Setpoint sp;
-  sp.position = start;
+  sp.position = axes3(start);
   double v = 0;
   for (int i = 0; i < 200; ++i) {  // accelerate along X to 50 mm/s, then cruise
     s.rig.clock().advance(MotionRig::kPeriod);
     REQUIRE(drv.read_state(ms));
     v = std::min(50.0, v + 1000 * 0.001);
     sp.position.x() += v * 0.001;
-    sp.velocity = Vec3(v, 0, 0);
+    sp.velocity = axes3(Vec3(v, 0, 0));
     REQUIRE(drv.follow(sp));
   }
   REQUIRE(!ms.faulted());
   REQUIRE(s.card().starvations() == 0);
-  const Vec3 from = ms.position;
+  const Vec3 from = xyz(ms.position);
   int cycles = 0;
   while (!ms.faulted() && cycles < 200) {  // the setpoints stop; the state is still read
     s.rig.clock().advance(MotionRig::kPeriod);
@@ -160,7 +160,7 @@ TEST_CASE("card stream: a host that stops sending setpoints starves the card: it
   }
   CHECK(ms.motion_done());
   // Braked at 1000 mm/s² from 50 mm/s after the lead ran out: 1.25 mm, + the lead and the loop lag.
-  CHECK((ms.position - from).norm() < 50 * 50 / 2000.0 + 50 * 0.03 + 0.2);
+  CHECK((xyz(ms.position) - from).norm() < 50 * 50 / 2000.0 + 50 * 0.03 + 0.2);
 }
 
 TEST_CASE("card stream: jog onto the cube, GoTo, stop and homing work over the stream") {
@@ -202,6 +202,6 @@ TEST_CASE("card stream: jog onto the cube, GoTo, stop and homing work over the s
     CHECK(s.rig.take(EventKind::Warn).empty());
     REQUIRE(s.rig.take(EventKind::Homed).size() == 1);
     s.rig.run(0.05);
-    CHECK((s.rig.position() - s.rig.mechanics().carriage()).cwiseAbs().maxCoeff() < 0.001);
+    CHECK((s.rig.position() - xyz(s.rig.mechanics().carriage())).cwiseAbs().maxCoeff() < 0.001);
   }
 }

@@ -51,7 +51,7 @@ TEST_CASE("drive kit mode 2: increments with the write-back-zero handshake, frac
 
 TEST_CASE("a blocked axis trips the following-error limit: loops open, DAC zero") {
   auto o = drive_options();
-  o.sim.mechanics.start = hal::Vec3(10, 330, 100);
+  o.sim.mechanics.start = axes3(hal::Vec3(10, 330, 100));
   o.driver.initial_position = o.sim.mechanics.start;
   for (auto& ax : o.driver.axes) ax.limit_neg_bit = ax.limit_pos_bit = 0;  // no limit switches fitted
   o.sim.kits.ports = o.driver;
@@ -109,9 +109,9 @@ TEST_CASE("drive kit: the counters latch gives the exact touch point and hand me
   CHECK(pts[0].p.z() == Approx(80.0).margin(0.001));
   REQUIRE(rig.simple(CommandKind::Free) == core::Refusal::None);
   rig.run(0.01);
-  REQUIRE(rig.send({CommandKind::HandMv, 0, 0, hal::Vec3(0, 0, 5), 10}) == core::Refusal::None);
+  REQUIRE(rig.send({CommandKind::HandMv, 0, 0, axes3(hal::Vec3(0, 0, 5)), 10}) == core::Refusal::None);
   rig.run(1.0);
-  REQUIRE(rig.send({CommandKind::HandMv, 0, 0, hal::Vec3(0, 0, -8), 10}) == core::Refusal::None);
+  REQUIRE(rig.send({CommandKind::HandMv, 0, 0, axes3(hal::Vec3(0, 0, -8)), 10}) == core::Refusal::None);
   rig.run(1.5);
   auto hand = rig.take(EventKind::MeasPt);
   REQUIRE(hand.size() == 1);
@@ -121,13 +121,13 @@ TEST_CASE("drive kit: the counters latch gives the exact touch point and hand me
 TEST_CASE("drive kit: homing with home switches and the synthesised index") {
   auto o = drive_options();
   o.sim.scene = sim::Scene();
-  o.sim.mechanics.start = hal::Vec3(150, 120, 300);
-  o.driver.initial_position = hal::Vec3(0, 0, 0);
+  o.sim.mechanics.start = axes3(hal::Vec3(150, 120, 300));
+  o.driver.initial_position = hal::AxisVec::Zero();
   o.sim.kits.ports.initial_position = o.driver.initial_position;
   DriveRig rig(o);
   rig.start_core(drive_core());
   REQUIRE(rig.simple(CommandKind::Home) == core::Refusal::None);
   REQUIRE(rig.run_until([&] { return !rig.take(EventKind::Homed).empty(); }, 60));
-  hal::Vec3 offset = rig.mechanics().carriage() - rig.position();
+  hal::Vec3 offset = xyz(rig.mechanics().carriage()) - rig.position();
   CHECK(offset.x() == Approx(-2 + 2.5 + 0.02).margin(0.01));
 }

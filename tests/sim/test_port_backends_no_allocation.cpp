@@ -37,7 +37,7 @@ long allocations_following(Rig& rig, PathFeed& feed, int periods) {
       const hal::Setpoint sp = feed.next();
       ok = backend.follow(sp) && ok;
     } else if (i == periods / 2) {
-      ok = backend.stop(hal::Vec3(2000, 2000, 2000)) && ok;  // mid-path
+      ok = backend.stop(hal::AxisVec::Constant(2000)) && ok;  // mid-path
     }
   }
   hal::AxisArray<hal::AxisMove> moves;
@@ -60,8 +60,8 @@ TEST_CASE("port backends: follow(), stop() after it and move() after it do not a
     rig.servo_cycles(1);
     REQUIRE(rig.backend().read_state(ms));
     REQUIRE(rig.backend().set_loops(true));
-    PathFeed feed(follow_machine(rig.options().sim.mechanics, rig.options().driver.axes), ms.position);
-    feed.plan(corner_arc_dwell_path(ms.position, 80));
+    PathFeed feed(follow_machine(rig.options().sim.mechanics, rig.options().driver.axes), xyz(ms.position));
+    feed.plan(corner_arc_dwell_path(xyz(ms.position), 80));
     CHECK(allocations_following(rig, feed, 2500) == 0);
   }
   for (int mode : {1, 2}) {
@@ -71,8 +71,8 @@ TEST_CASE("port backends: follow(), stop() after it and move() after it do not a
     rig.clock().advance(MotionRig::kPeriod);
     REQUIRE(rig.backend().read_state(ms));
     REQUIRE(rig.backend().set_loops(true));
-    PathFeed feed(follow_machine(o.sim.mechanics, o.driver.axes), ms.position);
-    feed.plan(corner_arc_dwell_path(ms.position, 120));
+    PathFeed feed(follow_machine(o.sim.mechanics, o.driver.axes), xyz(ms.position));
+    feed.plan(corner_arc_dwell_path(xyz(ms.position), 120));
     CHECK(allocations_following(rig, feed, 2500) == 0);
   }
 }
@@ -80,16 +80,16 @@ TEST_CASE("port backends: follow(), stop() after it and move() after it do not a
 TEST_CASE("stepper backend: no servo cycle or base tick allocates") {
   StepperRig rig;
   rig.start_core(brisk());
-  push(rig, {CommandKind::StartMv, 1, 1, Vec3(0, 0, -30)});
+  push(rig, {CommandKind::StartMv, 1, 1, axes3(Vec3(0, 0, -30))});
   CHECK(allocations_over_cycles(rig, 2000) == 0);  // jog, hit at base rate, MeasPt, retract
   CHECK(rig.mode() == Mode::Idle);
-  push(rig, {CommandKind::GoTo, 1, 2, Vec3(380, 300, 120), 80});
+  push(rig, {CommandKind::GoTo, 1, 2, axes3(Vec3(380, 300, 120)), 80});
   CHECK(allocations_over_cycles(rig, 3000) == 0);
   CHECK(allocations_over_cycles(rig, 3000) == 0);  // loops open after 2 s
   CHECK(rig.mode() == Mode::Free);
   push(rig, {CommandKind::Home, 1, 3});
   CHECK(allocations_over_cycles(rig, 30000) == 0);
-  push(rig, {CommandKind::StartMv, 1, 4, Vec3(50, 0, 0)});
+  push(rig, {CommandKind::StartMv, 1, 4, axes3(Vec3(50, 0, 0))});
   CHECK(allocations_over_cycles(rig, 100) == 0);
   rig.core().request_stop();
   CHECK(allocations_over_cycles(rig, 500) == 0);
@@ -99,12 +99,12 @@ TEST_CASE("drive-kit backend: no servo cycle allocates, in either kit mode") {
   for (int mode : {1, 2}) {
     DriveRig rig(drive_options(mode, mode == 1 ? "mrm-b" : "mrm-a"));
     rig.start_core(brisk(), &rig.mechanics());
-    push(rig, {CommandKind::StartMv, 1, 1, Vec3(0, 0, -30)});
+    push(rig, {CommandKind::StartMv, 1, 1, axes3(Vec3(0, 0, -30))});
     CHECK(allocations_over_cycles(rig, 2000) == 0);  // jog, latch, MeasPt, retract
-    push(rig, {CommandKind::GoTo, 1, 2, Vec3(380, 300, 120), 80});
+    push(rig, {CommandKind::GoTo, 1, 2, axes3(Vec3(380, 300, 120)), 80});
     CHECK(allocations_over_cycles(rig, 3000) == 0);
     CHECK(allocations_over_cycles(rig, 3000) == 0);  // loops open
-    push(rig, {CommandKind::HandMv, 1, 3, Vec3(0, 0, -3), 10});
+    push(rig, {CommandKind::HandMv, 1, 3, axes3(Vec3(0, 0, -3)), 10});
     CHECK(allocations_over_cycles(rig, 500) == 0);
     push(rig, {CommandKind::Home, 1, 4});
     CHECK(allocations_over_cycles(rig, 20000) == 0);

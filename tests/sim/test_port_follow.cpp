@@ -56,7 +56,7 @@ void check_stepper_figures(StepperFollowRun& run) {
 TEST_CASE("stepper follows a planned path with corners, an arc and a dwell: no step lost, within 1 step + v x base period") {
   StepperRig rig(stepper_follow_options());
   StepperFollowRun run(rig);
-  const hal::Vec3 start = run.state().position;
+  const hal::Vec3 start = xyz(run.state().position);
   PathFeed feed(follow_machine(rig.options().sim.mechanics, rig.options().driver.axes), start);
   feed.plan(corner_arc_dwell_path(start, 90));
   run.follow(feed);
@@ -71,7 +71,7 @@ TEST_CASE("stepper follows a planned path with corners, an arc and a dwell: no s
 TEST_CASE("stepper following: in-position only on axes the path holds at rest") {
   StepperRig rig(stepper_follow_options());
   StepperFollowRun run(rig);
-  const hal::Vec3 start = run.state().position;
+  const hal::Vec3 start = xyz(run.state().position);
   PathFeed feed(follow_machine(rig.options().sim.mechanics, rig.options().driver.axes), start);
   feed.plan({planner::Line{1, pose3(start + hal::Vec3(20, 0, 0)), 50}});
   for (int i = 0; i < 100; ++i) {
@@ -91,7 +91,7 @@ TEST_CASE("stepper following: in-position only on axes the path holds at rest") 
 TEST_CASE("stepper: stop() mid-path brakes within v^2/2a without losing a step; follow after stop and move after follow work") {
   StepperRig rig(stepper_follow_options());
   StepperFollowRun run(rig);
-  const hal::Vec3 start = run.state().position;
+  const hal::Vec3 start = xyz(run.state().position);
   const auto machine = follow_machine(rig.options().sim.mechanics, rig.options().driver.axes);
   PathFeed feed(machine, start);
   feed.plan({planner::Line{1, pose3(start + hal::Vec3(60, -45, 20)), 90}});
@@ -106,7 +106,7 @@ TEST_CASE("stepper: stop() mid-path brakes within v^2/2a without losing a step; 
   const hal::Vec3 decel(2000, 2000, 2000);
   REQUIRE(run.stop(decel));
   REQUIRE(run.settle());
-  const hal::Vec3 rest = run.state().position;
+  const hal::Vec3 rest = xyz(run.state().position);
   for (int a = 0; a < 3; ++a) {
     INFO("axis " << a << " v " << sp.velocity[a]);
     const double brake = sp.velocity[a] * sp.velocity[a] / (2 * decel[a]);
@@ -117,7 +117,7 @@ TEST_CASE("stepper: stop() mid-path brakes within v^2/2a without losing a step; 
     CHECK(run.decoded(a) == rig.driver().step_count(a));
   }
   CHECK(rig.stepper().violations().total() == 0);
-  WARN("stepper stop from " << sp.velocity.norm() << " mm/s: rest " << (rest - sp.position).transpose() << " mm past the last setpoint");
+  WARN("stepper stop from " << sp.velocity.norm() << " mm/s: rest " << (rest - xyz(sp.position)).transpose() << " mm past the last setpoint");
 
   SECTION("follow after stop") {
     feed.restart(rest);
@@ -143,17 +143,17 @@ TEST_CASE("stepper: stop() mid-path brakes within v^2/2a without losing a step; 
 
 TEST_CASE("stepper following into a closed limit switch: that axis brakes as a move would, the others go on") {
   auto o = stepper_follow_options();
-  o.sim.mechanics.start = hal::Vec3(20, 330, 100);
-  o.driver.initial_position = o.sim.mechanics.start;
+  o.sim.mechanics.start = axes3(hal::Vec3(20, 330, 100));
+  o.driver.initial_position = xyz(o.sim.mechanics.start);
   StepperRig rig(o);
   StepperFollowRun run(rig);
   auto machine = follow_machine(o.sim.mechanics, o.driver.axes);
   machine.axes[0].travel_min = -100;  // a path the planner lets past X's end/ref switch (at -2)
-  PathFeed feed(machine, run.state().position);
+  PathFeed feed(machine, xyz(run.state().position));
   feed.plan({planner::Line{1, pose3(hal::Vec3(-15, 360, 100)), 30}});
   run.follow(feed);
   REQUIRE(run.settle());
-  const double x = run.state().position.x();
+  const double x = xyz(run.state().position).x();
   CHECK((run.state().status[0] & hal::status::kHardLimitNeg) != 0);
   CHECK(x < -2);         // into the switch
   CHECK(x > -2 - 0.25);  // braked at 4000 mm/s² from 30·|u_x| mm/s within a period of the edge
@@ -168,7 +168,7 @@ TEST_CASE("stepper follows seeded random paths: no step lost, within 1 step + v 
     DYNAMIC_SECTION("seed " << seed) {
       StepperRig rig(stepper_follow_options());
       StepperFollowRun run(rig);
-      const hal::Vec3 start = run.state().position;
+      const hal::Vec3 start = xyz(run.state().position);
       PathFeed feed(follow_machine(rig.options().sim.mechanics, rig.options().driver.axes), start);
       feed.plan(random_path(start, 40, 90, seed));
       run.follow(feed);
@@ -204,7 +204,7 @@ TEST_CASE("drive kit follows a planned path with corners, an arc and a dwell, mo
       auto o = drive_follow_options(mode);
       DriveRig rig(o);
       DriveFollowRun run(rig);
-      const hal::Vec3 start = run.state().position;
+      const hal::Vec3 start = xyz(run.state().position);
       PathFeed feed(follow_machine(o.sim.mechanics, o.driver.axes), start);
       feed.plan(corner_arc_dwell_path(start, 120));
       run.follow(feed, 2000);
@@ -220,7 +220,7 @@ TEST_CASE("drive kit: stop() mid-path brakes within v^2/2a; follow after stop an
       auto o = drive_follow_options(mode);
       DriveRig rig(o);
       DriveFollowRun run(rig);
-      const hal::Vec3 start = run.state().position;
+      const hal::Vec3 start = xyz(run.state().position);
       const auto machine = follow_machine(o.sim.mechanics, o.driver.axes);
       PathFeed feed(machine, start);
       feed.plan({planner::Line{1, pose3(start + hal::Vec3(80, -60, 30)), 140}});
@@ -234,9 +234,9 @@ TEST_CASE("drive kit: stop() mid-path brakes within v^2/2a; follow after stop an
       CHECK_FALSE(run.state().any(hal::status::kProfileEnd));
       CHECK_FALSE(run.state().any(hal::status::kInPosition));
       const hal::Vec3 decel(2000, 2000, 2000);
-      REQUIRE(rig.backend().stop(decel));
+      REQUIRE(rig.backend().stop(axes3(decel)));
       REQUIRE(run.settle());
-      const hal::Vec3 rest = run.state().position;
+      const hal::Vec3 rest = xyz(run.state().position);
       for (int a = 0; a < 3; ++a) {
         INFO("axis " << a << " v " << sp.velocity[a]);
         const double brake = sp.velocity[a] * sp.velocity[a] / (2 * decel[a]);
@@ -250,7 +250,7 @@ TEST_CASE("drive kit: stop() mid-path brakes within v^2/2a; follow after stop an
       run.follow(feed, 2000);
       check_drive_end(rig, run, feed.end(), o.driver.axes[0].position_unit_mm);
 
-      const hal::Vec3 goal = run.state().position + hal::Vec3(-12.345, 6.789, -3.21);
+      const hal::Vec3 goal = xyz(run.state().position) + hal::Vec3(-12.345, 6.789, -3.21);
       hal::AxisArray<hal::AxisMove> moves;
       for (int a = 0; a < 3; ++a) moves[a] = {goal[a], 100, 3000};
       REQUIRE(rig.backend().move(moves, 7));
@@ -270,7 +270,7 @@ TEST_CASE("drive kit follows seeded random paths: within the following-error lim
         auto o = drive_follow_options(mode);
         DriveRig rig(o);
         DriveFollowRun run(rig);
-        const hal::Vec3 start = run.state().position;
+        const hal::Vec3 start = xyz(run.state().position);
         PathFeed feed(follow_machine(o.sim.mechanics, o.driver.axes), start);
         feed.plan(random_path(start, 40, 150, seed));
         run.follow(feed, 2000);

@@ -35,8 +35,8 @@ TEST_CASE("stepper: a jog onto the cube top measures it to one step and retracts
 
 TEST_CASE("stepper: jogging into the end/ref switch stops with a Limit event, no step lost") {
   auto o = stepper_options();
-  o.sim.mechanics.start = hal::Vec3(8, 330, 100);
-  o.driver.initial_position = o.sim.mechanics.start;
+  o.sim.mechanics.start = axes3(hal::Vec3(8, 330, 100));
+  o.driver.initial_position = xyz(o.sim.mechanics.start);
   StepperRig rig(o);
   rig.start_core(stepper_core());
   REQUIRE(rig.start_mv({-30, 0, 0}) == core::Refusal::None);
@@ -58,7 +58,7 @@ TEST_CASE("stepper: homing finds the end/ref switch and the synthesised index, r
   auto home_from = [](hal::Vec3 start) {
     auto o = stepper_options();
     o.sim.scene = sim::Scene();
-    o.sim.mechanics.start = start;
+    o.sim.mechanics.start = axes3(start);
     o.driver.initial_position = hal::Vec3(0, 0, 0);  // unknown: counts from wherever it stands
     StepperRig rig(o);
     auto c = stepper_core();
@@ -68,7 +68,7 @@ TEST_CASE("stepper: homing finds the end/ref switch and the synthesised index, r
     REQUIRE(rig.run_until([&] { return !rig.take(EventKind::Homed).empty(); }, 60));
     CHECK(rig.core().snapshot().referenced);
     CHECK(rig.stepper().violations().total() == 0);
-    return hal::Vec3(rig.mechanics().carriage() - rig.position());  // machine frame vs reported
+    return hal::Vec3(xyz(rig.mechanics().carriage()) - rig.position());  // machine frame vs reported
   };
   hal::Vec3 a = home_from({150, 120, 300});
   hal::Vec3 b = home_from({60, 400, 450});

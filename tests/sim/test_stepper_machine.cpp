@@ -18,7 +18,7 @@ TEST_CASE("a million steps of random moves on three axes: none lost, no timing v
   std::mt19937 rng(1996);
   std::uniform_real_distribution<double> where(-40, 40), speed(5, 90), accel(500, 4000);
   std::uniform_int_distribution<int> cycles_before_retarget(1, 400), mask_dist(1, 7);
-  const hal::Vec3 centre = o.sim.mechanics.start;
+  const hal::Vec3 centre = xyz(o.sim.mechanics.start);
   std::int64_t total = 0;
   hal::AxisArray<std::int64_t> last{rig.stepper().steps(0), rig.stepper().steps(1), rig.stepper().steps(2)};
   hal::AxisArray<double> target{centre.x(), centre.y(), centre.z()};
@@ -86,7 +86,7 @@ TEST_CASE("the machine counts every timing violation of a sloppy driver") {
 
 TEST_CASE("switches and STOP reach the status register with the pin map's sense") {
   sim::MechanicsConfig mc;
-  mc.start = hal::Vec3(-3, 330, 100);  // X in its home cam (closes 2 mm beyond travel_min)
+  mc.start = axes3(hal::Vec3(-3, 330, 100));  // X in its home cam (closes 2 mm beyond travel_min)
   sim::Mechanics mech(mc, sim::Scene());
   hal::SharedPortSpace port("", 0x378, 100);
   sim::StepperMachine m(sim::StepperMachineConfig{}, mech, port);

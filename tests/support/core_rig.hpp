@@ -20,6 +20,14 @@ using core::EventKind;
 using core::Mode;
 using hal::Vec3;
 
+// The X Y Z machine's axes as a Vec3 and back (the other axes 0).
+inline Vec3 xyz(const hal::AxisVec& p) { return p.head<3>(); }
+inline hal::AxisVec axes3(const Vec3& v) {
+  hal::AxisVec a = hal::AxisVec::Zero();
+  a.head<3>() = v;
+  return a;
+}
+
 class VirtualClock final : public hal::Clock {
  public:
   hal::Nanos now() const noexcept override { return t_; }
@@ -81,9 +89,9 @@ class MotionRig {
       if (e.kind == EventKind::Reply && e.seq == c.seq) return e.refusal;
     return core::Refusal::Hardware;  // no reply: a test failure shows it
   }
-  core::Refusal start_mv(Vec3 percent) { return send({CommandKind::StartMv, 0, 0, percent}); }
-  core::Refusal go_to(Vec3 target, double speed = 0) { return send({CommandKind::GoTo, 0, 0, target, speed}); }
-  core::Refusal hand(Vec3 delta, double speed = 10) { return send({CommandKind::HandMv, 0, 0, delta, speed}); }
+  core::Refusal start_mv(Vec3 percent) { return send({CommandKind::StartMv, 0, 0, axes3(percent)}); }
+  core::Refusal go_to(Vec3 target, double speed = 0) { return send({CommandKind::GoTo, 0, 0, axes3(target), speed}); }
+  core::Refusal hand(Vec3 delta, double speed = 10) { return send({CommandKind::HandMv, 0, 0, axes3(delta), speed}); }
   core::Refusal simple(CommandKind k) { return send({k}); }
   // The stop lane (StopMv) and the parameter lane (Set), as the io thread uses them.
   void stop() {
@@ -105,7 +113,7 @@ class MotionRig {
   void clear_events() { events_.clear(); }
 
   Mode mode() const { return core_->mode(); }
-  Vec3 position() const { return core_->machine().position; }
+  Vec3 position() const { return core_->machine().position.head<3>(); }
   core::MotionCore& core() { return *core_; }
   VirtualClock& clock() { return clock_; }
   virtual hal::MotionBackend& backend() = 0;

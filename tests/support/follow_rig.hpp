@@ -66,7 +66,7 @@ class PathFeed {
   hal::Setpoint next() noexcept {
     const planner::Sample& smp = sampler_.advance(0.001, [this](planner::PlannedSegment& s) { return ring_->pop(s); });
     busy_ = smp.busy;
-    return {vec3(smp.pose), vec3(smp.velocity)};
+    return {axes3(vec3(smp.pose)), axes3(vec3(smp.velocity))};
   }
   bool done() const noexcept { return !busy_ && sampler_.idle(); }
   hal::Vec3 end() const { return vec3(planner_.position()); }
@@ -165,7 +165,7 @@ class StepperFollowRun {
     }
     cycle();
     REQUIRE(rig.backend().set_loops(true));
-    prev_ = cur_ = ref(state_.position);
+    prev_ = cur_ = ref(xyz(state_.position));
   }
 
   // One servo period: base ticks up to its end (measured), read_state, then follow(sp).
@@ -211,19 +211,19 @@ class StepperFollowRun {
     if (sp) {
       REQUIRE(rig_.backend().follow(*sp));
       prev_ = cur_;
-      cur_ = ref(sp->position);
+      cur_ = ref(xyz(sp->position));
       for (int a = 0; a < 3; ++a) {
         speed_[a] = std::max(std::abs(last_velocity_[a]), std::abs(sp->velocity[a])) * spm_[a];
         target_[a] = rig_.driver().steps_for(a, sp->position[a]);
       }
-      last_velocity_ = sp->velocity;
+      last_velocity_ = xyz(sp->velocity);
       measuring_ = true;
     }
   }
   // stop() instead of the next setpoint: the period after it is braking, not the path.
   bool stop(const hal::Vec3& decel) {
     measuring_ = false;
-    return rig_.backend().stop(decel);
+    return rig_.backend().stop(axes3(decel));
   }
   // Follows the whole path, then as many periods as the sampler holds still.
   void follow(PathFeed& feed, int settle_periods = 20) {

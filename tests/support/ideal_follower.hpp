@@ -35,7 +35,7 @@ class IdealFollower final : public hal::MotionBackend {
     out.tip_touched = tip;
     return true;
   }
-  bool read_latch(hal::Vec3& latched) noexcept override {
+  bool read_latch(hal::AxisVec& latched) noexcept override {
     latched = latch_;
     latch_valid_ = false;
     return true;
@@ -61,7 +61,7 @@ class IdealFollower final : public hal::MotionBackend {
     if (record) setpoints.push_back(sp);
     return true;
   }
-  bool stop(const hal::Vec3& decel) noexcept override {
+  bool stop(const hal::AxisVec& decel) noexcept override {
     ++stops;
     decel_ = decel;
     if (kind_ == Kind::Move) vel_.setZero();
@@ -83,11 +83,12 @@ class IdealFollower final : public hal::MotionBackend {
   // The probe edge at a given point (a scene's surface crossed between two cycles).
   void touch_at(const hal::Vec3& where) {
     tip = true;
-    latch_ = where;
+    latch_.setZero();
+    latch_.head<3>() = where;
     latch_valid_ = true;
   }
-  const hal::Vec3& velocity() const { return vel_; }
-  const hal::Vec3& where() const { return pos_; }  // where the axes are now
+  const hal::AxisVec& velocity() const { return vel_; }
+  hal::Vec3 where() const { return pos_.head<3>(); }  // where the X Y Z axes are now
 
   bool can_follow = true;
   long fail_at_call = -1;  // follow() call number (1-based) that returns false
@@ -140,8 +141,9 @@ class IdealFollower final : public hal::MotionBackend {
   }
   // Follow holds between calls: tick() runs before the core's follow() of the same cycle.
   Kind kind_ = Kind::Rest;
-  hal::Vec3 pos_ = hal::Vec3(100, 100, 100), vel_ = hal::Vec3::Zero(), decel_ = hal::Vec3::Zero();
-  hal::Vec3 target_ = hal::Vec3::Zero(), speed_ = hal::Vec3::Zero(), latch_ = hal::Vec3::Zero();
+  hal::AxisVec pos_ = (hal::AxisVec() << 100, 100, 100, 0, 0, 0, 0, 0, 0).finished(), vel_ = hal::AxisVec::Zero(),
+               decel_ = hal::AxisVec::Zero();
+  hal::AxisVec target_ = hal::AxisVec::Zero(), speed_ = hal::AxisVec::Zero(), latch_ = hal::AxisVec::Zero();
   bool loops_ = true, latch_valid_ = false, fresh_ = false;
   int lag_left_ = 0;
 };

@@ -32,7 +32,7 @@ inline StepperRigOptions stepper_options(const std::string& pins = "shd-adapter"
     a.max_accel = 4000;
   }
   o.driver.axes[2].home_direction = 1;
-  o.driver.initial_position = o.sim.mechanics.start;
+  o.driver.initial_position = xyz(o.sim.mechanics.start);
   o.sim.port_base = 0x378;
   o.sim.stepper.pins = o.driver.pins;
   o.sim.stepper.base = 0x378;

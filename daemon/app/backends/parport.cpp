@@ -28,7 +28,7 @@ class ParportMachine final : public Machine {
 }  // namespace
 
 const BackendType& parport_backend() {
-  static const BackendType kType{"parport", "a stepper machine on a real parallel port", false,
+  static const BackendType kType{"parport", "a stepper machine on a real parallel port", false, false,
                                  [](JsonObject& b, DaemonConfig& cfg) { read_stepper_section(b, cfg, false); },
                                  [](DaemonConfig& cfg) { finish_stepper_config(cfg, false); },
                                  build_machine<ParportMachine>};

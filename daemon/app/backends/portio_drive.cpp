@@ -24,7 +24,7 @@ class DriveKitMachine final : public Machine {
 }  // namespace
 
 const BackendType& portio_drive_backend() {
-  static const BackendType kType{"portio-drive", "DC servo drive kits on real port hardware", false,
+  static const BackendType kType{"portio-drive", "DC servo drive kits on real port hardware", false, true,
                                  [](JsonObject& b, DaemonConfig& cfg) { read_drive_section(b, cfg, false); },
                                  [](DaemonConfig& cfg) { finish_drive_config(cfg, false); },
                                  build_machine<DriveKitMachine>};

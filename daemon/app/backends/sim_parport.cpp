@@ -36,7 +36,7 @@ class SimParportMachine final : public Machine {
 }  // namespace
 
 const BackendType& sim_parport_backend() {
-  static const BackendType kType{"sim-parport", "a simulated stepper CMM on a simulated parallel port", false,
+  static const BackendType kType{"sim-parport", "a simulated stepper CMM on a simulated parallel port", false, false,
                                  [](JsonObject& b, DaemonConfig& cfg) { read_stepper_section(b, cfg, true); },
                                  [](DaemonConfig& cfg) { finish_stepper_config(cfg, true); },
                                  build_machine<SimParportMachine>};

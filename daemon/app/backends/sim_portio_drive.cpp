@@ -35,7 +35,7 @@ class SimDriveKitMachine final : public Machine {
 }  // namespace
 
 const BackendType& sim_portio_drive_backend() {
-  static const BackendType kType{"sim-portio-drive", "a simulated CMM with DC servo drive kits on simulated ports", false,
+  static const BackendType kType{"sim-portio-drive", "a simulated CMM with DC servo drive kits on simulated ports", false, true,
                                  [](JsonObject& b, DaemonConfig& cfg) { read_drive_section(b, cfg, true); },
                                  [](DaemonConfig& cfg) { finish_drive_config(cfg, true); },
                                  build_machine<SimDriveKitMachine>};

@@ -8,6 +8,16 @@ namespace imess::core {
 
 namespace in = hal::input;
 
+AxisArray<int> default_home_order(const AxisLayout& layout) noexcept {
+  AxisArray<int> order{};
+  int k = 0;
+  const int z = layout.cartesian_axis(2);
+  if (z >= 0) order[k++] = z;
+  for (int a = 0; a < layout.count; ++a)
+    if (a != z) order[k++] = a;
+  return order;
+}
+
 void Homing::begin(const CoreConfig& config, Nanos now) noexcept {
   config_ = &config;
   order_pos_ = 0;
@@ -24,8 +34,8 @@ bool Homing::jog(hal::MotionBackend& hw, double target, double speed) noexcept {
 }
 
 void Homing::brake(hal::MotionBackend& hw) noexcept {
-  Vec3 decel;
-  for (int a = 0; a < kAxes; ++a) decel[a] = config_->axes[a].max_accel;
+  AxisVec decel = AxisVec::Zero();
+  for (int a = 0; a < config_->layout.count; ++a) decel[a] = config_->axes[a].max_accel;
   hw.stop(decel);
 }
 
@@ -90,7 +100,7 @@ Homing::Result Homing::step(const hal::MachineState& ms, hal::MotionBackend& hw,
 // its home side, else straight into the search.
 Homing::Result Homing::start_axis(const hal::MachineState& ms, hal::MotionBackend& hw, Nanos now) noexcept {
   const auto& h = config_->homing;
-  if (order_pos_ >= kAxes) return Result::Done;
+  if (order_pos_ >= config_->layout.count) return Result::Done;
   axis_ = h.order[order_pos_];
   dir_ = config_->axes[axis_].home_direction < 0 ? -1 : 1;
   backed_off_ = reversed_ = have_entry_ = false;

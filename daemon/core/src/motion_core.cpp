@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace imess::core {
 
@@ -48,7 +49,7 @@ double param_value(const CoreParams& p, ParamId id) noexcept { return param_ref(
 
 namespace {
 CoreConfig resolved(CoreConfig c) {
-  for (auto& a : c.axes) {
+  for (auto& a : c.axes) {  // the unused entries too: they are never moved
     if (a.max_velocity <= 0) a.max_velocity = c.max_velocity;
     if (a.max_accel <= 0) a.max_accel = c.params.max_accel;
   }
@@ -62,6 +63,7 @@ MotionCore::MotionCore(hal::MotionBackend& hardware, CoreConfig config, hal::Sim
       limits_(config_),
       sim_(sim),
       params_out_(config_.params),
+      n_(config_.layout.count),
       referenced_(config_.referenced_at_start) {
   params_in_.back() = params_out_;
   params_in_.publish();
@@ -82,15 +84,20 @@ void MotionCore::set_param(ParamId id, double value) noexcept {
 
 void MotionCore::start(Nanos now) {
   if (!hw_.read_state(ms_)) throw std::runtime_error("the machine did not report its state after initialisation");
+  if (ms_.count != n_)
+    throw std::runtime_error("the backend drives " + std::to_string(ms_.count) + " axes, the configuration names " +
+                             std::to_string(n_) + " (" + config_.layout.names() + ")");
   mode_ = ms_.loops_closed() ? Mode::Idle : Mode::Free;
   mode_since_ = now;
-  for (int a = 0; a < kAxes; ++a)
+  for (int a = 0; a < n_; ++a)
     started_in_limit_[a] = ms_.limit_side(a);
   publish(now);
 }
 
 void MotionCore::cycle(Nanos now) noexcept {
   ++cycles_;
+  since_last_s_ = last_cycle_.count() < 0 ? config_.period_s : std::chrono::duration<double>(now - last_cycle_).count();
+  last_cycle_ = now;
   state_stale_ = false;
   if (!hw_.read_state(ms_)) {
     ++hardware_errors_;
@@ -149,18 +156,20 @@ void MotionCore::take_stop(Nanos now) noexcept {
 
 bool MotionCore::superseded(const Command& c) const noexcept {
   return c.ticket <= stop_taken_ &&
-         (c.kind == CommandKind::StartMv || c.kind == CommandKind::GoTo || c.kind == CommandKind::Home);
+         (c.kind == CommandKind::StartMv || c.kind == CommandKind::JogAx || c.kind == CommandKind::GoTo ||
+          c.kind == CommandKind::Home);
 }
 
 void MotionCore::handle(const Command& c, Nanos now) noexcept {
   if (superseded(c)) return reply(c, Refusal::None);  // sent before a stop: the stop wins
   switch (c.kind) {
-    case CommandKind::StartMv: reply(c, start_jog(c.v, now)); return;
+    case CommandKind::StartMv:
+    case CommandKind::JogAx: reply(c, start_jog(c.v, now)); return;
     case CommandKind::ForcePt:
-      measured(ms_.position, Vec3::Zero(), false, now);
+      measured(cartesian(ms_.position), Vec3::Zero(), false, now);
       reply(c, Refusal::None);
       return;
-    case CommandKind::GoTo: reply(c, go_to(c.v, c.speed, now)); return;
+    case CommandKind::GoTo: reply(c, go_to(c.v, c.axes, c.speed, now)); return;
     case CommandKind::Home: reply(c, start_homing(now)); return;
     case CommandKind::Free:
       if (moving_mode(mode_)) return reply(c, Refusal::Busy);
@@ -185,33 +194,33 @@ void MotionCore::handle(const Command& c, Nanos now) noexcept {
     case CommandKind::HandMv:
       if (!sim_) return reply(c, Refusal::NotSimulated);
       if (ms_.loops_closed()) return reply(c, Refusal::LoopsClosed);
-      sim_->push_by_hand(c.v, std::min(c.speed > 0 ? c.speed : 10.0, config_.max_velocity));
+      sim_->push_by_hand(cartesian(c.v), std::min(c.speed > 0 ? c.speed : 10.0, config_.max_velocity));
       return reply(c, Refusal::None);
   }
 }
 
-unsigned MotionCore::moving_axes(const Vec3& u) noexcept {
+unsigned MotionCore::moving_axes(const AxisVec& u) const noexcept {
   unsigned mask = 0;
-  for (int a = 0; a < kAxes; ++a)
+  for (int a = 0; a < n_; ++a)
     if (u[a] != 0) mask |= 1u << a;
   return mask;
 }
 
-AxisArray<hal::AxisMove> MotionCore::straight_moves(const Vec3& target, const Vec3& u, double speed,
+AxisArray<hal::AxisMove> MotionCore::straight_moves(const AxisVec& target, const AxisVec& u, double speed,
                                                    bool configured_accel) const noexcept {
   // Speeds and accelerations in proportion to the direction keep the path on a straight
   // line through acceleration, cruise and braking; the path values are the largest that
   // keep every moving axis within its own limit.
   double v = std::min(speed, config_.max_velocity), acc = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < n_; ++a) {
     const double ua = std::abs(u[a]);
     if (ua == 0) continue;
     const auto& ax = config_.axes[a];
     v = std::min(v, ax.max_velocity / ua);
     acc = std::min(acc, (configured_accel ? ax.max_accel : std::min(config_.params.max_accel, ax.max_accel)) / ua);
   }
-  AxisArray<hal::AxisMove> m{};
-  for (int a = 0; a < kAxes; ++a) {
+  AxisArray<hal::AxisMove> m{};  // the unused axes: 0, never in the mask
+  for (int a = 0; a < n_; ++a) {
     const double ua = std::abs(u[a]);
     m[a] = ua == 0 ? hal::AxisMove{ms_.position[a], config_.axes[a].max_velocity, config_.axes[a].max_accel}
                    : hal::AxisMove{target[a], v * ua, acc * ua};
@@ -219,21 +228,22 @@ AxisArray<hal::AxisMove> MotionCore::straight_moves(const Vec3& target, const Ve
   return m;
 }
 
-bool MotionCore::away_from_touch(const Vec3& u) const noexcept {
+bool MotionCore::away_from_touch(const AxisVec& u) const noexcept {
   constexpr double kCosAway = 0.5;  // within 60 degrees of straight back along the approach
   return !approach_dir_.isZero() && u.dot(approach_dir_) <= -kCosAway;
 }
 
-Refusal MotionCore::start_jog(const Vec3& percent, Nanos now) noexcept {
+Refusal MotionCore::start_jog(const AxisVec& percent, Nanos now) noexcept {
   if (mode_ == Mode::Fault) return Refusal::Faulted;
   if (mode_ == Mode::Home || mode_ == Mode::Path) return Refusal::Busy;  // a queue runs: StopMv first
   const auto& p = config_.params;
-  Vec3 v = percent / 100.0 * p.max_speed * p.speed_level;
+  // Every axis at its percentage of MaxSpeed: mm/s on a linear axis, deg/s on a rotary one.
+  AxisVec v = percent / 100.0 * p.max_speed * p.speed_level;
   if (percent.isZero()) {  // all speeds zero: the machine stands
     stand_still(now);
     return Refusal::None;
   }
-  for (int a = 0; a < kAxes; ++a)
+  for (int a = 0; a < n_; ++a)
     if (std::abs(v[a]) < kMinSpeed) v[a] = 0;  // a negligible share does not move the axis
   if (v.isZero()) return Refusal::TooSlow;
   if (mode_ == Mode::Retract || mode_ == Mode::Stopping) {  // starts once at rest (and the tip free)
@@ -255,14 +265,14 @@ Refusal MotionCore::start_jog(const Vec3& percent, Nanos now) noexcept {
   }
   pending_ = Pending::None;
   const double speed = v.norm();
-  Vec3 u = v.normalized();
+  AxisVec u = v.normalized();
   return start_straight(jog_target(u), u, speed, Mode::Jog, now);
 }
 
 // A jog or move along the line u toward target at path speed speed: notes which limit
 // switches it started in, closes the loops, starts every axis.
-Refusal MotionCore::start_straight(const Vec3& target, const Vec3& u, double speed, Mode mode, Nanos now) noexcept {
-  for (int a = 0; a < kAxes; ++a) started_in_limit_[a] = ms_.limit_side(a);
+Refusal MotionCore::start_straight(const AxisVec& target, const AxisVec& u, double speed, Mode mode, Nanos now) noexcept {
+  for (int a = 0; a < n_; ++a) started_in_limit_[a] = ms_.limit_side(a);
   if (!ms_.loops_closed() && !hw_.set_loops(true)) return Refusal::Hardware;
   if (!hw_.move(straight_moves(target, u, speed), moving_axes(u))) return Refusal::Hardware;
   motion_dir_ = u;
@@ -281,8 +291,8 @@ void MotionCore::stand_still(Nanos now) noexcept {
 }
 
 // An axis only moves away from a closed limit switch or, once referenced, a soft limit.
-void MotionCore::drop_axes_into_limits(Vec3& v) const noexcept {
-  for (int a = 0; a < kAxes; ++a) {
+void MotionCore::drop_axes_into_limits(AxisVec& v) const noexcept {
+  for (int a = 0; a < n_; ++a) {
     int s = sign(v[a]);
     if (s == 0) continue;
     bool in_limit = ms_.input(a, s < 0 ? in::kLimitNeg : in::kLimitPos);
@@ -293,9 +303,9 @@ void MotionCore::drop_axes_into_limits(Vec3& v) const noexcept {
 }
 
 // Where a jog in direction u runs: the end of the travel once referenced, else far away.
-Vec3 MotionCore::jog_target(const Vec3& u) const noexcept {
-  Vec3 target;
-  for (int a = 0; a < kAxes; ++a) {
+AxisVec MotionCore::jog_target(const AxisVec& u) const noexcept {
+  AxisVec target = AxisVec::Zero();
+  for (int a = 0; a < n_; ++a) {
     if (u[a] == 0)
       target[a] = ms_.position[a];
     else if (referenced_)
@@ -306,34 +316,39 @@ Vec3 MotionCore::jog_target(const Vec3& u) const noexcept {
   return target;
 }
 
-Refusal MotionCore::go_to(const Vec3& target, double speed, Nanos now) noexcept {
+Refusal MotionCore::go_to(const AxisVec& given_target, unsigned given, double speed, Nanos now) noexcept {
   if (mode_ == Mode::Fault) return Refusal::Faulted;
   if (mode_ == Mode::Home || mode_ == Mode::Retract || mode_ == Mode::Path) return Refusal::Busy;
+  AxisVec target = given_target;  // the axes not given stay where they are
+  for (int a = 0; a < n_; ++a)
+    if (!(given & (1u << a))) target[a] = ms_.position[a];
   if (referenced_)
-    for (int a = 0; a < kAxes; ++a)
+    for (int a = 0; a < n_; ++a)
       if (target[a] < config_.axes[a].travel_min || target[a] > config_.axes[a].travel_max) return Refusal::OutOfTravel;
   const double v = speed > 0 ? speed : config_.params.goto_speed * config_.params.speed_level;
   if (v < kMinSpeed) return Refusal::TooSlow;
   if (mode_ == Mode::Stopping) {
     pending_ = Pending::GoTo;
-    pending_v_ = target;
+    pending_v_ = given_target;
+    pending_axes_ = given;
     pending_speed_ = speed;
     return Refusal::None;
   }
   if ((mode_ == Mode::Jog || mode_ == Mode::Move) && (!ms_.motion_done() || state_stale_)) {
     stop_motion();
     pending_ = Pending::GoTo;
-    pending_v_ = target;
+    pending_v_ = given_target;
+    pending_axes_ = given;
     pending_speed_ = speed;
     state_stale_ = true;
     return Refusal::None;
   }
   pending_ = Pending::None;
-  Vec3 d = target - ms_.position;
-  for (int a = 0; a < kAxes; ++a)
+  AxisVec d = target - ms_.position;
+  for (int a = 0; a < n_; ++a)
     if (std::abs(d[a]) < kNegligibleTravel) d[a] = 0;  // this axis stays where it is
   if (d.isZero()) return Refusal::None;
-  Vec3 u = d.normalized();
+  AxisVec u = d.normalized();
   if (ms_.tip_touched && !away_from_touch(u)) return Refusal::TipTouched;
   return start_straight(target, u, v, Mode::Move, now);
 }
@@ -347,7 +362,7 @@ Refusal MotionCore::start_homing(Nanos now) noexcept {
   if (!ms_.loops_closed() && !hw_.set_loops(true)) return Refusal::Hardware;
   homed_ = false;
   homing_.begin(config_, now);
-  motion_dir_ = Vec3::Zero();
+  motion_dir_ = AxisVec::Zero();
   enter(Mode::Home, now);
   return Refusal::None;
 }
@@ -356,7 +371,7 @@ void MotionCore::launch_pending(Nanos now) noexcept {
   Pending what = pending_;
   pending_ = Pending::None;
   enter(Mode::Idle, now);  // at rest: the new motion starts from here
-  Refusal r = what == Pending::Jog ? start_jog(pending_v_, now) : go_to(pending_v_, pending_speed_, now);
+  Refusal r = what == Pending::Jog ? start_jog(pending_v_, now) : go_to(pending_v_, pending_axes_, pending_speed_, now);
   if (r != Refusal::None) warn(Warning::MoveRefused, ms_.position, now);
 }
 
@@ -364,10 +379,10 @@ void MotionCore::stop_motion() noexcept {
   // The configured deceleration of every axis, never the runtime MaxAccel; along a line the
   // path deceleration is the largest every moving axis can give, so the stop stays on it.
   double path = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < kAxes; ++a)
+  for (int a = 0; a < n_; ++a)
     if (motion_dir_[a] != 0) path = std::min(path, config_.axes[a].max_accel / std::abs(motion_dir_[a]));
-  Vec3 decel;
-  for (int a = 0; a < kAxes; ++a)
+  AxisVec decel = AxisVec::Zero();  // the unused axes: 0, never read
+  for (int a = 0; a < n_; ++a)
     decel[a] = motion_dir_[a] == 0 ? config_.axes[a].max_accel : path * std::abs(motion_dir_[a]);
   if (!hw_.stop(decel)) ++hardware_errors_;
 }
@@ -375,7 +390,7 @@ void MotionCore::stop_motion() noexcept {
 // ---------------------------------------------------------------- probe
 
 void MotionCore::on_probe_latch(Nanos now) noexcept {
-  Vec3 latched;
+  AxisVec latched = AxisVec::Zero();
   if (!hw_.read_latch(latched)) {
     ++hardware_errors_;
     return;
@@ -386,7 +401,10 @@ void MotionCore::on_probe_latch(Nanos now) noexcept {
     case Mode::Jog:  // a motor hit: the point lies r beyond the ball centre along the motion
       pending_ = Pending::None;
       approach_dir_ = motion_dir_;
-      measured(latched + r * motion_dir_, motion_dir_, true, now);
+      if (const Vec3 dir = cartesian_dir(motion_dir_); !dir.isZero())
+        measured(cartesian(latched) + r * dir, dir, true, now);
+      else  // a jog of axes other than X Y Z only: no approach to compensate along
+        measured(cartesian(latched), dir, false, now);
       retract_from(latched, motion_dir_, now);
       return;
     case Mode::Path:
@@ -398,10 +416,11 @@ void MotionCore::on_probe_latch(Nanos now) noexcept {
       pending_ = Pending::None;
       fail_queue(FailReason::UnexpectedHit, now);  // a queued segment: Failed id UnexpectedHit
       warn(Warning::UnexpectedHit, latched, now);
-      Vec3 dir = motion_dir_;
+      AxisVec dir = motion_dir_;
       if (dir.isZero()) {  // homing moves one axis: the overtravel tells the direction
-        Vec3 over = ms_.position - latched;
-        dir = over.norm() > 1e-6 ? Vec3(over.normalized()) : Vec3(Vec3::UnitZ());
+        AxisVec over = ms_.position - latched;
+        const AxisVec up = config_.layout.machine(Vec3::UnitZ());
+        dir = over.norm() > 1e-6 ? AxisVec(over.normalized()) : up.isZero() ? AxisVec(AxisVec::Unit(0)) : up;
       }
       approach_dir_ = dir;
       retract_from(latched, dir, now);
@@ -414,30 +433,31 @@ void MotionCore::on_probe_latch(Nanos now) noexcept {
         warn(Warning::HandHitTooSoon, latched, now);
         return;
       }
-      auto dir = hand_.direction_to(latched, config_.params.hand_min_travel);
+      auto dir = hand_.direction_to(cartesian(latched), config_.params.hand_min_travel);
       if (!dir) {
         warn(Warning::HandHitNoTravel, latched, now);
         return;
       }
       last_hand_hit_ = now;
-      approach_dir_ = *dir;
-      measured(latched + r * *dir, *dir, true, now);
+      approach_dir_ = config_.layout.machine(*dir);
+      measured(cartesian(latched) + r * *dir, *dir, true, now);
       return;
     }
     case Mode::Idle: warn(Warning::HitIgnored, latched, now); return;
   }
 }
 
-void MotionCore::probe_hit(const Vec3& latched, Nanos now) noexcept {
+void MotionCore::probe_hit(const AxisVec& latched, Nanos now) noexcept {
   const std::uint32_t id = held_ids_[0];
-  const Vec3 d = probe_dir_;
-  measured(latched + config_.params.tip_radius * d, d, true, now, id);
+  const AxisVec d = probe_dir_;
+  const Vec3 cd = cartesian_dir(d);
+  measured(cartesian(latched) + config_.params.tip_radius * cd, cd, true, now, id);
   held_count_ = 0;  // the search ends here; nothing queued follows it in the ring (the io side holds it)
   QueuedSegment q;
   while (segments_.pop(q))
     if (q.seg.id != id) segment_event(EventKind::Failed, q.seg.id, FailReason::Stopped, now);
   planner::Pose here{};
-  for (int a = 0; a < kAxes; ++a) here[a] = ms_.position[a];
+  for (int a = 0; a < n_; ++a) here[a] = ms_.position[a];
   sampler_.set_position(here);
   probe_retracting_ = true;
   probe_id_ = id;
@@ -452,24 +472,25 @@ void MotionCore::close_probe(EventKind k, FailReason why, Nanos now) noexcept {
   e.kind = k;
   e.id = probe_id_;
   e.fail = why;
-  e.p = retract_target_;  // Done: where the machine stands, the start of what was queued after
+  e.p = cartesian(retract_target_);
+  e.end = retract_target_;  // Done: where the machine stands, the start of what was queued after
   e.probe_end = true;
   e.time = now;
   emit(e);
 }
 
-void MotionCore::retract_from(const Vec3& latched, const Vec3& dir, Nanos now) noexcept {
+void MotionCore::retract_from(const AxisVec& latched, const AxisVec& dir, Nanos now) noexcept {
   // Once referenced, a retract stays within the soft limits too: it is shortened to end
   // at the travel's edge (or does not move) rather than leave it.
   double distance = config_.params.retract_distance;
   if (referenced_)
-    for (int a = 0; a < kAxes; ++a) {
+    for (int a = 0; a < n_; ++a) {
       const double d = -dir[a];  // the retract's direction
       const auto& ax = config_.axes[a];
       if (d > 0) distance = std::min(distance, std::max(0.0, (ax.travel_max - latched[a]) / d));
       if (d < 0) distance = std::min(distance, std::max(0.0, (latched[a] - ax.travel_min) / -d));
     }
-  Vec3 target = latched - distance * dir;
+  AxisVec target = latched - distance * dir;
   retract_target_ = target;
   motion_dir_ = -dir;
   // The retract first brakes the motion that hit: the configured acceleration, like a stop.
@@ -484,7 +505,7 @@ bool MotionCore::moving_into_limit(int axis, int side) const noexcept {
 }
 
 void MotionCore::check_limits(Nanos now) noexcept {
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < n_; ++a) {
     int side = ms_.limit_side(a);
     if (started_in_limit_[a] != 0 && side != started_in_limit_[a]) started_in_limit_[a] = 0;  // left it
     bool entered = side != 0 && side != started_in_limit_[a];
@@ -541,7 +562,7 @@ void MotionCore::update_mode(Nanos now) noexcept {
         start_path(now);
         break;
       }
-      hand_.update(ms_.position);
+      hand_.update(cartesian(ms_.position));
       break;
     case Mode::Fault: break;
   }
@@ -613,7 +634,7 @@ void MotionCore::fault(FaultKind f, Nanos now) noexcept {
   Event e;
   e.kind = EventKind::Fault;
   e.fault = f;
-  e.p = ms_.position;
+  e.p = cartesian(ms_.position);
   e.time = now;
   emit(e);
   enter(Mode::Fault, now);
@@ -647,7 +668,7 @@ bool MotionCore::pop_segment(planner::PlannedSegment& out) noexcept {
     }
     if (check_start_) {
       check_start_ = false;
-      for (int a = 0; a < kAxes; ++a)
+      for (int a = 0; a < n_; ++a)
         if (std::abs(q.seg.start[a] - ms_.position[a]) > kPathStartTolerance) {
           fail_segment(q.seg.id, q.seg.probe, FailReason::OffPath, path_now_);
           check_start_ = true;  // the next one must start here too
@@ -660,7 +681,8 @@ bool MotionCore::pop_segment(planner::PlannedSegment& out) noexcept {
       held_ids_[held_count_++] = q.seg.id;
     }
     if (q.seg.probe != planner::ProbePhase::None) {
-      Vec3 d(q.seg.end[0] - q.seg.start[0], q.seg.end[1] - q.seg.start[1], q.seg.end[2] - q.seg.start[2]);
+      AxisVec d = AxisVec::Zero();
+      for (int a = 0; a < n_; ++a) d[a] = q.seg.end[a] - q.seg.start[a];
       if (d.norm() > 1e-9) probe_dir_ = d / d.norm();
     }
     low_sent_ = false;
@@ -675,16 +697,16 @@ void MotionCore::start_path(Nanos now) noexcept {
   path_now_ = now;
   if (ms_.tip_touched) return fail_queue(FailReason::TipTouched, now);
   planner::Pose here{};
-  for (int a = 0; a < kAxes; ++a) here[a] = ms_.position[a];
+  for (int a = 0; a < n_; ++a) here[a] = ms_.position[a];
   sampler_.set_position(here);
   held_count_ = 0;
   check_start_ = true;
-  for (int a = 0; a < kAxes; ++a) started_in_limit_[a] = ms_.limit_side(a);
+  for (int a = 0; a < n_; ++a) started_in_limit_[a] = ms_.limit_side(a);
   if (!ms_.loops_closed() && !hw_.set_loops(true)) {
     ++hardware_errors_;
     return fail_queue(FailReason::Faulted, now);
   }
-  motion_dir_ = Vec3::Zero();
+  motion_dir_ = AxisVec::Zero();
   enter(Mode::Path, now);
   run_path(now);
 }
@@ -693,7 +715,12 @@ void MotionCore::start_path(Nanos now) noexcept {
 // only the running segment is left, idle when the queue ran out at rest.
 void MotionCore::run_path(Nanos now) noexcept {
   path_now_ = now;
-  const planner::Sample& smp = sampler_.advance(config_.period_s, [this](planner::PlannedSegment& s) { return pop_segment(s); });
+  // The path's time step: one period, or on a backend that bridges a late setpoint the time
+  // that really passed since the last cycle (a stalled host; at most kMaxPathStep, beyond
+  // which the card's watchdog has long stopped the machine).
+  const double dt = hw_.bridges_late_setpoints() ? std::clamp(since_last_s_, config_.period_s, kMaxPathStep)
+                                                 : config_.period_s;
+  const planner::Sample& smp = sampler_.advance(dt, [this](planner::PlannedSegment& s) { return pop_segment(s); });
   // The queue ran out at rest: the last Done waits until the machine has arrived (settle).
   const bool resting = sampler_.idle() && !smp.busy;
   if (!resting) release_arrivals(now);  // more came while settling: the machine goes on
@@ -723,7 +750,7 @@ void MotionCore::run_path(Nanos now) noexcept {
     return;
   }
   hal::Setpoint sp;
-  for (int a = 0; a < kAxes; ++a) {
+  for (int a = 0; a < n_; ++a) {
     sp.position[a] = smp.pose[a];
     sp.velocity[a] = smp.velocity[a];
   }
@@ -777,7 +804,7 @@ void MotionCore::fail_queue(FailReason why, Nanos now, bool tell) noexcept {
   QueuedSegment q;
   while (segments_.pop(q)) fail_segment(q.seg.id, q.seg.probe, stale(q) ? FailReason::Stopped : why, now);
   planner::Pose here{};
-  for (int a = 0; a < kAxes; ++a) here[a] = ms_.position[a];
+  for (int a = 0; a < n_; ++a) here[a] = ms_.position[a];
   sampler_.set_position(here);
   if (!tell) return;  // the stop lane: segments sent before it are stale by their ticket
   ++drops_;
@@ -825,6 +852,13 @@ void MotionCore::reply(const Command& c, Refusal r) noexcept {
   emit(e);
 }
 
+Vec3 MotionCore::cartesian_dir(const AxisVec& d) const noexcept {
+  Vec3 c = cartesian(d);
+  const double n = c.norm();
+  if (n < 1e-9) return Vec3::Zero();
+  return std::abs(n - 1) > 1e-12 ? Vec3(c / n) : c;  // X Y Z alone: already unit, kept to the bit
+}
+
 void MotionCore::measured(const Vec3& point, const Vec3& dir, bool compensated, Nanos now, std::uint32_t id) noexcept {
   Event e;
   e.kind = EventKind::MeasPt;
@@ -837,12 +871,12 @@ void MotionCore::measured(const Vec3& point, const Vec3& dir, bool compensated, 
   emit(e);
 }
 
-void MotionCore::warn(Warning w, const Vec3& where, Nanos now, const char* reason) noexcept {
+void MotionCore::warn(Warning w, const AxisVec& where, Nanos now, const char* reason) noexcept {
   Event e;
   e.kind = EventKind::Warn;
   e.warning = w;
   e.reason = reason;
-  e.p = where;
+  e.p = cartesian(where);
   e.time = now;
   emit(e);
 }
@@ -857,7 +891,7 @@ void MotionCore::publish(Nanos now) noexcept {
   s.tip_touched = ms_.tip_touched;
   s.homed = homed_;
   s.referenced = referenced_;
-  for (int a = 0; a < kAxes; ++a)
+  for (int a = 0; a < n_; ++a)
     s.limit[a] = ms_.limit_side(a);
   s.status = ms_.status;
   s.inputs = ms_.inputs;

@@ -24,8 +24,6 @@ struct Overloaded : F... {
 template <class... F>
 Overloaded(F...) -> Overloaded<F...>;
 
-core::Vec3 vec(const protocol::Xyz& p) { return {p.x, p.y, p.z}; }
-
 std::string fixed(double v, int decimals = 3) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
@@ -55,7 +53,7 @@ bool Server::to_core(Session& s, std::uint32_t slot, core::Command c) {
   c.client = s.id();
   c.seq = slot;
   if (config_.log_motion)
-    spdlog::info("client {}: {} {:.3f} {:.3f} {:.3f}", s.id(), command_verb(c.kind), c.v.x(), c.v.y(), c.v.z());
+    spdlog::info("client {}: {} {:.3f} {:.3f} {:.3f}", s.id(), command_verb(c.kind), c.v[0], c.v[1], c.v[2]);
   // A client that floods gets QueueFull itself; its share of the ring stays bounded, so the
   // ring never fills up for anyone else.
   if (s.info().in_flight >= config_.control.max_in_flight) {
@@ -84,16 +82,23 @@ void Server::stop_request(Session& s, std::uint32_t slot) {
 void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command& cmd) {
   using core::CommandKind;
   if (!allowed(s, cmd, slot)) return;
+  // StartMv, GoTo, HandMv: x y z on the machine's X Y Z axes; GoTo leaves the others where they are.
+  auto xyz_to_core = [&](CommandKind kind, const protocol::Xyz& p, double speed) {
+    core::Command c{kind};
+    if (!machine_vector(s, slot, p, c.v, c.axes)) return;
+    c.speed = speed;
+    to_core(s, slot, c);
+  };
   std::visit(
       Overloaded{
-          [&](const protocol::StartMv& c) { to_core(s, slot, {CommandKind::StartMv, 0, 0, vec(c.percent)}); },
+          [&](const protocol::StartMv& c) { xyz_to_core(CommandKind::StartMv, c.percent, 0); },
           [&](const protocol::StopMv&) { stop_request(s, slot); },
           [&](const protocol::ForcePt&) { to_core(s, slot, {CommandKind::ForcePt}); },
-          [&](const protocol::GoTo& c) { to_core(s, slot, {CommandKind::GoTo, 0, 0, vec(c.target), c.speed.value_or(0)}); },
+          [&](const protocol::GoTo& c) { xyz_to_core(CommandKind::GoTo, c.target, c.speed.value_or(0)); },
           [&](const protocol::Home&) { to_core(s, slot, {CommandKind::Home}); },
           [&](const protocol::Free&) { to_core(s, slot, {CommandKind::Free}); },
           [&](const protocol::Reset&) { to_core(s, slot, {CommandKind::Reset}); },
-          [&](const protocol::HandMv& c) { to_core(s, slot, {CommandKind::HandMv, 0, 0, vec(c.delta), c.speed.value_or(0)}); },
+          [&](const protocol::HandMv& c) { xyz_to_core(CommandKind::HandMv, c.delta, c.speed.value_or(0)); },
           [&](const protocol::Hello& c) { hello(s, slot, c); },
           [&](const protocol::Help&) { help(s, slot); },
           [&](const protocol::Status&) { reply(s, slot, format_ok("Status", status_line())); },
@@ -120,6 +125,7 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Queue&) { queue_status(s, slot); },
           [&](const protocol::Pause&) { to_core(s, slot, {CommandKind::Pause}); },
           [&](const protocol::Resume&) { to_core(s, slot, {CommandKind::Resume}); },
+          [&](const protocol::JogAx& c) { jog_axes(s, slot, c); },
       },
       cmd);
 }
@@ -141,7 +147,8 @@ void Server::hello(Session& s, std::uint32_t slot, const protocol::Hello& c) {
 
 void Server::help(Session& s, std::uint32_t slot) {
   std::string lines;
-  for (const auto& v : protocol::verb_table()) lines += protocol::help_line(v) + "\n";
+  for (const auto& v : protocol::verb_table())
+    if (auto line = machine_help_line(v); !line.empty()) lines += line + "\n";
   reply(s, slot, lines + format_ok("Help"));
 }
 
@@ -194,11 +201,12 @@ void Server::set_param(Session& s, std::uint32_t slot, const protocol::Set& c) {
 std::string Server::status_line() {
   const auto& snap = core_.snapshot();
   std::string limits;
-  for (int a = 0; a < core::kAxes; ++a)
+  const int n = layout().count;
+  for (int a = 0; a < n; ++a)
     if (snap.limit[a] != 0)
-      limits += (limits.empty() ? "" : ",") + std::string(1, hal::kAxisNames[a]) + (snap.limit[a] < 0 ? "neg" : "pos");
-  std::string line = "State " + std::string(mode_name(snap.mode)) + " Pos";
-  for (int a = 0; a < core::kAxes; ++a) {
+      limits += (limits.empty() ? "" : ",") + std::string(1, layout().letters[a]) + (snap.limit[a] < 0 ? "neg" : "pos");
+  std::string line = "State " + std::string(mode_name(snap.mode)) + " Pos";  // every axis, in the machine's order
+  for (int a = 0; a < n; ++a) {
     line.push_back(' ');
     protocol::append_mm(line, snap.position[a]);
   }

@@ -59,7 +59,7 @@ void Server::pump_events() {
         if (config_.log_motion) spdlog::info("state {}", mode_name(e.mode));
         break;
       case EventKind::Limit: {
-        std::string text = std::string(1, hal::kAxisNames[e.axis]) + (e.side < 0 ? " neg" : " pos");
+        std::string text = std::string(1, layout().letters[e.axis]) + (e.side < 0 ? " neg" : " pos");
         broadcast(protocol::format_event("Limit", text));
         spdlog::warn("limit switch {}", text);
         break;
@@ -97,10 +97,17 @@ void Server::pump_events() {
 
 void Server::report_position() {
   const auto& snap = core_.snapshot();
-  std::string line = protocol::format_curr_cor({snap.position.x(), snap.position.y(), snap.position.z()});
-  if (line == last_curr_cor_) return;  // only when it changed
-  last_curr_cor_ = line;
-  broadcast(line);
+  const hal::Vec3 p = layout().cartesian(snap.position);
+  std::string line = protocol::format_curr_cor({p.x(), p.y(), p.z()});
+  if (line != last_curr_cor_) {  // only when it changed
+    last_curr_cor_ = line;
+    broadcast(line);
+  }
+  if (layout().is_xyz()) return;
+  std::string ax = ax_pos_line();  // every axis by its letter, at the same rate, when it changed
+  if (ax == last_ax_pos_) return;
+  last_ax_pos_ = ax;
+  broadcast(ax);
 }
 
 void Server::log_periodic() {

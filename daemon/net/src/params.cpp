@@ -59,7 +59,7 @@ const std::array kParams{
               ParamHome::ReportHz, false, 3),
     net_param(plain("Period", "us", 100, 100000, 1000, "motion.period_us", "the motion loop's period, from the configuration's motion.period_us"),
               ParamHome::LoopPeriod, true, 0),
-    net_param(plain("Axes", "", core::kAxes, core::kAxes, core::kAxes, "", "axes the motion loop drives"),
+    net_param(plain("Axes", "", 1, core::kMaxAxes, 3, "", "axes the motion loop drives (axes.letters)"),
               ParamHome::AxisCount, true, 0),
     net_param(plain("Backend", "", 0, 0, 0, "", "the machine behind the motion loop, from the configuration's backend.type"),
               ParamHome::Backend, true, 0, true),
@@ -98,7 +98,7 @@ std::string param_text(const ParamSpec& spec, const ParamPlaces& at) {
     case ParamHome::Core: v = core::param_value(at.core.params(), spec.core_id); break;
     case ParamHome::ReportHz: v = at.report_hz; break;
     case ParamHome::LoopPeriod: v = at.period_us; break;
-    case ParamHome::AxisCount: v = core::kAxes; break;
+    case ParamHome::AxisCount: v = at.core.config().layout.count; break;
     case ParamHome::Backend: return std::string(at.backend);
   }
   char buf[64];

@@ -12,10 +12,7 @@ namespace imess::net {
 
 planner::AppendResult Server::plan_probe(const protocol::Probe& c) {
   const planner::Pose start = planner_.position();
-  planner::Pose target = start;
-  if (c.words.x) target[0] = *c.words.x;
-  if (c.words.y) target[1] = *c.words.y;
-  if (c.words.z) target[2] = *c.words.z;
+  const planner::Pose target = target_of(c.words, start);
   const auto& p = core_.params();
   const auto cycle = planner::probe_cycle(
       c.id, start, target, {p.prehit_distance, p.search_distance, c.words.f.value_or(p.goto_speed * p.speed_level), p.probe_speed});
@@ -33,26 +30,23 @@ planner::AppendResult Server::plan_probe(const protocol::Probe& c) {
 
 // Before the start is known: the axes the command names lie within the travel.
 planner::AppendResult Server::check_held(const QueuedCommand& c) const {
-  const protocol::PathWords* w = nullptr;
-  std::uint32_t id = 0;
-  if (const auto* m = std::get_if<protocol::MoveTo>(&c)) w = &m->words, id = m->id;
-  if (const auto* a = std::get_if<protocol::ArcTo>(&c)) w = &a->words, id = a->id;
-  if (const auto* p = std::get_if<protocol::Probe>(&c)) w = &p->words, id = p->id;
+  const protocol::PathWords* w = words_of(c);
+  const std::uint32_t id = std::visit([](const auto& q) { return q.id; }, c);
   if (!w) return {planner::PlanError::None, 0};
   const auto& m = planner_.machine();
-  const std::optional<double> named[3] = {w->x, w->y, w->z};
-  for (int a = 0; a < 3 && a < m.count; ++a)
-    if (named[a] && (*named[a] < m.axes[a].travel_min || *named[a] > m.axes[a].travel_max))
-      return {planner::PlanError::OutOfTravel, id, static_cast<std::int8_t>(a), *named[a]};
+  for (int a = 0; a < m.count; ++a)
+    if (const auto& named = *w->axis(m.axes[a].letter);
+        named && (*named < m.axes[a].travel_min || *named > m.axes[a].travel_max))
+      return {planner::PlanError::OutOfTravel, id, static_cast<std::int8_t>(a), *named};
   return {planner::PlanError::None, id};
 }
 
 // The Probe ended at `from`: what waited is planned from there, up to the next Probe (which
 // holds the rest again). One the planner refuses now fails with the planner's reason.
-void Server::plan_held(const core::Vec3& from) {
+void Server::plan_held(const core::AxisVec& from) {
   if (held_.empty()) return;
   planner::Pose here{};
-  for (int a = 0; a < core::kAxes; ++a) here[a] = from[a];
+  for (int a = 0; a < layout().count; ++a) here[a] = from[a];
   planner_.set_position(here);
   planning_ = true;
   while (!held_.empty() && !probe_open_) {

@@ -82,7 +82,7 @@ bool Server::plan_from_here(std::string& why) {
     return false;
   }
   planner::Pose here{};
-  for (int a = 0; a < core::kAxes; ++a) here[a] = snap.position[a];
+  for (int a = 0; a < layout().count; ++a) here[a] = snap.position[a];
   planner_.set_position(here);
   planning_ = true;
   return true;
@@ -91,6 +91,12 @@ bool Server::plan_from_here(std::string& why) {
 // One queued command: Ok when planned (or held behind a running Probe), Err when refused.
 void Server::queue_command(Session& s, std::uint32_t slot, const QueuedCommand& c) {
   const std::string_view verb = verb_of(c);
+  if (const auto* w = words_of(c); w && !axes_known(s, slot, *w)) return;  // a letter the machine lacks
+  if (std::holds_alternative<protocol::ArcTo>(c) &&
+      (layout().cartesian_axis(0) < 0 || layout().cartesian_axis(1) < 0 || layout().cartesian_axis(2) < 0)) {
+    reply(s, slot, format_err(ErrorCode::BadValue, "ArcTo needs the linear axes X Y Z; this machine has " + layout().names()));
+    return;
+  }
   if (const auto* arc = std::get_if<protocol::ArcTo>(&c)) {  // words that make no arc, wherever it starts
     std::string bad;
     arc_shape(*arc, bad);
@@ -135,10 +141,8 @@ planner::AppendResult Server::plan(const QueuedCommand& c) {
   if (const auto* m = std::get_if<protocol::MoveTo>(&c)) {
     planner::Line l;
     l.id = m->id;
-    l.target = start;
-    if (m->words.x) l.target[0] = *m->words.x;
-    if (m->words.y) l.target[1] = *m->words.y;
-    if (m->words.z) l.target[2] = *m->words.z;
+    l.target = target_of(m->words, start);
+    // F: the feed rule of the planner (axes.hpp): mm/s along X Y Z, else U V W, else deg/s.
     l.feed = m->words.f.value_or(move_feed);
     res = planner_.append(l);
   } else if (const auto* c_arc = std::get_if<protocol::ArcTo>(&c)) {
@@ -148,16 +152,15 @@ planner::AppendResult Server::plan(const QueuedCommand& c) {
     const auto& w = c_arc->words;
     std::string unused;
     const ArcShape shape = arc_shape(*c_arc, unused);
+    // In the machine's X Y Z axes (queue_command refused an ArcTo on a machine without them).
+    const int ix = layout().cartesian_axis(0), iy = layout().cartesian_axis(1), iz = layout().cartesian_axis(2);
     planner::Arc a;
     a.id = c_arc->id;
-    a.target = start;
-    if (w.x) a.target[0] = *w.x;
-    if (w.y) a.target[1] = *w.y;
-    if (w.z) a.target[2] = *w.z;
-    a.centre = {start[0] + w.i.value_or(0), start[1] + w.j.value_or(0), start[2] + w.k.value_or(0)};
+    a.target = target_of(w, start);
+    a.centre = {start[ix] + w.i.value_or(0), start[iy] + w.j.value_or(0), start[iz] + w.k.value_or(0)};
     a.normal = shape.normal;
     a.planar = w.n.has_value();
-    a.plane_axes = {0, 1, 2};
+    a.plane_axes = {static_cast<std::int8_t>(ix), static_cast<std::int8_t>(iy), static_cast<std::int8_t>(iz)};
     a.ccw = c_arc->ccw;
     a.turns = shape.extra_turns;
     a.feed = w.f.value_or(move_feed);
@@ -234,7 +237,7 @@ void Server::on_segment_end(const core::Event& e) {
   if (probe_closed) {
     probe_open_.reset();
     if (e.kind == core::EventKind::Done)
-      plan_held(e.p);
+      plan_held(e.end);
     else
       fail_held(core::FailReason::Stopped);  // the cycle failed: what was to follow it never runs
   }

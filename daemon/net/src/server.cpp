@@ -49,7 +49,9 @@ void Server::start() {
   port_ = acceptor_.local_endpoint().port();
   running_ = true;
   const auto& snap = core_.snapshot();  // clients get the position on connect; report changes only
-  last_curr_cor_ = protocol::format_curr_cor({snap.position.x(), snap.position.y(), snap.position.z()});
+  const hal::Vec3 p = layout().cartesian(snap.position);
+  last_curr_cor_ = protocol::format_curr_cor({p.x(), p.y(), p.z()});
+  if (!layout().is_xyz()) last_ax_pos_ = ax_pos_line();
   accept();
   if (wake_) {
     int fd = ::dup(wake_->fd());  // the descriptor object closes its own copy
@@ -181,7 +183,9 @@ void Server::admit(tcp::socket socket) {
               "client " + std::to_string(id) + " connected from " + session->peer() + (may_control ? "" : " (observer host)"));
   session->start();
   const auto& snap = core_.snapshot();
-  send(*session, protocol::format_curr_cor({snap.position.x(), snap.position.y(), snap.position.z()}));
+  const hal::Vec3 p = layout().cartesian(snap.position);
+  send(*session, protocol::format_curr_cor({p.x(), p.y(), p.z()}));
+  if (!layout().is_xyz()) send(*session, ax_pos_line());
 }
 
 void Server::closed(Session& s) {

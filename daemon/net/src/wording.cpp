@@ -38,6 +38,7 @@ std::string_view command_verb(CommandKind k) {
     case CommandKind::HandMv: return "HandMv";
     case CommandKind::Pause: return "Pause";
     case CommandKind::Resume: return "Resume";
+    case CommandKind::JogAx: return "JogAx";
   }
   return "Unknown";
 }

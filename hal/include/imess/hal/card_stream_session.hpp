@@ -43,7 +43,7 @@ class CardStreamSession {
   // segment_cycles periods and when the path comes to rest.
   bool follow(const Setpoint& sp) noexcept;
   // The latched positions of the newest status frame; false when it carries none.
-  bool latched(Vec3& out) noexcept;
+  bool latched(AxisVec& out) noexcept;
   // Positions are redefined relatively on the stream (Op::ShiftPosition, exact however old
   // the newest status frame is): the delta that makes axis read value now, and, once its
   // command is queued, the note that lays it over the positions until the card has it.

@@ -32,7 +32,8 @@ struct DriveKitAxisConfig {
   double max_speed = 150, max_accel = 3000;  // mm/s, mm/s²
   double index_pitch_mm = 5, index_width_mm = 0.04;  // synthesised index (0: none)
   int home_direction = -1;
-  std::uint16_t limit_neg_bit = 0, limit_pos_bit = 0, home_bit = 0;  // in the inputs port
+  std::uint16_t limit_neg_bit = 0, limit_pos_bit = 0, home_bit = 0;  // in the inputs port of its bank
+  std::uint8_t inputs_bank = 0;            // 0: inputs_port, 1: inputs2_port
   std::uint16_t enable_bit = 0;            // amplifier enable in the outputs port
 };
 
@@ -40,25 +41,31 @@ struct DriveKitConfig {
   int mode = 1;                         // 1: DAC mV; 2: increments per period, kit writes 0 back when taken
   std::uint16_t sync_port = 0x300;      // strobe written after each DAC update (0: none)
   std::uint16_t inputs_port = 0x304, outputs_port = 0x303;
+  std::uint16_t inputs2_port = 0;       // the switches of axes 4..9 (0: none; BRIEF's kits stop at 3)
   std::uint16_t latch_status_port = 0;  // bit 0 set by the counters when they latched; written 0 to re-arm
   std::uint16_t probe_bit = 0x0200;
   std::array<std::uint16_t, 4> safety_bits{0x1000, 0x2000, 0x4000, 0x8000};  // NC, 1 = closed; 0 = not fitted
   std::uint16_t safe_outputs = 0;       // outputs after a trip (everything off)
   double dac_limit_mv = 10000;
   double servo_period_ns = 1'000'000;
+  AxisLayout layout;                    // the axes driven: axes[0 .. layout.count)
   AxisArray<DriveKitAxisConfig> axes{};
-  Vec3 initial_position = Vec3::Zero();  // mm; the encoder's 16 bits are placed nearest to it
+  AxisVec initial_position = AxisVec::Zero();  // mm / degrees; the encoder's 16 bits are placed nearest to it
   bool tip_reversed = false;
 };
 
-// The two port maps of the MRM manual (BRIEF §5), X/Y/Z on the first three axis slots:
-// "mrm-a": sync 0x300, command 0x301-0x303, position 0x306-0x308 (+ ours: inputs 0x30B,
-//          outputs 0x30C, counter latches 0x30D-0x30F, latch status 0x310);
+// The two port maps of the MRM manual (BRIEF §5) for `count` axes (1..9) on consecutive
+// slots (shown for three; the arm's X Y C U1 U2 are five: command 0x301-0x305, position
+// 0x306-0x30A in map A):
+// "mrm-a": sync 0x300, command 0x301.., position 0x306.. (+ ours: inputs 0x30B, outputs
+//          0x30C, counter latches 0x30D.., then the latch status, then inputs 2);
 // "mrm-b": strobe 0x300, outputs 0x303 (0x302 bit 0 = gripper, unused), inputs 0x304,
-//          DAC 0x306-0x308, position 0x30B-0x30D (+ ours: latches 0x310-0x312, status 0x313).
-// Inputs: X limit-/limit+/home 0x0001/0x0002/0x0004, Y 0x0008/0x0010/0x0020, Z
-// 0x0040/0x0080/0x0100, probe 0x0200, safety 0x1000-0x8000; enables 0x1/0x2/0x4.
-std::optional<DriveKitConfig> named_drive_kit_map(std::string_view name);
+//          DAC 0x306.., position 0x30B.. (+ ours: latches 0x310.., then status, inputs 2).
+// Three axes: latch status 0x310 (a) / 0x313 (b). Inputs: axis 1..3 limit-/limit+/home
+// 0x0001/0x0002/0x0004, 0x0008/0x0010/0x0020, 0x0040/0x0080/0x0100, probe 0x0200, safety
+// 0x1000-0x8000; axes 4..8 the same pattern in inputs 2 (axis 9: no switches); enables
+// 1 << axis. The port ranges must not overlap: map B's positions reach its latches past 5.
+std::optional<DriveKitConfig> named_drive_kit_map(std::string_view name, int count = 3);
 
 class DriveKitDriver final : public MotionBackend {
  public:
@@ -68,11 +75,11 @@ class DriveKitDriver final : public MotionBackend {
   std::string describe() const override;
 
   bool read_state(MachineState& out) noexcept override;
-  bool read_latch(Vec3& latched) noexcept override;
+  bool read_latch(AxisVec& latched) noexcept override;
   bool set_loops(bool closed) noexcept override;
   bool move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept override;
   bool follow(const Setpoint& sp) noexcept override;
-  bool stop(const Vec3& decel) noexcept override;
+  bool stop(const AxisVec& decel) noexcept override;
   bool set_position(int axis, double value) noexcept override;
   bool reset_faults() noexcept override;
 
@@ -102,7 +109,8 @@ class DriveKitDriver final : public MotionBackend {
   void trip_safety_inputs(std::uint16_t in) noexcept;
   void widen_counters() noexcept;
   void latch_probe(bool contact) noexcept;
-  std::uint8_t sample_inputs(int a, std::uint16_t in, bool raw_probe) noexcept;
+  std::uint8_t sample_inputs(int a, const std::array<std::uint16_t, 2>& in, bool raw_probe) noexcept;
+  int n() const noexcept { return config_.layout.count; }
   bool servo_axis(int a, bool lim_neg, bool lim_pos, double dt) noexcept;
   std::uint32_t axis_status(int a, const MachineState& out) const noexcept;
 
@@ -111,7 +119,7 @@ class DriveKitDriver final : public MotionBackend {
   DriveKitConfig config_;
   AxisArray<Axis> axes_{};
   bool loops_closed_ = false, latch_valid_ = false, last_contact_ = false;
-  Vec3 latched_ = Vec3::Zero();
+  AxisVec latched_ = AxisVec::Zero();
   ServoInterval servo_interval_;
   std::uint16_t strobe_ = 0, outputs_ = 0;
   std::uint32_t safety_faults_ = 0;

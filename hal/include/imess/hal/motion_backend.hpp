@@ -31,13 +31,23 @@ inline constexpr std::uint8_t kLimitPos = 0x2, kLimitNeg = 0x4, kTip = 0x8, kHom
 }
 
 struct MachineState {
-  Vec3 position = Vec3::Zero();          // mm, actual (encoder), in machine coordinates
+  int count = 3;                         // the machine's axes (AxisLayout::count); the backend sets it
+  AxisVec position = AxisVec::Zero();    // mm or degrees, actual (encoder), in machine coordinates
   AxisArray<std::uint32_t> status{};     // status word per axis
   AxisArray<std::uint8_t> inputs{};      // module inputs per axis (raw)
   bool tip_touched = false;              // probe deflected, switch polarity already applied
 
-  bool all(std::uint32_t bit) const { return (status[0] & status[1] & status[2] & bit) != 0; }
-  bool any(std::uint32_t bit) const { return ((status[0] | status[1] | status[2]) & bit) != 0; }
+  // Every / any of the machine's axes (the unused entries never count).
+  bool all(std::uint32_t bit) const {
+    std::uint32_t w = bit;
+    for (int a = 0; a < count; ++a) w &= status[a];
+    return w != 0;
+  }
+  bool any(std::uint32_t bit) const {
+    std::uint32_t w = 0;
+    for (int a = 0; a < count; ++a) w |= status[a];
+    return (w & bit) != 0;
+  }
   bool input(int axis, std::uint8_t bit) const { return (inputs[axis] & bit) != 0; }
   // The limit switch an axis is in: -1 negative, +1 positive, 0 none.
   std::int8_t limit_side(int axis) const {
@@ -54,14 +64,14 @@ struct MachineState {
 // there, mm/s (the feed-forward). Consecutive setpoints are continuous and within the axes'
 // speed and acceleration limits: the planner made them so.
 struct Setpoint {
-  Vec3 position = Vec3::Zero();
-  Vec3 velocity = Vec3::Zero();
+  AxisVec position = AxisVec::Zero();
+  AxisVec velocity = AxisVec::Zero();
 };
 
 struct AxisMove {
-  double target = 0;    // mm, absolute
-  double velocity = 0;  // mm/s, > 0
-  double accel = 0;     // mm/s², > 0
+  double target = 0;    // mm (degrees for a rotary axis), absolute
+  double velocity = 0;  // mm/s (deg/s), > 0
+  double accel = 0;     // mm/s² (deg/s²), > 0
 };
 
 class MotionBackend {
@@ -76,7 +86,7 @@ class MotionBackend {
   // ---- real-time (noexcept, no allocation); false = the hardware did not answer properly ----
   virtual bool read_state(MachineState& out) noexcept = 0;
   // Positions latched at the probe edge; reading clears the latch-valid bit.
-  virtual bool read_latch(Vec3& latched) noexcept = 0;
+  virtual bool read_latch(AxisVec& latched) noexcept = 0;
   virtual bool set_loops(bool closed) noexcept = 0;
   // Starts a trapezoid move on the axes whose bit is set in axis_mask; others keep going.
   virtual bool move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept = 0;
@@ -88,8 +98,14 @@ class MotionBackend {
     (void)sp;
     return false;
   }
-  // Decelerates every axis to rest with the given per-axis deceleration (mm/s²).
-  virtual bool stop(const Vec3& decel) noexcept = 0;
+  // True when the hardware, given a setpoint late (the host stalled), goes on along the path
+  // at the last setpoint's velocity until the next comes (the servo card, up to its
+  // watchdog): the core then advances the path by the time that really passed, so the next
+  // setpoint continues where the machine went. False (the default): the machine waits or
+  // brakes, and the path advances one period per cycle.
+  virtual bool bridges_late_setpoints() const noexcept { return false; }
+  // Decelerates every axis to rest with the given per-axis deceleration (mm/s², deg/s²).
+  virtual bool stop(const AxisVec& decel) noexcept = 0;
   // Redefines the current position of one axis (homing: the index becomes value).
   virtual bool set_position(int axis, double value) noexcept = 0;
   // Clears latched fault bits (after the cause is gone); leaves the loops open.

@@ -13,6 +13,10 @@
 
 namespace imess::hal {
 
+// The pin maps drive three axes, X Y Z (machine axes 0..2): a parallel port's data register
+// has room for three step/dir pairs besides the enable.
+inline constexpr int kParportAxes = 3;
+
 enum class PinSignal : std::uint8_t {
   None,
   Step,      // output, per axis: one pulse per step

@@ -49,11 +49,11 @@ class ParportStepperDriver final : public MotionBackend, public BaseRateDriver {
   std::string describe() const override;
 
   bool read_state(MachineState& out) noexcept override;
-  bool read_latch(Vec3& latched) noexcept override;
+  bool read_latch(AxisVec& latched) noexcept override;
   bool set_loops(bool closed) noexcept override;
   bool move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept override;
   bool follow(const Setpoint& sp) noexcept override;
-  bool stop(const Vec3& decel) noexcept override;
+  bool stop(const AxisVec& decel) noexcept override;
   bool set_position(int axis, double value) noexcept override;
   bool reset_faults() noexcept override;
 

@@ -34,7 +34,7 @@ class ServoCardDriver final : public MotionBackend {
   std::string describe() const override;
 
   bool read_state(MachineState& out) noexcept override;
-  bool read_latch(Vec3& latched) noexcept override;
+  bool read_latch(AxisVec& latched) noexcept override;
   bool set_loops(bool closed) noexcept override;
   bool move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept override;
   // One Follow frame: the setpoint out, the card's state back in the same round trip; the
@@ -42,7 +42,10 @@ class ServoCardDriver final : public MotionBackend {
   // failed exchange latches a communication timeout (status bit 0 on every axis: the core's
   // CommLost) until reset_faults(): a setpoint stream with a gap cannot be resumed.
   bool follow(const Setpoint& sp) noexcept override;
-  bool stop(const Vec3& decel) noexcept override;
+  // Request/reply: the firmware goes on at the last Follow's velocity until its watchdog.
+  // (Streamed: the knots are stamped with the card's clock one period apart; not bridged.)
+  bool bridges_late_setpoints() const noexcept override { return !session_; }
+  bool stop(const AxisVec& decel) noexcept override;
   bool set_position(int axis, double value) noexcept override;
   bool reset_faults() noexcept override;
 

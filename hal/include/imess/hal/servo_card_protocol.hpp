@@ -7,6 +7,9 @@
 
 namespace imess::hal::card {
 
+// The card drives three axes, X Y Z (the link's axis tables name axes 0..2).
+inline constexpr int kAxes = 3;
+
 enum class Op : std::uint8_t {
   ReadInfo = 0x01,      // -> status, u8 axes, u8 booted, u8 params_loaded, u8 len, revision bytes
   Boot = 0x02,          // u8 len, firmware revision bytes -> status

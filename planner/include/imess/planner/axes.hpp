@@ -17,7 +17,8 @@ using Pose = std::array<double, kMaxAxes>;
 enum class AxisKind : std::uint8_t { Linear, Rotary };
 
 // Which group an axis belongs to for the feed rule (LinuxCNC "Feed Rate"): F is the path
-// speed of XYZ if any of them moves, else of UVW, else degrees per second over ABC.
+// speed of XYZ if any of them moves, else of UVW, else degrees per second over ABC. A
+// rotary axis of another letter (the MRM arm's U and V) counts with the rotary group.
 enum class AxisGroup : std::uint8_t { Primary, Secondary, Rotary };  // XYZ, UVW, ABC
 
 struct Axis {

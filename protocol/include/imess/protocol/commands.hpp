@@ -45,12 +45,31 @@ struct PathWords {  // named words; an axis not named keeps its planned position
   std::optional<double> x, y, z, i, j, k, f;
   std::optional<double> p;                   // ArcTo: turns
   std::optional<std::array<double, 3>> n;    // ArcTo: the plane's normal (N i j k)
+  std::optional<double> a, b, c, u, v, w;  // the other axis letters (mm or degrees)
+  // The word of an axis letter (X Y Z A B C U V W), nullptr for another letter.
+  std::optional<double>* axis(char letter) noexcept {
+    switch (letter) {
+      case 'X': return &x;
+      case 'Y': return &y;
+      case 'Z': return &z;
+      case 'A': return &a;
+      case 'B': return &b;
+      case 'C': return &c;
+      case 'U': return &u;
+      case 'V': return &v;
+      case 'W': return &w;
+      default: return nullptr;
+    }
+  }
+  const std::optional<double>* axis(char letter) const noexcept { return const_cast<PathWords*>(this)->axis(letter); }
   friend bool operator==(const PathWords&, const PathWords&) = default;
 };
 struct MoveTo { std::uint32_t id = 0; PathWords words; };          // straight line, mm, F mm/s
 struct ArcTo { std::uint32_t id = 0; bool ccw = true; PathWords words; };  // end XYZ, centre offset IJK, N, P
 struct Dwell { std::uint32_t id = 0; double seconds = 0; };
 struct Probe { std::uint32_t id = 0; PathWords words; };           // move until the probe edge: target XYZ, F
+// Jog named axes (C20 U-10): % of MaxSpeed (x SpeedLevel) each, mm/s or deg/s; others stand.
+struct JogAx { PathWords percent; };
 struct Queue {};                                            // pending count, running id
 struct Pause {};                                            // feed hold on the path
 struct Resume {};
@@ -62,6 +81,6 @@ inline constexpr int kWatchMaxMs = 60000;
 
 using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo, Home, Free,
                              Reset, Set, Get, Stats, HandMv, Quit, Replay, Take, Release, Watch, Version,
-                             MoveTo, ArcTo, Dwell, Queue, Pause, Resume, Probe>;
+                             MoveTo, ArcTo, Dwell, Queue, Pause, Resume, Probe, JogAx>;
 
 }  // namespace imess::protocol

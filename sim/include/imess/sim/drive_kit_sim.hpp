@@ -17,7 +17,12 @@ namespace imess::sim {
 
 struct DriveKitSimConfig {
   hal::DriveKitConfig ports;             // the same port map the driver uses
-  hal::AxisArray<double> mm_s_per_volt{20, 20, 20};  // mode 1 speed constant (rpm/V × mm/rev / 60)
+  // Mode 1 speed constant (rpm/V × mm/rev / 60; deg/s per volt for a rotary axis).
+  hal::AxisArray<double> mm_s_per_volt = [] {
+    hal::AxisArray<double> v;
+    v.fill(20);
+    return v;
+  }();
   double period_ns = 100'000;            // the kit's own integration period
 };
 

@@ -28,6 +28,7 @@ struct CardConfig {
   double in_position_window = 0.005;       // mm
   bool absolute_scales = true;             // false: counters read 0 where the machine stands at power-on
   double follow_period = 0.001;            // s, the host period assumed until Follow frames measured it
+  double follow_watchdog = 0.005;          // s, no Follow frame for this long (and 1.5 host periods): CommLost
 };
 
 class EmulatedCard {

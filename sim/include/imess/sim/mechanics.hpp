@@ -1,6 +1,7 @@
-// Mechanics: the physical machine behind any simulated controller — three axes with motor
+// Mechanics: the physical machine behind any simulated controller — its axes with motor
 // lag, limit/home switches and encoder index marks, a touch probe against the scene, and
-// hand pushes while the drives are free. World coordinates, mm.
+// hand pushes while the drives are free. Machine coordinates, mm (degrees for rotary axes);
+// the probe is at the machine's X Y Z (AxisLayout::cartesian) in the scene's world.
 #pragma once
 #include "imess/hal/motion_backend.hpp"
 #include "imess/sim/scene.hpp"
@@ -26,10 +27,11 @@ struct SimProbeConfig {
 };
 
 struct MechanicsConfig {
+  hal::AxisLayout layout;  // the axes simulated
   hal::AxisArray<SimAxisConfig> axes{SimAxisConfig{}, SimAxisConfig{},
                                      SimAxisConfig{0, 600, 5, 20, +1, 2, 5, 0.04}};  // Z homes up
   SimProbeConfig probe{};
-  Vec3 start = Vec3(430, 330, 100);  // ball centre at power-on
+  hal::AxisVec start = (hal::AxisVec() << 430, 330, 100, 0, 0, 0, 0, 0, 0).finished();  // at power-on
   double motor_time_constant = 0.004;  // s, velocity response of a driven axis
 };
 
@@ -53,11 +55,12 @@ class Mechanics final : public hal::SimHooks {
   struct ProbeEdge {
     bool valid = false;    // an edge happened during the last step
     bool contact = false;  // true: touched, false: re-seated
-    Vec3 position = Vec3::Zero();  // ball centre at the edge, exact
+    hal::AxisVec position = hal::AxisVec::Zero();  // the axes at the edge, exact
   };
   const ProbeEdge& probe_edge() const noexcept { return edge_; }
 
-  const Vec3& carriage() const noexcept { return pos_; }
+  const hal::AxisVec& carriage() const noexcept { return pos_; }
+  Vec3 ball_centre() const noexcept { return config_.layout.cartesian(pos_); }
   double velocity(int axis) const noexcept { return vel_[axis]; }
   bool tip_contact() const noexcept { return contact_; }
   bool tip_signal() const noexcept { return contact_ != config_.probe.normally_closed; }  // raw switch
@@ -76,19 +79,19 @@ class Mechanics final : public hal::SimHooks {
   bool hand_moving() const noexcept { return hand_active_; }
 
  private:
-  double deflection_at(const Vec3& p) const noexcept;
-  void find_edge(const Vec3& from, const Vec3& to, bool to_contact) noexcept;
+  double deflection_at(const hal::AxisVec& p) const noexcept;
+  void find_edge(const hal::AxisVec& from, const hal::AxisVec& to, bool to_contact) noexcept;
 
   MechanicsConfig config_;
   Scene scene_;
-  Vec3 pos_;
+  hal::AxisVec pos_;
   hal::AxisArray<double> vel_{}, demand_{};
   hal::AxisArray<bool> driven_{};
   hal::AxisArray<bool> position_driven_{};
   hal::AxisArray<double> commanded_{};
   bool contact_ = false;
   ProbeEdge edge_;
-  Vec3 hand_target_ = Vec3::Zero();
+  hal::AxisVec hand_target_ = hal::AxisVec::Zero();
   double hand_speed_ = 0;
   bool hand_active_ = false;
   unsigned long hard_stop_hits_ = 0;

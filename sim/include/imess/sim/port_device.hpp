@@ -50,13 +50,13 @@ class BaseTickPump final : public hal::MotionBackend {
     advance_to(clock_.now());
     return backend_.read_state(out);
   }
-  bool read_latch(hal::Vec3& latched) noexcept override { return backend_.read_latch(latched); }
+  bool read_latch(hal::AxisVec& latched) noexcept override { return backend_.read_latch(latched); }
   bool set_loops(bool closed) noexcept override { return backend_.set_loops(closed); }
   bool move(const hal::AxisArray<hal::AxisMove>& moves, unsigned axis_mask) noexcept override {
     return backend_.move(moves, axis_mask);
   }
   bool follow(const hal::Setpoint& sp) noexcept override { return backend_.follow(sp); }
-  bool stop(const hal::Vec3& decel) noexcept override { return backend_.stop(decel); }
+  bool stop(const hal::AxisVec& decel) noexcept override { return backend_.stop(decel); }
   bool set_position(int axis, double value) noexcept override { return backend_.set_position(axis, value); }
   bool reset_faults() noexcept override { return backend_.reset_faults(); }
 

@@ -8,7 +8,9 @@
 namespace imess::core {
 
 using hal::AxisArray;
-using hal::kAxes;
+using hal::AxisLayout;
+using hal::AxisVec;
+using hal::kMaxAxes;
 using hal::Nanos;
 using hal::Vec3;
 
@@ -83,6 +85,7 @@ enum class ParamId : std::uint8_t {
 double& param_ref(CoreParams& p, ParamId id) noexcept;
 double param_value(const CoreParams& p, ParamId id) noexcept;
 
+// Units: mm for a linear axis, degrees for a rotary one (speeds per second).
 struct AxisSettings {
   double travel_min = 0, travel_max = 1000;  // soft limits once referenced
   int home_direction = -1;                   // side of the home switch
@@ -95,6 +98,7 @@ struct AxisSettings {
 };
 
 struct HomingSettings {
+  // The axes in the order homed: order[0 .. AxisLayout::count) (default_home_order).
   AxisArray<int> order{2, 0, 1};  // Z first: lift the probe clear before X and Y move
   double search_speed = 30, index_speed = 5, creep_speed = 0.1;  // mm/s
   double limit_escape = 180;      // mm moved out of a limit before the search
@@ -103,7 +107,11 @@ struct HomingSettings {
   double phase_timeout = 120;     // s per phase before homing fails
 };
 
+// Z first (lift the probe clear), then the others in machine order: {2, 0, 1} on X Y Z.
+AxisArray<int> default_home_order(const AxisLayout& layout) noexcept;
+
 struct CoreConfig {
+  AxisLayout layout;  // the machine's axes: axes[0 .. layout.count)
   CoreParams params;
   AxisArray<AxisSettings> axes{AxisSettings{0, 1000, -1, 0}, AxisSettings{0, 1000, -1, 0}, AxisSettings{0, 600, 1, 600}};
   HomingSettings homing;
@@ -115,14 +123,16 @@ struct CoreConfig {
 // Commands through the ring. Stops and parameter changes have lanes of their own
 // (MotionCore::request_stop, MotionCore::set_param) and never wait behind these.
 // Pause / Resume: feed hold of the queued segments (Sampler::hold / resume), on the path.
-enum class CommandKind : std::uint8_t { StartMv, ForcePt, GoTo, Home, Free, Reset, HandMv, Pause, Resume };
+// JogAx: a StartMv of named axes (percent per machine axis in v), answered as JogAx.
+enum class CommandKind : std::uint8_t { StartMv, ForcePt, GoTo, Home, Free, Reset, HandMv, Pause, Resume, JogAx };
 
 struct Command {
   CommandKind kind = CommandKind::ForcePt;
   std::uint32_t client = 0;  // who asked (for the reply)
   std::uint32_t seq = 0;
-  Vec3 v = Vec3::Zero();     // StartMv: percent; GoTo: target; HandMv: delta
+  AxisVec v = AxisVec::Zero();  // StartMv: percent per axis; GoTo: target; HandMv: delta on X Y Z
   double speed = 0;          // GoTo, HandMv: mm/s; 0 = default
+  unsigned axes = ~0u;       // GoTo: the axes given (bit per machine axis); the others stay
   std::uint64_t ticket = 0;  // set by MotionCore::submit: orders commands against stops
 };
 
@@ -141,13 +151,14 @@ struct Event {
   FaultKind fault = FaultKind::CommLost;
   std::int8_t axis = -1, side = 0;    // Limit: axis index, -1 negative / +1 positive
   bool compensated = false;           // MeasPt: radius corrected (false: ForcePt)
-  Vec3 p = Vec3::Zero();              // MeasPt / Warn position
+  Vec3 p = Vec3::Zero();              // MeasPt / Warn / Fault position, Cartesian (X Y Z axes)
   Vec3 dir = Vec3::Zero();            // MeasPt: approach direction used
   const char* reason = nullptr;       // Warn: a static text saying why (HomingFailed), or none
   double radius = 0;                  // MeasPt: tip radius applied (0: ForcePt)
   std::uint32_t id = 0;               // Done, Failed: the segment's id; QueueDropped: drops;
                                       // MeasPt: the Probe's id (0: a jog or hand hit)
   bool probe_end = false;             // Done: closes a Probe cycle, p = where the machine stands
+  AxisVec end = AxisVec::Zero();      // Done closing a Probe: every axis where the machine stands
   FailReason fail = FailReason::Stopped;  // Failed, QueueDropped
   Nanos time{0};
 };
@@ -156,7 +167,7 @@ struct Snapshot {
   std::uint64_t cycle = 0;
   Nanos time{0};
   Mode mode = Mode::Free;
-  Vec3 position = Vec3::Zero();
+  AxisVec position = AxisVec::Zero();  // every axis, machine coordinates
   bool loops_closed = false, tip_touched = false, homed = false, referenced = false;
   AxisArray<std::int8_t> limit{};     // -1 negative switch, +1 positive, 0 none
   AxisArray<std::uint32_t> status{};  // raw axis status words

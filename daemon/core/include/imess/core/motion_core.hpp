@@ -63,25 +63,25 @@ class MotionCore {
   void handle(const Command& c, Nanos now) noexcept;
   void take_stop(Nanos now) noexcept;
   bool superseded(const Command& c) const noexcept;
-  Refusal start_jog(const Vec3& percent, Nanos now) noexcept;
-  Refusal go_to(const Vec3& target, double speed, Nanos now) noexcept;
+  Refusal start_jog(const AxisVec& percent, Nanos now) noexcept;
+  Refusal go_to(const AxisVec& target, unsigned given, double speed, Nanos now) noexcept;
   // A new motion while moving brakes to rest first and starts from there (straight paths,
   // no axis retargeted at a fraction of its acceleration).
   void launch_pending(Nanos now) noexcept;
   Refusal start_homing(Nanos now) noexcept;
   void stop_motion() noexcept;
   void on_probe_latch(Nanos now) noexcept;
-  void retract_from(const Vec3& latched, const Vec3& dir, Nanos now) noexcept;
+  void retract_from(const AxisVec& latched, const AxisVec& dir, Nanos now) noexcept;
   // A probe edge in a Probe's search: the hit (with the Probe's id), then the retract from it.
-  void probe_hit(const Vec3& latched, Nanos now) noexcept;
+  void probe_hit(const AxisVec& latched, Nanos now) noexcept;
   // The Failed or Done that closes a Probe whose hit has been reported (after its retract).
   void close_probe(EventKind k, FailReason why, Nanos now) noexcept;
   void check_limits(Nanos now) noexcept;
   void update_mode(Nanos now) noexcept;
   void stand_still(Nanos now) noexcept;
-  void drop_axes_into_limits(Vec3& v) const noexcept;
-  Vec3 jog_target(const Vec3& u) const noexcept;
-  Refusal start_straight(const Vec3& target, const Vec3& u, double speed, Mode mode, Nanos now) noexcept;
+  void drop_axes_into_limits(AxisVec& v) const noexcept;
+  AxisVec jog_target(const AxisVec& u) const noexcept;
+  Refusal start_straight(const AxisVec& target, const AxisVec& u, double speed, Mode mode, Nanos now) noexcept;
   void launch_pending_or_idle(Nanos now) noexcept;
   void update_retract(double in_mode, Nanos now) noexcept;
   void update_homing(Nanos now) noexcept;
@@ -102,19 +102,22 @@ class MotionCore {
   void emit(const Event& e) noexcept;
   void reply(const Command& c, Refusal r) noexcept;
   void measured(const Vec3& point, const Vec3& dir, bool compensated, Nanos now, std::uint32_t id = 0) noexcept;
-  void warn(Warning w, const Vec3& where, Nanos now, const char* reason = nullptr) noexcept;
+  // The Cartesian part (X Y Z axes) of a machine position, and of a direction as a unit vector.
+  Vec3 cartesian(const AxisVec& p) const noexcept { return config_.layout.cartesian(p); }
+  Vec3 cartesian_dir(const AxisVec& d) const noexcept;
+  void warn(Warning w, const AxisVec& where, Nanos now, const char* reason = nullptr) noexcept;
   void publish(Nanos now) noexcept;
   // Per-axis speeds and accelerations for a straight path along unit direction u at the
   // requested path speed, within max_velocity, every axis' speed limit and the runtime
   // acceleration (itself within every axis' limit; configured_accel: the axes' configured
   // values, for moves that begin by braking another). Axes with u = 0 are not in the mask.
-  AxisArray<hal::AxisMove> straight_moves(const Vec3& target, const Vec3& u, double speed,
+  AxisArray<hal::AxisMove> straight_moves(const AxisVec& target, const AxisVec& u, double speed,
                                           bool configured_accel = false) const noexcept;
-  static unsigned moving_axes(const Vec3& u) noexcept;
+  unsigned moving_axes(const AxisVec& u) const noexcept;
   bool moving_into_limit(int axis, int side) const noexcept;
   // May the machine move along u while the tip is deflected? Only away from the approach
   // of the hit that deflected it.
-  bool away_from_touch(const Vec3& u) const noexcept;
+  bool away_from_touch(const AxisVec& u) const noexcept;
 
   hal::MotionBackend& hw_;
   CoreConfig config_;   // params: the loop's copy, refreshed from the parameter lane
@@ -127,17 +130,18 @@ class MotionCore {
   std::atomic<std::uint64_t> stop_ticket_{0};
   std::uint64_t stop_taken_ = 0;             // loop: the newest stop acted on
   Mode stopped_from_ = Mode::Idle;           // what was braking in Mode::Stopping
-  Vec3 approach_dir_ = Vec3::Zero();         // direction of the last hit (zero: unknown)
+  AxisVec approach_dir_ = AxisVec::Zero();       // direction of the last hit (zero: unknown)
   EventQueue events_;
   EventSignal no_signal_;
   EventSignal* signal_ = &no_signal_;
   bool pushed_ = false;                      // this cycle pushed an event: notify at its end
   TripleBuffer<Snapshot> snapshot_;
 
+  int n_ = 3;  // the machine's axes (config_.layout.count)
   hal::MachineState ms_;
   Mode mode_ = Mode::Free;
   bool homed_ = false, referenced_ = false;
-  Vec3 motion_dir_ = Vec3::Zero();      // unit direction of the current jog / move
+  AxisVec motion_dir_ = AxisVec::Zero();    // unit direction of the current jog / move
   AxisArray<std::int8_t> started_in_limit_{};  // side of a limit an axis sat in when motion began
   Nanos mode_since_{0};
   Nanos last_hand_hit_{-1'000'000'000'000};
@@ -146,7 +150,8 @@ class MotionCore {
   int comm_failures_ = 0;
   bool state_stale_ = false;
   enum class Pending : std::uint8_t { None, Jog, GoTo } pending_ = Pending::None;
-  Vec3 pending_v_ = Vec3::Zero();
+  AxisVec pending_v_ = AxisVec::Zero();
+  unsigned pending_axes_ = ~0u;
   double pending_speed_ = 0;  // a move was commanded after this cycle's state was read
   std::uint64_t cycles_ = 0, events_dropped_ = 0, hardware_errors_ = 0;
   // Path mode. held_ids_: the ids the sampler holds (current, then the buffered one), in order.
@@ -155,10 +160,10 @@ class MotionCore {
   std::array<std::uint32_t, 4> held_ids_{};
   std::array<planner::ProbePhase, 4> held_probe_{};  // the probe phase of each held segment
   int held_count_ = 0;
-  Vec3 probe_dir_ = Vec3::Zero();  // unit approach of the Probe being run (set as it is popped)
+  AxisVec probe_dir_ = AxisVec::Zero();  // unit approach of the Probe being run (set as it is popped)
   bool probe_retracting_ = false;  // a Probe hit: its Done follows the retract
   std::uint32_t probe_id_ = 0;     // that Probe's id
-  Vec3 retract_target_ = Vec3::Zero();  // where the last retract ends
+  AxisVec retract_target_ = AxisVec::Zero();  // where the last retract ends
   bool failed_approach_ = false;   // the last segment failed was a Probe's approach ...
   std::uint32_t failed_id_ = 0;    // ... with this id (its search is not failed again)
   std::uint32_t drops_ = 0;       // queue drops by the loop (stamped on segments by the io side)
@@ -166,6 +171,7 @@ class MotionCore {
   bool low_sent_ = false;         // QueueLow sent since the last segment popped
   // Arrival: the ids whose path ended at rest, answered Done once the machine is in position.
   static constexpr double kSettleLimit = 0.5;  // s: a backend that never reports arrival
+  static constexpr double kMaxPathStep = 0.1;  // s: the most a late cycle advances the path
   struct Arrival {
     std::uint32_t id = 0;
     EventKind kind = EventKind::Done;  // Done, or Failed PartNotFound (a search that ended at rest)
@@ -175,6 +181,8 @@ class MotionCore {
   int arrivals_count_ = 0;
   Nanos settle_since_{0};
   Nanos path_now_{0};             // the cycle's time, for events raised inside pop_segment
+  Nanos last_cycle_{-1};          // the previous cycle's time (-1: none yet)
+  double since_last_s_ = 0;       // s since the previous cycle, the period at the first
 };
 
 }  // namespace imess::core

@@ -1,6 +1,6 @@
-// The planner's view of the machine the core drives: the three linear axes X Y Z with the
-// configured travel and the resolved per-axis limits (MotionCore::config()), and the loop's
-// period. The io side builds its Planner from this; tests do the same.
+// The planner's view of the machine the core drives: the configured axes (letters, kinds,
+// travel) with the resolved per-axis limits (MotionCore::config()), and the loop's period.
+// The io side builds its Planner from this; tests do the same.
 #pragma once
 #include "imess/core/core_types.hpp"
 #include "imess/planner/planner.hpp"
@@ -9,11 +9,11 @@ namespace imess::core {
 
 inline planner::Machine path_machine(const CoreConfig& resolved) {
   planner::Machine m;
-  m.count = kAxes;
-  for (int a = 0; a < kAxes; ++a) {
+  m.count = resolved.layout.count;
+  for (int a = 0; a < m.count; ++a) {
     auto& ax = m.axes[a];
-    ax.letter = planner::kAxisLetters[a];
-    ax.kind = planner::AxisKind::Linear;
+    ax.letter = resolved.layout.letters[a];
+    ax.kind = resolved.layout.kinds[a] == hal::AxisKind::Rotary ? planner::AxisKind::Rotary : planner::AxisKind::Linear;
     ax.travel_min = resolved.axes[a].travel_min;
     ax.travel_max = resolved.axes[a].travel_max;
     ax.max_velocity = resolved.axes[a].max_velocity;

@@ -21,6 +21,7 @@
 #include "imess/net/session.hpp"
 #include "imess/planner/planner.hpp"
 #include "imess/protocol/commands.hpp"
+#include "imess/protocol/verb_spec.hpp"
 
 namespace imess::net {
 
@@ -126,7 +127,7 @@ class Server {
   // probe.cpp: the Probe cycle's requests, the commands held behind a running Probe
   planner::AppendResult plan_probe(const protocol::Probe& c);
   planner::AppendResult check_held(const QueuedCommand& c) const;  // what can be checked before the start is known
-  void plan_held(const core::Vec3& from);  // after the Probe's Done: plan what waited, from where it ended
+  void plan_held(const core::AxisVec& from);  // after the Probe's Done: plan what waited, from where it ended
   void fail_held(core::FailReason why);
   bool plan_from_here(std::string& why);  // the planner starts where the machine stands
   void feed_segments();                   // final segments into the ring while it has room
@@ -134,6 +135,18 @@ class Server {
   void flush_check();                     // flush when the loop holds too little motion
   void on_segment_end(const core::Event& e);  // Done / Failed
   void drop_planned(core::FailReason why);    // fail what the loop has not received, plan anew
+  // axes.cpp: the machine's axes on the wire
+  const hal::AxisLayout& layout() const noexcept;
+  std::string no_axis_text(char letter) const;
+  bool machine_vector(Session& s, std::uint32_t slot, const protocol::Xyz& p, core::AxisVec& out, unsigned& given);
+  bool axes_known(Session& s, std::uint32_t slot, const protocol::PathWords& w);
+  // The named words of a queued command (nullptr for Dwell); a pose from start with every
+  // axis the words name replaced.
+  static const protocol::PathWords* words_of(const QueuedCommand& c) noexcept;
+  planner::Pose target_of(const protocol::PathWords& w, const planner::Pose& start) const noexcept;
+  void jog_axes(Session& s, std::uint32_t slot, const protocol::JogAx& c);
+  std::string ax_pos_line() const;
+  std::string machine_help_line(const protocol::VerbSpec& v) const;
   // events.cpp
   void wait_for_events();  // re-arms the wait on the EventFd
   void pump_events();
@@ -154,6 +167,7 @@ class Server {
   std::uint32_t next_id_ = 1;
   std::uint16_t port_ = 0;
   std::string last_curr_cor_;
+  std::string last_ax_pos_;  // AxPos: only on a machine whose axes are not exactly X Y Z
   std::uint64_t points_ = 0;
   std::uint64_t woken_ = 0, backstop_found_ = 0;  // drains by wake-up / events only the backstop found
   bool running_ = false;
