@@ -188,6 +188,7 @@ void read_sim_section(JsonObject& s, DaemonConfig& cfg) {
   cfg.sim.card.absolute_scales = s.boolean("absolute_scales", cfg.sim.card.absolute_scales);
   cfg.sim.card.firmware = s.text("firmware", cfg.sim.card.firmware);
   cfg.sim.card.follow_watchdog = s.number("watchdog_ms", cfg.sim.card.follow_watchdog * 1e3, 1, 1000) / 1e3;
+  cfg.sim_loop_time = s.text("time", "real", {"real", "loop"}) == "loop";
   if (auto pr = s.object("probe")) {
     m.probe.ball_radius = pr->number("ball_radius", m.probe.ball_radius, 0, 50);
     m.probe.pretravel = pr->number("pretravel", m.probe.pretravel, 0, 5);
@@ -222,6 +223,9 @@ void load_config_text(const std::string& text, const std::string& path, DaemonCo
   if (type && !type->any_axes && !cfg.core.layout.is_xyz())
     throw ConfigError(path + ": backend '" + cfg.backend + "' drives the three linear axes X Y Z; axes.letters \"" +
                       cfg.core.layout.names() + "\" needs a drive-kit backend (portio-drive, sim-portio-drive)");
+  if (cfg.sim_loop_time && cfg.backend != "sim-servo-card")
+    throw ConfigError(path + ": sim.time \"loop\" is for the sim-servo-card backend, whose simulated card runs in the "
+                             "motion loop; backend '" + cfg.backend + "' keeps \"real\"");
   cfg.notes.push_back("configuration read from " + path);
 }
 

@@ -184,15 +184,21 @@ int run(int argc, char** argv) {
   auto hits = open_journal(cfg.journal);  // before the machine: every hit must have a place to go
   if (!hits) return 2;
   core::MonotonicClock clock;
+  core::LoopClock loop_clock(clock.now());  // sim.time "loop": the machine's and the core's time
+  const hal::Clock& machine_clock = cfg.sim_loop_time ? static_cast<const hal::Clock&>(loop_clock) : clock;
   int failed = 1;
-  auto machine = start_controller(cfg, clock, cli.reboot, failed);
+  auto machine = start_controller(cfg, machine_clock, cli.reboot, failed);
   if (!machine) return failed;
 
   core::MotionCore core(machine->backend(), cfg.core, machine->sim_hooks());
   core::EventFd wake;  // the loop wakes the io thread through it when it pushed events
   core.set_event_signal(&wake);
-  core.start(clock.now());
+  core.start(machine_clock.now());
   core::LoopRunner runner(core, clock, std::chrono::nanoseconds(static_cast<long>(cfg.period_us * 1000)));
+  if (cfg.sim_loop_time) {
+    runner.use_loop_time(&loop_clock);
+    spdlog::info("sim.time loop: the simulated machine's clock moves one period per motion cycle (host stalls pause it)");
+  }
   log_realtime(runner.start(cfg.realtime));
 
   if (auto base = machine->start_base_thread(cfg.realtime); !base.empty()) spdlog::info("{}", base);

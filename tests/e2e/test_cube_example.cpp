@@ -13,10 +13,10 @@ using namespace imess::test;
 
 TEST_CASE("examples/cube: the probing script measures the cube within 1 um") {
   // 25 probing cycles at 300 mm/s on the default servo card. Its firmware goes on along the
-  // last setpoint while one is late and brakes with CommLost when none came for its
-  // watchdog: the loop runs as scripts/run runs it, on SCHED_FIFO where permitted, and
-  // fast-cmm.json sets the emulated card's watchdog to 25 ms, since on a two-core virtual
-  // test machine even a SCHED_FIFO thread was seen to wake up to 15 ms late.
+  // last setpoint while one is late and brakes with CommLost when none came for 5 ms; on a
+  // two-core virtual test machine even the SCHED_FIFO loop was seen to wake up to 15 ms
+  // late, so fast-cmm.json runs the simulated machine in loop time (sim.time "loop": a
+  // stall pauses it). The loop runs as scripts/run runs it, on SCHED_FIFO where permitted.
   DaemonProcess messd({"--config", std::string(IMESS_SOURCE_DIR) + "/tests/e2e/fast-cmm.json"},
                       DaemonProcess::Scheduling::RealtimeIfPermitted);
   auto run = run_program({"/usr/bin/python3", std::string(IMESS_SOURCE_DIR) + "/examples/cube/measure_cube.py",

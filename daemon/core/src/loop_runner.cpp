@@ -91,7 +91,7 @@ void LoopRunner::run() noexcept {
     while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {}
     Nanos woke = clock_.now();
     latency_.add(std::chrono::duration<double, std::micro>(woke - deadline).count());
-    core_.cycle(woke);
+    core_.cycle(loop_time_ ? loop_time_->advance(period_) : woke);
     Nanos done = clock_.now();
     cycle_time_.add(std::chrono::duration<double, std::micro>(done - woke).count());
     ++cycles;

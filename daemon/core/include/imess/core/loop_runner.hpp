@@ -17,6 +17,22 @@ class MonotonicClock final : public hal::Clock {
   Nanos now() const noexcept override;
 };
 
+// Loop time (the simulated machine's "sim.time": "loop"): the clock stands between motion
+// cycles and moves on one period per cycle, however late the cycle wakes. A simulated
+// machine on it sees a host that never stalls (tests on loaded machines); it runs behind
+// the wall clock by the stalls. Read from any thread, advanced by the LoopRunner.
+class LoopClock final : public hal::Clock {
+ public:
+  explicit LoopClock(Nanos start) noexcept : now_(start.count()) {}
+  Nanos now() const noexcept override { return Nanos(now_.load(std::memory_order_acquire)); }
+  Nanos advance(Nanos period) noexcept {
+    return Nanos(now_.fetch_add(period.count(), std::memory_order_acq_rel) + period.count());
+  }
+
+ private:
+  std::atomic<std::int64_t> now_;
+};
+
 struct LoopStats {
   double period_us = 0;
   std::uint64_t cycles = 0, overruns = 0;
@@ -49,6 +65,8 @@ class LoopRunner {
 
   // Locks memory and starts the thread; returns what real-time support was granted, in words.
   std::string start(bool want_realtime);
+  // Before start(): each cycle runs at loop time (LoopClock) instead of its wake-up time.
+  void use_loop_time(LoopClock* clock) noexcept { loop_time_ = clock; }
   void stop();
   const LoopStats& stats() noexcept { return stats_.read(); }
 
@@ -57,6 +75,7 @@ class LoopRunner {
 
   MotionCore& core_;
   const MonotonicClock& clock_;
+  LoopClock* loop_time_ = nullptr;
   Nanos period_;
   std::atomic<bool> running_{false};
   std::thread thread_;
