@@ -95,19 +95,19 @@ constexpr ArgList args(A... a) {
   return ArgList{{a...}, sizeof...(A)};
 }
 constexpr ArgSpec number(std::string_view name, double min, double max, std::string_view refusal) {
-  return {ArgKind::Number, name, false, min, max, false, false, false, {}, refusal};
+  return {ArgKind::Number, name, false, min, max, false, false, false, {}, refusal, {}};
 }
 constexpr ArgSpec word(std::string_view name) {
-  return {ArgKind::Word, name, false, 0, 0, false, false, false, {}, {}};
+  return {ArgKind::Word, name, false, 0, 0, false, false, false, {}, {}, {}};
 }
 constexpr ArgSpec choice(std::string_view name, std::string_view words, std::string_view refusal) {
-  return {ArgKind::Choice, name, false, 0, 0, false, false, false, words, refusal};
+  return {ArgKind::Choice, name, false, 0, 0, false, false, false, words, refusal, {}};
 }
 constexpr ArgSpec sequence(std::string_view name, std::string_view refusal) {
-  return {ArgKind::Sequence, name, false, 0, 0, false, false, false, {}, refusal};
+  return {ArgKind::Sequence, name, false, 0, 0, false, false, false, {}, refusal, {}};
 }
 constexpr ArgSpec axis_words(std::string_view name, std::string_view letters, std::string_view refusal) {
-  return {ArgKind::AxisWords, name, false, 0, 0, false, false, false, letters, refusal};
+  return {ArgKind::AxisWords, name, false, 0, 0, false, false, false, letters, refusal, {}};
 }
 constexpr ArgSpec with_vectors(ArgSpec a, std::string_view letters) { a.vectors = letters; return a; }
 constexpr ArgSpec optional(ArgSpec a) { a.optional = true; return a; }
