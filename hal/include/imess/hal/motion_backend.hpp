@@ -104,6 +104,16 @@ class MotionBackend {
   // setpoint continues where the machine went. False (the default): the machine waits or
   // brakes, and the path advances one period per cycle.
   virtual bool bridges_late_setpoints() const noexcept { return false; }
+  // Digital outputs, numbered 1..output_count() as the backend documents them (docs/hardware.md:
+  // the card's output 1 powers the probe; drive-kit and parallel-port outputs per map).
+  // set_output switches one; false: no such output, or the hardware did not take it. A
+  // safety trip or fault switches every output off on the backends whose hardware does so.
+  virtual int output_count() const noexcept { return 0; }
+  virtual bool set_output(int number, bool on) noexcept {
+    (void)number;
+    (void)on;
+    return false;
+  }
   // Decelerates every axis to rest with the given per-axis deceleration (mm/s², deg/s²).
   virtual bool stop(const AxisVec& decel) noexcept = 0;
   // Redefines the current position of one axis (homing: the index becomes value).
