@@ -22,6 +22,9 @@ struct BackendType {
   void (*finish)(DaemonConfig& cfg);
   // Builds and initialises the machine; throws std::runtime_error naming the problem.
   std::unique_ptr<Machine> (*make)(const DaemonConfig& cfg, const hal::Clock& clock, bool force_reboot);
+  // Output 1 powers the probe (the servo card's "measuring instrument on"): without an
+  // "outputs" section the machine has the output "probe", on at start.
+  bool probe_power_output = false;
 };
 
 // Every backend of this build, in the order error messages list them.

@@ -182,6 +182,46 @@ void read_journal_section(JsonObject& jn, DaemonConfig& cfg) {
   jn.finish();
 }
 
+// "outputs": name -> { number, settle_ms, at_start, probe_power }. Names go on the wire
+// (SetOut name on|off), so they are one word of letters, digits and '_'.
+constexpr double kDefaultProbeArmingMs = 100;
+
+void read_outputs_section(JsonObject& outs, DaemonConfig& cfg) {
+  auto& core = cfg.core;
+  core.output_count = 0;
+  cfg.outputs_given = true;
+  for (const auto& name : outs.keys()) {
+    if (name == "_comment") {
+      outs.text(name, "");
+      continue;
+    }
+    const bool word = !name.empty() && name.size() < core::OutputSettings{}.name.size() &&
+                      name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_") ==
+                          std::string::npos;
+    if (!word || name == "on" || name == "off")
+      outs.fail(name, "an output name of 1 to 15 letters, digits or '_' (not on/off), as SetOut names it");
+    if (core.output_count == core::kMaxOutputs) outs.fail(name, "at most " + std::to_string(core::kMaxOutputs) + " outputs");
+    auto o = outs.object(name);
+    if (!o) continue;
+    core::OutputSettings s;
+    std::copy(name.begin(), name.end(), s.name.begin());
+    s.number = static_cast<int>(o->whole("number", 1, 1, 32));
+    s.probe_power = o->boolean("probe_power", false);
+    s.at_start = o->boolean("at_start", s.probe_power);
+    s.settle_s = o->number("settle_ms", s.probe_power ? kDefaultProbeArmingMs : 0, 0, 60000) / 1000;
+    for (int i = 0; i < core.output_count; ++i) {
+      const auto& other = core.outputs[i];
+      if (other.number == s.number)
+        o->fail("number", "a number no other output has (" + std::to_string(s.number) + " is '" +
+                              std::string(other.name_view()) + "')");
+      if (other.probe_power && s.probe_power)
+        o->fail("probe_power", "false: one output powers the probe, and '" + std::string(other.name_view()) + "' does");
+    }
+    o->finish();
+    core.outputs[core.output_count++] = s;
+  }
+}
+
 void read_sim_section(JsonObject& s, DaemonConfig& cfg) {
   auto& m = cfg.sim.mechanics;
   m.start = s.axis_values("start", m.start, cfg.core.layout, 1e5);
@@ -217,6 +257,7 @@ void load_config_text(const std::string& text, const std::string& path, DaemonCo
   if (auto axes = top.object("axes")) read_axes_section(*axes, cfg);
   if (auto b = top.object("backend")) read_backend_section(*b, cfg);
   if (auto jn = top.object("journal")) read_journal_section(*jn, cfg);
+  if (auto o = top.object("outputs")) read_outputs_section(*o, cfg);
   if (auto s = top.object("sim")) read_sim_section(*s, cfg);
   top.finish();
   const auto* type = find_backend(cfg.backend);
@@ -299,6 +340,16 @@ void finish_config(DaemonConfig& cfg) {
   if (!cfg.sim_probe_nc_set) cfg.sim.mechanics.probe.normally_closed = cfg.card.tip_reversed;
   const auto* type = find_backend(cfg.backend);
   cfg.core.referenced_at_start = type && type->absolute_scales && cfg.sim.card.absolute_scales;
+  if (!cfg.outputs_given && type && type->probe_power_output) {  // the card's probe output
+    core::OutputSettings probe;
+    const std::string name = "probe";
+    std::copy(name.begin(), name.end(), probe.name.begin());
+    probe.number = 1;
+    probe.probe_power = probe.at_start = true;
+    probe.settle_s = kDefaultProbeArmingMs / 1000;
+    cfg.core.outputs[0] = probe;
+    cfg.core.output_count = 1;
+  }
   finish_backend_config(cfg);
   for (int a = 0; a < layout.count; ++a) {
     auto& s = cfg.core.axes[a];

@@ -134,6 +134,12 @@ std::optional<std::vector<JsonObject>> JsonObject::objects(const std::string& ke
   return out;
 }
 
+std::vector<std::string> JsonObject::keys() const {
+  std::vector<std::string> out;
+  for (auto it = j_.begin(); it != j_.end(); ++it) out.push_back(it.key());
+  return out;
+}
+
 void JsonObject::finish(const std::string& accepted) const {
   for (auto it = j_.begin(); it != j_.end(); ++it) {
     if (read_.count(it.key())) continue;

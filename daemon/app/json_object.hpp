@@ -40,6 +40,8 @@ class JsonObject {
   // Array of objects (may be absent: nullopt).
   std::optional<std::vector<JsonObject>> objects(const std::string& key);
   bool has(const std::string& key) const { return j_.contains(key); }
+  // Every key of the object, in the file's order as the JSON library keeps it (sorted).
+  std::vector<std::string> keys() const;
   // Marks a key read by hand (has / is_*) rather than by a typed getter: accepted here.
   void accept(const std::string& key) { read_.insert(key); }
   bool is_string(const std::string& key) const { return has(key) && j_.at(key).is_string(); }

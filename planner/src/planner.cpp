@@ -52,7 +52,7 @@ std::string describe(const AppendResult& r, const Machine& m) {
       return seg + (r.value > 0 ? "feed must be a number of at least " + std::to_string(r.value)
                                 : std::string("feed must be a number > 0"));
     case PlanError::BadPose: return seg + "target (and an arc's centre) must be a finite number on every axis";
-    case PlanError::BadDwell: return seg + "dwell must be a number of seconds >= 0";
+    case PlanError::BadDwell: return seg + "a dwell or an output's hold must be a number of seconds >= 0";
     case PlanError::ArcBadPlane: return seg + "arc plane must be three distinct linear axes of the machine";
     case PlanError::ArcRadiusMismatch:
       return seg + "arc end is not on the circle: its radius differs from the start's by " + std::to_string(r.value) +
@@ -110,11 +110,13 @@ AppendResult Planner::append(const Request& request) {
     seg.profile = rest_profile(d->seconds);
   } else {
     const auto& o = std::get<SetOutput>(request);
+    if (!(o.hold >= 0) || !std::isfinite(o.hold)) return {PlanError::BadDwell, o.id};
     seg.id = o.id;
     seg.kind = SegmentKind::SetOutput;
     seg.output = o.output;
     seg.output_value = o.value;
-    seg.profile = rest_profile(0);
+    seg.t_cruise = o.hold;
+    seg.profile = rest_profile(o.hold);
   }
   queue_rest(seg);
   return {PlanError::None, seg.id};

@@ -31,6 +31,7 @@ void Sampler::set_position(const Pose& position) noexcept {
 
 void Sampler::begin_tick() noexcept {
   sample_.done_count = 0;
+  sample_.switch_count = 0;
   sample_.starved = false;
 }
 
@@ -38,13 +39,15 @@ void Sampler::promote() noexcept {
   current_ = next_;
   has_current_ = true;
   tau_ = 0;
+  if (current_.kind == SegmentKind::SetOutput && sample_.switch_count < static_cast<int>(sample_.switches.size()))
+    sample_.switches[sample_.switch_count++] = OutputSwitch{current_.id, current_.output, current_.output_value};
 }
 
 void Sampler::complete() noexcept {
   position_ = current_.end;
   has_current_ = false;
   if (sample_.done_count < kMaxCompletionsPerTick)
-    sample_.done[sample_.done_count++] = Completion{current_.id, current_.kind, current_.output, current_.output_value, current_.probe};
+    sample_.done[sample_.done_count++] = Completion{current_.id, current_.kind, current_.probe};
   if (!has_next_ && current_.v1 > 0 && !scaled_) starving_ = true;  // ran off the end at speed
 }
 

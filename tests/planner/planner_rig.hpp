@@ -21,6 +21,7 @@ inline constexpr double kT = 0.001;  // the loop period, s
 struct Tick {
   Pose pose{}, velocity{};
   std::vector<std::uint32_t> done;
+  std::vector<OutputSwitch> switches;  // SetOutput segments that began this tick
   bool held = false;
 };
 
@@ -74,6 +75,7 @@ inline RunResult run(Planner& planner, const std::vector<Request>& requests, con
     k.held = smp.held;
     r.starved = r.starved || smp.starved;
     for (int i = 0; i < smp.done_count; ++i) k.done.push_back(smp.done[i].id), r.done.push_back(smp.done[i].id);
+    for (int i = 0; i < smp.switch_count; ++i) k.switches.push_back(smp.switches[i]);
     r.ticks.push_back(std::move(k));
     if (flushed && planner.ready() == 0 && planner.pending() == 0 && ring.size() == 0 && sampler.idle() &&
         !smp.busy)

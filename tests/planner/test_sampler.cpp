@@ -80,6 +80,52 @@ TEST_CASE("sampler: several zero-time segments in one tick all complete, in orde
   CHECK(r.done == want);
   CHECK(r.ticks.front().done.size() == static_cast<std::size_t>(kMaxCompletionsPerTick));
   CHECK(r.ticks.back().pose == pose_of({1, 0, 0}));
+  // Every output switch is reported once, in order, with its output and value.
+  std::vector<std::uint32_t> switched;
+  for (const auto& t : r.ticks)
+    for (const auto& sw : t.switches) {
+      CHECK(sw.output == sw.id % 4);
+      CHECK(sw.value == 1.0 * sw.id);
+      switched.push_back(sw.id);
+    }
+  want.pop_back();
+  CHECK(switched == want);
+}
+
+TEST_CASE("sampler: an output switches when the path before it is at rest, and the path holds for its hold time") {
+  Planner p(make_machine("XYZ", -1000, 1000, 100, 1000));
+  const double hold = 0.05;
+  const auto r = run(p, {Line{1, pose_of({10, 0, 0}), 100}, SetOutput{2, 3, 1, hold}, Line{3, pose_of({20, 0, 0}), 100}});
+  int at = -1;
+  for (std::size_t k = 0; k < r.ticks.size(); ++k)
+    if (!r.ticks[k].switches.empty()) {
+      REQUIRE(at < 0);  // once
+      at = static_cast<int>(k);
+      CHECK(r.ticks[k].switches[0].id == 2);
+      CHECK(r.ticks[k].switches[0].output == 3);
+      CHECK(r.ticks[k].switches[0].value == 1.0);
+    }
+  REQUIRE(at > 0);
+  // The move before has arrived, at rest, by the switching tick (the 1 completes in it or earlier).
+  CHECK(r.ticks[at].pose[0] == 10.0);
+  CHECK(r.ticks[at].velocity[0] == 0.0);
+  CHECK(std::find(r.done.begin(), r.done.end(), 1u) < std::find(r.done.begin(), r.done.end(), 2u));
+  // The path stays there for the hold, then the SetOutput completes and the next move starts.
+  int done2 = -1;
+  for (std::size_t k = at; k < r.ticks.size() && done2 < 0; ++k)
+    for (auto id : r.ticks[k].done)
+      if (id == 2) done2 = static_cast<int>(k);
+  REQUIRE(done2 > at);
+  CHECK((done2 - at) * kT == Approx(hold).margin(1.5 * kT));
+  for (int k = at; k < done2; ++k) CHECK(r.ticks[k].pose[0] == 10.0);
+  CHECK(r.ticks.back().pose[0] == 20.0);
+}
+
+TEST_CASE("planner: an output's hold must be seconds >= 0") {
+  Planner p(make_machine("XYZ", -1000, 1000, 100, 1000));
+  CHECK(p.append(SetOutput{7, 1, 1, -0.1}).error == PlanError::BadDwell);
+  CHECK(p.append(SetOutput{7, 1, 1, std::nan("")}).error == PlanError::BadDwell);
+  CHECK(p.append(SetOutput{7, 1, 1, 0.2}).ok());
 }
 
 TEST_CASE("sampler: a feeder that falls behind makes it brake on the path, then go on") {

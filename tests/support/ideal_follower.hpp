@@ -5,6 +5,7 @@
 // the test sets. FollowerRig: the motion core on it in virtual time, with a Planner built
 // from the core's resolved configuration as the io side builds it.
 #pragma once
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -73,6 +74,17 @@ class IdealFollower final : public hal::MotionBackend {
     return true;
   }
   bool reset_faults() noexcept override { return true; }
+  int output_count() const noexcept override { return static_cast<int>(outputs.size()); }
+  // Records every switch with how many setpoints came before it (the next one is the
+  // setpoint of the switching cycle); a probe power output makes the probe's power edge.
+  bool set_output(int number, bool on) noexcept override {
+    if (number < 1 || number > output_count() || refuse_outputs) return false;
+    if (record) switches.push_back({number, on, setpoints.size()});
+    const bool changed = outputs[number - 1] != on;
+    outputs[number - 1] = on;
+    if (changed && number == probe_power_output) touch(), tip = false;
+    return true;
+  }
 
   // The probe edge: latched where the axes are now.
   void touch() {
@@ -90,6 +102,15 @@ class IdealFollower final : public hal::MotionBackend {
   const hal::AxisVec& velocity() const { return vel_; }
   hal::Vec3 where() const { return pos_.head<3>(); }  // where the X Y Z axes are now
 
+  struct Switch {
+    int number = 0;
+    bool on = false;
+    std::size_t setpoints_before = 0;
+  };
+  std::array<bool, 4> outputs{};
+  std::vector<Switch> switches;
+  bool refuse_outputs = false;
+  int probe_power_output = 0;  // 0: no output makes a power edge
   bool can_follow = true;
   long fail_at_call = -1;  // follow() call number (1-based) that returns false
   long follow_calls = 0;

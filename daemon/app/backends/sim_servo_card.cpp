@@ -46,7 +46,7 @@ std::unique_ptr<Machine> make(const DaemonConfig& cfg, const hal::Clock& clock, 
 }  // namespace
 
 const BackendType& sim_servo_card_backend() {
-  static const BackendType kType{"sim-servo-card", "the servo card driver on a simulated CMM", true, false, load, nullptr, make};
+  static const BackendType kType{"sim-servo-card", "the servo card driver on a simulated CMM", true, false, load, nullptr, make, true};
   return kType;
 }
 

@@ -91,7 +91,52 @@ void MotionCore::start(Nanos now) {
   mode_since_ = now;
   for (int a = 0; a < n_; ++a)
     started_in_limit_[a] = ms_.limit_side(a);
+  start_outputs(now);
   publish(now);
+}
+
+// Every configured output to its start state; the probe's power-on edge falls in its arming time.
+void MotionCore::start_outputs(Nanos now) {
+  for (int i = 0; i < config_.output_count; ++i) {
+    const OutputSettings& o = config_.outputs[i];
+    const std::string name(o.name_view());
+    if (o.number < 1 || o.number > hw_.output_count())
+      throw std::runtime_error("output '" + name + "' is number " + std::to_string(o.number) + "; the backend has " +
+                               (hw_.output_count() ? "outputs 1 to " + std::to_string(hw_.output_count())
+                                                   : std::string("no outputs")));
+    if (!hw_.set_output(o.number, o.at_start))
+      throw std::runtime_error("output '" + name + "' (number " + std::to_string(o.number) + ") could not be switched " +
+                               (o.at_start ? "on" : "off") + " at start");
+    if (o.at_start) outputs_on_ |= 1u << i;
+    if (o.probe_power) {
+      probe_output_ = i;
+      probe_powered_ = o.at_start;
+      arming_until_ = now + std::chrono::nanoseconds(static_cast<std::int64_t>(o.settle_s * 1e9));
+    }
+  }
+}
+
+// The output switches of this sampler tick (SetOutput segments that began, the path at
+// rest), in order. The id of the first the backend did not take (nothing after it is
+// switched), or nullptr.
+const std::uint32_t* MotionCore::switch_outputs(const planner::Sample& smp, Nanos now) noexcept {
+  for (int k = 0; k < smp.switch_count; ++k) {
+    const auto& sw = smp.switches[k];
+    const bool on = sw.value != 0;
+    if (!hw_.set_output(sw.output, on)) {
+      ++hardware_errors_;
+      return &sw.id;
+    }
+    for (int i = 0; i < config_.output_count; ++i) {
+      if (config_.outputs[i].number != sw.output) continue;
+      outputs_on_ = on ? (outputs_on_ | (1u << i)) : (outputs_on_ & ~(1u << i));
+      if (i == probe_output_) {
+        probe_powered_ = on;
+        arming_until_ = now + std::chrono::nanoseconds(static_cast<std::int64_t>(config_.outputs[i].settle_s * 1e9));
+      }
+    }
+  }
+  return nullptr;
 }
 
 void MotionCore::cycle(Nanos now) noexcept {
@@ -393,6 +438,11 @@ void MotionCore::on_probe_latch(Nanos now) noexcept {
   AxisVec latched = AxisVec::Zero();
   if (!hw_.read_latch(latched)) {
     ++hardware_errors_;
+    return;
+  }
+  if (!probe_armed(now)) {  // the probe's power-on/-off edge, or an unpowered probe: not a hit
+    warn(Warning::HitIgnored, latched, now, probe_powered_ ? "edge within the probe's arming time; no point taken"
+                                                           : "probe edge while the probe is switched off; no point taken");
     return;
   }
   const double r = config_.params.tip_radius;
@@ -724,7 +774,11 @@ void MotionCore::run_path(Nanos now) noexcept {
   // The queue ran out at rest: the last Done waits until the machine has arrived (settle).
   const bool resting = sampler_.idle() && !smp.busy;
   if (!resting) release_arrivals(now);  // more came while settling: the machine goes on
+  // Outputs switch as their segment begins. One the backend refuses fails from there: the
+  // segments completed before it are Done, it and everything after it Failed Faulted.
+  const std::uint32_t* refused = switch_outputs(smp, now);
   for (int i = 0; i < smp.done_count; ++i) {
+    if (refused && smp.done[i].id == *refused) break;
     // A Probe's approach ends in its search (one id, one Done or Failed); a search that ends
     // without an edge is PartNotFound, the machine at rest at its end.
     const auto phase = smp.done[i].probe;
@@ -745,8 +799,24 @@ void MotionCore::run_path(Nanos now) noexcept {
       --held_count_;
     }
   }
+  if (refused) {
+    fail_queue(FailReason::Faulted, now);
+    stop_motion();
+    stopped_from_ = Mode::Path;
+    enter(Mode::Stopping, now);
+    return;
+  }
   if (smp.done_count == 0 && resting && held_count_ == 0) {  // nothing came: settle, then idle
     settle(now);
+    return;
+  }
+  // A Probe cycle that begins with the probe switched off fails before it moves on (it could
+  // only end in PartNotFound, or in a collision the probe does not see).
+  if (held_count_ > 0 && held_probe_[0] != planner::ProbePhase::None && !probe_powered_) {
+    fail_queue(FailReason::ProbeOff, now);
+    stop_motion();
+    stopped_from_ = Mode::Path;
+    enter(Mode::Stopping, now);
     return;
   }
   hal::Setpoint sp;
@@ -902,6 +972,8 @@ void MotionCore::publish(Nanos now) noexcept {
   s.path_running = held_count_ > 0;
   s.path_id = held_count_ > 0 ? held_ids_[0] : 0;
   s.path_held = sampler_.holding();
+  s.outputs = outputs_on_;
+  s.probe_armed = probe_armed(now);
   snapshot_.publish();
 }
 

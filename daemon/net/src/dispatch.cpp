@@ -122,6 +122,8 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::ArcTo& c) { queue_command(s, slot, c); },
           [&](const protocol::Dwell& c) { queue_command(s, slot, c); },
           [&](const protocol::Probe& c) { queue_command(s, slot, c); },
+          [&](const protocol::SetOut& c) { queue_command(s, slot, c); },
+          [&](const protocol::Outputs&) { outputs_status(s, slot); },
           [&](const protocol::Queue&) { queue_status(s, slot); },
           [&](const protocol::Pause&) { to_core(s, slot, {CommandKind::Pause}); },
           [&](const protocol::Resume&) { to_core(s, slot, {CommandKind::Resume}); },

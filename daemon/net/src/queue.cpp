@@ -1,4 +1,4 @@
-// Queued moves on the io thread: MoveTo / ArcTo / Dwell become planner requests, final
+// Queued moves on the io thread: MoveTo / ArcTo / Dwell / SetOut become planner requests, final
 // segments go into the motion loop's segment ring, Done / Failed come back as events.
 // Flush rule: the planner's tail is made final (ending at rest) when the loop holds less than
 // kFlushLead of motion — checked after the lines that arrived together, on every Done and
@@ -29,7 +29,7 @@ std::uint32_t id_of(const QueuedCommand& c) {
 }
 
 std::string_view verb_of(const QueuedCommand& c) {
-  static constexpr std::string_view kVerbs[] = {"MoveTo", "ArcTo", "Dwell", "Probe"};
+  static constexpr std::string_view kVerbs[] = {"MoveTo", "ArcTo", "Dwell", "Probe", "SetOut"};
   return kVerbs[c.index()];
 }
 
@@ -92,6 +92,11 @@ bool Server::plan_from_here(std::string& why) {
 void Server::queue_command(Session& s, std::uint32_t slot, const QueuedCommand& c) {
   const std::string_view verb = verb_of(c);
   if (const auto* w = words_of(c); w && !axes_known(s, slot, *w)) return;  // a letter the machine lacks
+  if (const auto* o = std::get_if<protocol::SetOut>(&c); o && !find_output(o->output)) {
+    reply(s, slot, format_err(ErrorCode::BadValue, "SetOut " + std::to_string(o->id) + ": no output '" + o->output +
+                                                       "'; this machine has " + output_names()));
+    return;
+  }
   if (std::holds_alternative<protocol::ArcTo>(c) &&
       (layout().cartesian_axis(0) < 0 || layout().cartesian_axis(1) < 0 || layout().cartesian_axis(2) < 0)) {
     reply(s, slot, format_err(ErrorCode::BadValue, "ArcTo needs the linear axes X Y Z; this machine has " + layout().names()));
@@ -167,12 +172,42 @@ planner::AppendResult Server::plan(const QueuedCommand& c) {
     res = planner_.append(a);
   } else if (const auto* d = std::get_if<protocol::Dwell>(&c)) {
     res = planner_.append(planner::Dwell{d->id, d->seconds});
+  } else if (const auto* o = std::get_if<protocol::SetOut>(&c)) {
+    const core::OutputSettings& out = *find_output(o->output);  // queue_command checked the name
+    res = planner_.append(planner::SetOutput{o->id, static_cast<std::uint16_t>(out.number), o->on ? 1.0 : 0.0, out.settle_s});
   } else {
     res = plan_probe(std::get<protocol::Probe>(c));
     if (res.ok()) probe_open_ = res.id;
   }
   if (res.ok()) unsent_.push_back(id_of(c));
   return res;
+}
+
+const core::OutputSettings* Server::find_output(std::string_view name) const noexcept {
+  const auto& cfg = core_.config();
+  for (int i = 0; i < cfg.output_count; ++i)
+    if (cfg.outputs[i].name_view() == name) return &cfg.outputs[i];
+  return nullptr;
+}
+
+std::string Server::output_names() const {
+  const auto& cfg = core_.config();
+  if (cfg.output_count == 0) return "no outputs";
+  std::string names = "the outputs";
+  for (int i = 0; i < cfg.output_count; ++i) names += (i ? ", " : " ") + std::string(cfg.outputs[i].name_view());
+  return names;
+}
+
+// Outputs: every output by name with its state as last switched, then whether the probe is
+// armed (powered and past its arming time).
+void Server::outputs_status(Session& s, std::uint32_t slot) {
+  const auto& cfg = core_.config();
+  const auto& snap = core_.snapshot();
+  std::string line;
+  for (int i = 0; i < cfg.output_count; ++i)
+    line += std::string(cfg.outputs[i].name_view()) + ((snap.outputs >> i) & 1u ? " on " : " off ");
+  line += std::string("ProbeArmed ") + (snap.probe_armed ? "yes" : "no");
+  reply(s, slot, format_ok("Outputs", line));
 }
 
 void Server::queue_status(Session& s, std::uint32_t slot) {

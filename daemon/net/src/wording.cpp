@@ -84,6 +84,7 @@ Wording fail_wording(core::FailReason f) {
     case core::FailReason::PartNotFound:
       return {"PartNotFound", "no edge up to SearchDist past the target"};
     case core::FailReason::Refused: return {"Refused", "not plannable from where the Probe ended"};
+    case core::FailReason::ProbeOff: return {"ProbeOff", "the probe is switched off: SetOut <id> <its output> on first"};
   }
   return {"Unknown", ""};
 }

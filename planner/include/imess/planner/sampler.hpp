@@ -14,14 +14,19 @@
 
 namespace imess::planner {
 
-// A segment that ended this tick: the daemon answers `Done id` (and sets the output of a
-// SetOutput segment).
+// A segment that ended this tick: the daemon answers `Done id`.
 struct Completion {
   std::uint32_t id = 0;
   SegmentKind kind = SegmentKind::Line;
+  ProbePhase probe = ProbePhase::None;
+};
+
+// A SetOutput segment that began this tick (the path before it has come to rest): the
+// daemon switches the output now; the segment completes after its hold.
+struct OutputSwitch {
+  std::uint32_t id = 0;
   std::uint16_t output = 0;
   double value = 0;
-  ProbePhase probe = ProbePhase::None;
 };
 
 inline constexpr int kMaxCompletionsPerTick = 16;
@@ -31,6 +36,9 @@ struct Sample {
   Pose velocity{};  // axis units per second
   std::array<Completion, kMaxCompletionsPerTick> done{};
   int done_count = 0;
+  // In the order they began; a tick begins at most one segment more than it completes.
+  std::array<OutputSwitch, kMaxCompletionsPerTick + 1> switches{};
+  int switch_count = 0;
   bool busy = false;     // a segment is in progress
   bool held = false;     // a feed hold (or a starved queue) brought the path to rest
   bool starved = false;  // the segments ran out while the last one ended above rest: the

@@ -53,11 +53,14 @@ struct Dwell {
   double seconds = 0;
 };
 
-// Sets a digital output when the motion before it has come to rest (exact stop).
+// Sets a digital output when the motion before it has come to rest (exact stop), then holds
+// the path there for `hold` seconds (the output's settle time: a probe arming after power-on,
+// a gripper closing) before the segment completes.
 struct SetOutput {
   std::uint32_t id = 0;
   std::uint16_t output = 0;
   double value = 0;
+  double hold = 0;
 };
 
 using Request = std::variant<Line, Arc, Dwell, SetOutput>;
@@ -85,7 +88,7 @@ struct PlannedSegment {
   ArcGeometry arc{};           // kind Arc
   double length = 0;           // L, mm (deg for a rotary-only line)
   double v0 = 0, vc = 0, v1 = 0, a = 0;           // the trapezoid
-  double t_acc = 0, t_cruise = 0, t_dec = 0;      // its phases, s (Dwell: t_cruise = seconds)
+  double t_acc = 0, t_cruise = 0, t_dec = 0;      // its phases, s (Dwell, SetOutput: t_cruise = seconds held)
   Profile profile{};           // s(t), what the sampler evaluates
 
   double duration() const noexcept { return profile.duration; }

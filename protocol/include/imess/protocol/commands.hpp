@@ -70,6 +70,10 @@ struct Dwell { std::uint32_t id = 0; double seconds = 0; };
 struct Probe { std::uint32_t id = 0; PathWords words; };           // move until the probe edge: target XYZ, F
 // Jog named axes (C20 U-10): % of MaxSpeed (x SpeedLevel) each, mm/s or deg/s; others stand.
 struct JogAx { PathWords percent; };
+// Queue the switch of a configured output (the path comes to rest first and holds for the
+// output's settle time); Outputs lists the outputs and their states.
+struct SetOut { std::uint32_t id = 0; std::string output; bool on = false; };
+struct Outputs {};
 struct Queue {};                                            // pending count, running id
 struct Pause {};                                            // feed hold on the path
 struct Resume {};
@@ -81,6 +85,6 @@ inline constexpr int kWatchMaxMs = 60000;
 
 using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo, Home, Free,
                              Reset, Set, Get, Stats, HandMv, Quit, Replay, Take, Release, Watch, Version,
-                             MoveTo, ArcTo, Dwell, Queue, Pause, Resume, Probe, JogAx>;
+                             MoveTo, ArcTo, Dwell, Queue, Pause, Resume, Probe, JogAx, SetOut, Outputs>;
 
 }  // namespace imess::protocol

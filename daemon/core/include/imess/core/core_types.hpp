@@ -1,7 +1,9 @@
 // Plain data crossing into and out of the motion loop: commands, events, parameters, the
 // state snapshot. Trivially copyable, fixed size — they travel through lock-free rings.
 #pragma once
+#include <array>
 #include <cstdint>
+#include <string_view>
 
 #include "imess/hal/types.hpp"
 
@@ -31,6 +33,7 @@ enum class FailReason : std::uint8_t {
   OffPath,        // the queue does not start where the machine stands (it was moved meanwhile)
   PartNotFound,   // a Probe's search ran SearchDist beyond the target without an edge
   Refused,        // held behind a Probe, the planner refused it from the Probe's end (io side)
+  ProbeOff,       // a Probe cycle began while the probe's power output was off
 };
 
 // Why the loop refused a command; net maps each to a protocol error code.
@@ -110,6 +113,21 @@ struct HomingSettings {
 // Z first (lift the probe clear), then the others in machine order: {2, 0, 1} on X Y Z.
 AxisArray<int> default_home_order(const AxisLayout& layout) noexcept;
 
+// A digital output of the machine (configuration "outputs"): its name on the wire (SetOut,
+// Outputs), the backend's output number, how long the path holds after switching it, its
+// state when messd starts, and whether it powers the probe. After the probe's power output
+// switches, probe edges are ignored for its settle time (the power-on/-off edge is not a hit:
+// Warn HitIgnored), and while it is off a Probe cycle fails (ProbeOff).
+inline constexpr int kMaxOutputs = 8;
+struct OutputSettings {
+  std::array<char, 16> name{};  // NUL-terminated, letters, digits and '_'
+  int number = 1;               // MotionBackend::set_output
+  double settle_s = 0;          // the path's hold after a switch; the probe's arming time
+  bool at_start = false;        // switched on when messd starts (else off)
+  bool probe_power = false;
+  std::string_view name_view() const noexcept { return std::string_view(name.data()); }
+};
+
 struct CoreConfig {
   AxisLayout layout;  // the machine's axes: axes[0 .. layout.count)
   CoreParams params;
@@ -118,6 +136,8 @@ struct CoreConfig {
   double max_velocity = 150;  // mm/s: no speed level lifts a move above this
   double period_s = 0.001;    // the loop's period: the time step of queued segments
   bool referenced_at_start = false;  // absolute scales: soft limits valid without Home
+  std::array<OutputSettings, kMaxOutputs> outputs{};  // outputs[0 .. output_count)
+  int output_count = 0;
 };
 
 // Commands through the ring. Stops and parameter changes have lanes of their own
@@ -179,6 +199,8 @@ struct Snapshot {
   bool path_running = false;          // a queued segment is in hand
   std::uint32_t path_id = 0;          // its id
   bool path_held = false;             // Pause is in effect
+  std::uint32_t outputs = 0;          // bit i: CoreConfig::outputs[i] is on (as last switched)
+  bool probe_armed = true;            // the probe is powered and past its arming time
 };
 
 }  // namespace imess::core

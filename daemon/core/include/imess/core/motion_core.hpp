@@ -71,6 +71,11 @@ class MotionCore {
   Refusal start_homing(Nanos now) noexcept;
   void stop_motion() noexcept;
   void on_probe_latch(Nanos now) noexcept;
+  // Outputs: their start states (set-up), the switches of a sampler tick, and whether a
+  // probe edge now is a hit (the probe powered and past its arming time).
+  void start_outputs(Nanos now);
+  const std::uint32_t* switch_outputs(const planner::Sample& smp, Nanos now) noexcept;
+  bool probe_armed(Nanos now) const noexcept { return probe_powered_ && now >= arming_until_; }
   void retract_from(const AxisVec& latched, const AxisVec& dir, Nanos now) noexcept;
   // A probe edge in a Probe's search: the hit (with the Probe's id), then the retract from it.
   void probe_hit(const AxisVec& latched, Nanos now) noexcept;
@@ -182,6 +187,11 @@ class MotionCore {
   Nanos settle_since_{0};
   Nanos path_now_{0};             // the cycle's time, for events raised inside pop_segment
   Nanos last_cycle_{-1};          // the previous cycle's time (-1: none yet)
+  // Outputs: bit i = config_.outputs[i] on; the probe's power output (-1: none, always powered).
+  std::uint32_t outputs_on_ = 0;
+  int probe_output_ = -1;
+  bool probe_powered_ = true;
+  Nanos arming_until_{0};         // probe edges before this are its power edges
   double since_last_s_ = 0;       // s since the previous cycle, the period at the first
 };
 

@@ -63,7 +63,7 @@ struct ServerConfig {
 
 // A queued command on the wire; after an unfinished Probe it waits in the server, unplanned
 // (its start is the Probe's end, known only after the hit).
-using QueuedCommand = std::variant<protocol::MoveTo, protocol::ArcTo, protocol::Dwell, protocol::Probe>;
+using QueuedCommand = std::variant<protocol::MoveTo, protocol::ArcTo, protocol::Dwell, protocol::Probe, protocol::SetOut>;
 
 class Server {
  public:
@@ -124,6 +124,10 @@ class Server {
   void queue_command(Session& s, std::uint32_t slot, const QueuedCommand& c);
   planner::AppendResult plan(const QueuedCommand& c);  // appended to planner_ from its position
   void queue_status(Session& s, std::uint32_t slot);
+  // The configured outputs (core config): by name, their names for a message, Outputs.
+  const core::OutputSettings* find_output(std::string_view name) const noexcept;
+  std::string output_names() const;
+  void outputs_status(Session& s, std::uint32_t slot);
   // probe.cpp: the Probe cycle's requests, the commands held behind a running Probe
   planner::AppendResult plan_probe(const protocol::Probe& c);
   planner::AppendResult check_held(const QueuedCommand& c) const;  // what can be checked before the start is known
