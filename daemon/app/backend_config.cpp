@@ -3,6 +3,7 @@
 #include "backend_config.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 
 #include "config.hpp"
@@ -146,6 +147,48 @@ namespace {
 // Input/output bit masks as numbers or "0x..." strings.
 std::uint16_t bits(JsonObject& o, const std::string& key, std::uint16_t def) { return port_address(o, key, def); }
 
+std::string hex(unsigned v) {
+  char buf[8];
+  std::snprintf(buf, sizeof buf, "0x%X", v);
+  return buf;
+}
+
+// "outputs": [{"port": "0x302", "bit": 0}, ...]: user outputs 1.. replacing the map's; each
+// a bit 0-15 of a port in the port_io range, checked against the kit's own ports and bits.
+void read_drive_outputs(JsonObject& b, PortBackendConfig& p) {
+  auto& d = p.drive;
+  const unsigned first = p.port_io.base, last = first + static_cast<unsigned>(p.port_io.count) - 1;
+  if (auto outs = b.objects("outputs")) {
+    if (outs->size() > hal::kMaxDriveKitOutputs)
+      b.fail("outputs", "at most " + std::to_string(hal::kMaxDriveKitOutputs) + " outputs [{\"port\": \"0x302\", \"bit\": 0}, ...]");
+    d.outputs = {};
+    d.output_count = static_cast<int>(outs->size());
+    for (std::size_t i = 0; i < outs->size(); ++i) {
+      auto& o = (*outs)[i];
+      const std::string range = "a port address from " + hex(first) + " to " + hex(last) + " (backend.port_io's base and count)";
+      if (!o.has("port")) o.fail("port", range);
+      const std::uint16_t port = port_address(o, "port", 0);
+      if (port < first || port > last) o.fail("port", range);
+      if (!o.has("bit")) o.fail("bit", "a bit number from 0 to 15");
+      const auto bit = o.whole("bit", 0, 0, 15);
+      o.finish();
+      d.outputs[i] = {port, static_cast<std::uint16_t>(1u << bit)};
+    }
+  } else {
+    for (int i = 0; i < d.output_count; ++i)
+      if (d.outputs[i].port < first || d.outputs[i].port > last)
+        b.fail("outputs", "given when the port map's outputs lie outside backend.port_io (output " + std::to_string(i + 1) +
+                              " on port " + hex(d.outputs[i].port) + ", the ports are " + hex(first) + " to " + hex(last) +
+                              "): [{\"port\": ..., \"bit\": ...}, ...], [] for none");
+  }
+  try {
+    hal::validate_drive_kit_outputs(d);
+  } catch (const std::invalid_argument& e) {
+    b.fail("outputs", std::string("user outputs on free port bits (") + e.what() +
+                          "; \"outputs\": [] for none)");
+  }
+}
+
 }  // namespace
 
 void read_drive_section(JsonObject& b, DaemonConfig& cfg, bool simulated) {
@@ -206,6 +249,7 @@ void read_drive_section(JsonObject& b, DaemonConfig& cfg, bool simulated) {
     }
     axes->finish("one object per axis letter of axes.letters (" + layout.names() + ")");
   }
+  read_drive_outputs(b, cfg.ports);
   if (simulated) cfg.ports.drive_sim.period_ns = b.number("sim_period_us", cfg.ports.drive_sim.period_ns / 1000, 1, 10000) * 1000;
 }
 

@@ -36,7 +36,8 @@ void CardStreamSession::start(std::uint32_t ticks_per_second, std::uint32_t cloc
   newest_.mask = kAllAxes;
   for (int a = 0; a < kAxes; ++a) {
     newest_.position[a] = state.position[a];
-    newest_.status[a] = state.status[a];
+    // A latch the card holds shows with the first status frame, which brings its positions.
+    newest_.status[a] = state.status[a] & ~status::kLatchValid;
     newest_.inputs[a] = state.inputs[a];
   }
   stream_status_ = comm_lost_ = refused_ = following_ = false;

@@ -60,7 +60,62 @@ std::optional<DriveKitConfig> named_drive_kit_map(std::string_view name, int cou
     }
     ax.enable_bit = static_cast<std::uint16_t>(1u << a);
   }
+  if (name == "mrm-a") {  // above the enables 1 << axis (bits 0..8)
+    c.output_count = 7;
+    for (int i = 0; i < c.output_count; ++i) c.outputs[i] = {c.outputs_port, static_cast<std::uint16_t>(1u << (9 + i))};
+  } else {  // 0x302: bit 0 the manual's gripper, the rest free
+    c.output_count = 8;
+    for (int i = 0; i < c.output_count; ++i) c.outputs[i] = {0x302, static_cast<std::uint16_t>(1u << i)};
+  }
   return c;
+}
+
+namespace {
+std::string hex(std::uint16_t v) {
+  static const char* digits = "0123456789ABCDEF";
+  std::string s = "0x";
+  bool any = false;
+  for (int shift = 12; shift >= 0; shift -= 4) {
+    const int d = (v >> shift) & 0xF;
+    if (d || any || shift == 0) s += digits[d];
+    any = any || d;
+  }
+  return s;
+}
+int bit_of(std::uint16_t mask) {
+  for (int b = 0; b < 16; ++b)
+    if (mask == (1u << b)) return b;
+  return -1;
+}
+}  // namespace
+
+void validate_drive_kit_outputs(const DriveKitConfig& c) {
+  if (c.output_count < 0 || c.output_count > kMaxDriveKitOutputs)
+    throw std::invalid_argument("at most " + std::to_string(kMaxDriveKitOutputs) + " user outputs");
+  for (int i = 0; i < c.output_count; ++i) {
+    const PortBit& o = c.outputs[i];
+    const int bit = bit_of(o.mask);
+    const std::string name = "output " + std::to_string(i + 1) + " (port " + hex(o.port) +
+                             (bit >= 0 ? " bit " + std::to_string(bit) : " mask " + hex(o.mask)) + ")";
+    if (o.port == 0 || bit < 0) throw std::invalid_argument(name + ": an output is one bit (0-15) of a port other than 0");
+    auto refuse = [&](const std::string& what) {
+      throw std::invalid_argument(name + ": " + what + "; give a free output bit");
+    };
+    if (o.port == c.inputs_port || (c.inputs2_port && o.port == c.inputs2_port)) refuse("that is an inputs port");
+    if (c.sync_port && o.port == c.sync_port) refuse("that is the sync port");
+    if (c.latch_status_port && o.port == c.latch_status_port) refuse("that is the latch status port");
+    for (int a = 0; a < c.layout.count; ++a) {
+      const auto& ax = c.axes[a];
+      const char letter = c.layout.letters[a];
+      const std::string axis = "axis " + (letter ? std::string(1, letter) : std::to_string(a + 1)) + "'s ";
+      if (o.port == ax.command_port) refuse("that is " + axis + "command port");
+      if (o.port == ax.position_port) refuse("that is " + axis + "position port");
+      if (ax.latch_port && o.port == ax.latch_port) refuse("that is " + axis + "counter latch port");
+      if (o.port == c.outputs_port && (o.mask & ax.enable_bit)) refuse("that is " + axis + "amplifier enable");
+    }
+    for (int j = 0; j < i; ++j)
+      if (c.outputs[j].port == o.port && c.outputs[j].mask == o.mask) refuse("output " + std::to_string(j + 1) + " is that bit already");
+  }
 }
 
 DriveKitDriver::DriveKitDriver(PortIo& port, const Clock& clock, DriveKitConfig config)
@@ -78,6 +133,19 @@ DriveKitDriver::DriveKitDriver(PortIo& port, const Clock& clock, DriveKitConfig 
     // 16 bits of counts must not wrap between two reads.
     if (ax.max_speed * config_.servo_period_ns * 1e-9 / ax.position_unit_mm > 16000)
       throw std::invalid_argument(name + ": max_speed moves more than 16000 counts per servo period; the 16-bit position port would wrap unseen");
+  }
+  validate_drive_kit_outputs(config_);
+  for (int i = 0; i < config_.output_count; ++i) {
+    const PortBit& o = config_.outputs[i];
+    if (o.port == config_.outputs_port) {
+      output_slot_[i] = -1;
+      user_bits_on_outputs_port_ |= o.mask;
+      continue;
+    }
+    int slot = 0;
+    while (slot < shadow_count_ && shadow_ports_[slot] != o.port) ++slot;
+    if (slot == shadow_count_) shadow_ports_[shadow_count_++] = o.port;
+    output_slot_[i] = static_cast<std::int8_t>(slot);
   }
 }
 
@@ -102,8 +170,9 @@ void DriveKitDriver::initialise(bool) {
     axes_[a].last_raw = raw;
     axes_[a].profile.reset(position(a));
   }
-  outputs_ = config_.safe_outputs;
+  outputs_ = static_cast<std::uint16_t>(config_.safe_outputs & ~user_bits_on_outputs_port_);
   port_.out16(config_.outputs_port, outputs_);
+  user_outputs_off();
   if (config_.latch_status_port) port_.out16(config_.latch_status_port, 0);
   if (port_.errors() != 0) throw std::runtime_error("drive kit: the ports did not answer (" + port_.describe() + ")");
   loops_closed_ = false;
@@ -141,9 +210,34 @@ void DriveKitDriver::safe_state(std::uint16_t outputs) noexcept {
     axes_[a].integral = axes_[a].remainder = 0;
     axes_[a].following = false;
   }
-  outputs_ = outputs;
+  outputs_ = static_cast<std::uint16_t>(outputs & ~user_bits_on_outputs_port_);
   port_.out16(config_.outputs_port, outputs_);
+  user_outputs_off();
   loops_closed_ = false;
+}
+
+// The other ports' user outputs off (those on the outputs port go with outputs_).
+void DriveKitDriver::user_outputs_off() noexcept {
+  for (int s = 0; s < shadow_count_; ++s) {
+    for (int i = 0; i < config_.output_count; ++i)
+      if (output_slot_[i] == s) shadow_words_[s] = static_cast<std::uint16_t>(shadow_words_[s] & ~config_.outputs[i].mask);
+    port_.out16(shadow_ports_[s], shadow_words_[s]);
+  }
+}
+
+std::uint16_t& DriveKitDriver::shadow(int output) noexcept {
+  return output_slot_[output] < 0 ? outputs_ : shadow_words_[output_slot_[output]];
+}
+
+bool DriveKitDriver::set_output(int number, bool on) noexcept {
+  if (number < 1 || number > config_.output_count) return false;
+  if (on && safety_faults_ != 0) return false;  // a safety input holds the outputs off until Reset
+  const PortBit& o = config_.outputs[number - 1];
+  std::uint16_t& word = shadow(number - 1);
+  word = static_cast<std::uint16_t>(on ? (word | o.mask) : (word & ~o.mask));
+  const unsigned long errors = port_.errors();
+  port_.out16(o.port, word);
+  return port_.errors() == errors;
 }
 
 // ------------------------------------------------------------------ one servo period

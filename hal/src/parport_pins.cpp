@@ -1,6 +1,7 @@
 // Pin maps of the SHD adapter and the 3D-Step box, parsing and compilation to masks.
 #include "imess/hal/parport_pins.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace imess::hal {
@@ -64,7 +65,8 @@ PinAssignment parse_pin_signal(std::string_view text) {
   auto fail = [&] {
     throw std::invalid_argument("'" + std::string(text) +
                                 "' is not a pin signal (accepted: \"step X\", \"dir X\", \"endref X\", \"limit- X\", "
-                                "\"limit+ X\", \"home X\" for X, Y or Z; \"probe\", \"stop\", \"enable\", \"none\")");
+                                "\"limit+ X\", \"home X\" for X, Y or Z; \"out 1\" to \"out 4\"; \"probe\", \"stop\", "
+                                "\"enable\", \"none\")");
   };
   std::string_view word = text, axis;
   if (auto sp = text.find(' '); sp != std::string_view::npos) {
@@ -72,6 +74,12 @@ PinAssignment parse_pin_signal(std::string_view text) {
     axis = text.substr(sp + 1);
   }
   PinAssignment a;
+  if (word == "out") {
+    if (axis.size() != 1 || axis[0] < '1' || axis[0] > '0' + kParportOutputs) fail();
+    a.signal = PinSignal::Output;
+    a.axis = static_cast<std::int8_t>(axis[0] - '1');
+    return a;
+  }
   struct Name {
     const char* word;
     PinSignal s;
@@ -112,8 +120,9 @@ std::string pin_signal_text(const PinAssignment& a) {
     case PinSignal::Probe: s = "probe"; break;
     case PinSignal::Stop: s = "stop"; break;
     case PinSignal::Enable: s = "enable"; break;
+    case PinSignal::Output: s = "out " + std::to_string(a.axis + 1); break;
   }
-  if (a.axis >= 0) s += std::string(" ") + kAxisLetters[a.axis];
+  if (a.axis >= 0 && a.signal != PinSignal::Output) s += std::string(" ") + kAxisLetters[a.axis];
   if (a.invert) s += " (inverted)";
   return s;
 }
@@ -121,6 +130,7 @@ std::string pin_signal_text(const PinAssignment& a) {
 void validate_pin_map(const PinMap& map) {
   AxisArray<int> steps{}, dirs{};
   int probes = 0, stops = 0;
+  std::array<int, kParportOutputs> output_pin{};  // the pin of out N (0: none yet)
   for (int pin = 1; pin <= kMaxPin; ++pin) {
     const auto& a = map.pins[pin];
     if (a.signal == PinSignal::None) continue;
@@ -134,6 +144,13 @@ void validate_pin_map(const PinMap& map) {
                                                     : ": outputs go on pins 1-9, 14, 16, 17"));
     if ((a.signal == PinSignal::Step || a.signal == PinSignal::Dir) && loc.offset != 0)
       throw std::invalid_argument(where + ": step and dir go on the data pins 2-9");
+    if (a.signal == PinSignal::Output) {
+      if (a.axis < 0 || a.axis >= kParportOutputs) throw std::invalid_argument(where + ": outputs are out 1 to out 4");
+      if (int other = output_pin[a.axis])
+        throw std::invalid_argument(where + ": out " + std::to_string(a.axis + 1) + " is on pin " + std::to_string(other) +
+                                    " already; one pin per output");
+      output_pin[a.axis] = pin;
+    }
     if (a.signal == PinSignal::Step) ++steps[a.axis];
     if (a.signal == PinSignal::Dir) ++dirs[a.axis];
     probes += a.signal == PinSignal::Probe;
@@ -143,6 +160,11 @@ void validate_pin_map(const PinMap& map) {
     if (steps[ax] != 1 || dirs[ax] != 1)
       throw std::invalid_argument(std::string("axis ") + kAxisLetters[ax] + " needs exactly one step and one dir pin");
   if (probes > 1 || stops > 1) throw std::invalid_argument("at most one probe pin and one stop pin");
+  for (int n = kParportOutputs - 1; n > 0; --n)
+    for (int m = 0; m < n && output_pin[n]; ++m)
+      if (!output_pin[m])
+        throw std::invalid_argument("out " + std::to_string(n + 1) + " (pin " + std::to_string(output_pin[n]) + ") without out " +
+                                    std::to_string(m + 1) + ": outputs are numbered from 1 without gaps");
 }
 
 CompiledPins compile_pins(const PinMap& map) {
@@ -164,6 +186,10 @@ CompiledPins compile_pins(const PinMap& map) {
       case PinSignal::Home: c.home[a.axis] |= m; break;
       case PinSignal::Probe: c.probe |= m; break;
       case PinSignal::Stop: c.stop |= m; break;
+      case PinSignal::Output:
+        (loc.offset == 0 ? c.output_data : c.output_control)[a.axis] |= m;
+        c.output_count = std::max(c.output_count, a.axis + 1);
+        break;
       case PinSignal::None: break;
     }
     if (loc.offset == 0 && flip) c.data_invert |= m;

@@ -59,9 +59,11 @@ std::int64_t ParportStepperDriver::steps_for(int axis, double mm) const noexcept
 }
 
 void ParportStepperDriver::initialise(bool) {
-  last_data_ = gen_.idle_data();
+  // Set-up, before the base routine runs: from then on it alone writes both registers.
+  last_data_ = static_cast<std::uint8_t>(gen_.idle_data() ^ output_data_.load(std::memory_order_relaxed));
   port_.out8(data_port(), last_data_);
-  port_.out8(static_cast<std::uint16_t>(config_.base + 2), pins_.control_invert ^ pins_.enable_control_mask);
+  last_control_ = control_value(output_control_.load(std::memory_order_relaxed));
+  port_.out8(control_port(), last_control_);
   std::uint8_t st = port_.in8(status_port());
   status_.store(st, std::memory_order_relaxed);
   if (port_.errors() != 0)
@@ -99,11 +101,31 @@ void ParportStepperDriver::base_tick() noexcept {
   }
   base_started_ = true;
   status_.store(st, std::memory_order_release);
-  std::uint8_t data = gen_.tick(halted);
+  // The user outputs' pins are none of the generator's: their bits come out at the inactive
+  // level (the inversion) and flip where the output is on.
+  const auto data = static_cast<std::uint8_t>(gen_.tick(halted) ^ output_data_.load(std::memory_order_relaxed));
   if (data != last_data_) {
     port_.out8(data_port(), data);
     last_data_ = data;
   }
+  const std::uint8_t control = control_value(output_control_.load(std::memory_order_relaxed));
+  if (control != last_control_) {
+    port_.out8(control_port(), control);
+    last_control_ = control;
+  }
+}
+
+bool ParportStepperDriver::set_output(int number, bool on) noexcept {
+  if (number < 1 || number > pins_.output_count) return false;
+  const std::uint8_t data = pins_.output_data[number - 1], control = pins_.output_control[number - 1];
+  if (on) {
+    output_data_.fetch_or(data, std::memory_order_relaxed);
+    output_control_.fetch_or(control, std::memory_order_relaxed);
+  } else {
+    output_data_.fetch_and(static_cast<std::uint8_t>(~data), std::memory_order_relaxed);
+    output_control_.fetch_and(static_cast<std::uint8_t>(~control), std::memory_order_relaxed);
+  }
+  return true;
 }
 
 // ------------------------------------------------------------------ servo rate

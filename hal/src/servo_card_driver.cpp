@@ -15,6 +15,11 @@ using card::Status;
 
 namespace {
 constexpr unsigned kAllAxes = (1u << kAxes) - 1;
+// Every module's outputs: limit and reference switches on, the probe powered or not.
+constexpr std::uint8_t output_bits(bool probe_on) {
+  return static_cast<std::uint8_t>(card::output::kLimitSwitchesOn | card::output::kReferenceSwitchOn |
+                                   (probe_on ? card::output::kProbeOn : 0));
+}
 
 const char* status_text(std::uint8_t s) {
   switch (static_cast<Status>(s)) {
@@ -125,9 +130,9 @@ void ServoCardDriver::initialise(bool force_reboot) {
   set_up_call("resetting axes");
   begin(Op::WriteOutputs);
   table(kAllAxes);
-  for (int a = 0; a < kAxes; ++a)
-    writer_.u8(card::output::kLimitSwitchesOn | card::output::kReferenceSwitchOn | card::output::kProbeOn);
+  for (int a = 0; a < kAxes; ++a) writer_.u8(output_bits(true));
   set_up_call("switching limit, reference and probe inputs on");
+  probe_on_ = true;
   if (stream_link_) start_stream();
 }
 
@@ -249,6 +254,16 @@ bool ServoCardDriver::set_position(int axis, double value) noexcept {
   table(1u << axis);
   writer_.f64(value);
   return simple();
+}
+
+bool ServoCardDriver::set_output(int number, bool on) noexcept {
+  if (number != 1) return false;
+  begin(Op::WriteOutputs);
+  table(kAllAxes);
+  for (int a = 0; a < kAxes; ++a) writer_.u8(output_bits(on));
+  if (!command(CardStreamSession::Effect::None)) return false;
+  probe_on_ = on;
+  return true;
 }
 
 bool ServoCardDriver::reset_faults() noexcept {

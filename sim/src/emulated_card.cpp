@@ -447,9 +447,21 @@ Status EmulatedCard::write_outputs(LinkReader& r) noexcept {
   for (int a = 0; a < kAxes; ++a)
     if (named(mask, a)) bits[a] = r.u8();
   if (!r.ok() || !r.at_end()) return Status::BadLength;
+  const bool power_edge =
+      named(mask, 0) && ((axes_[0].outputs ^ bits[0]) & hal::card::output::kProbeOn) && config_.probe_power_edges;
   for (int a = 0; a < kAxes; ++a)
     if (named(mask, a)) axes_[a].outputs = bits[a];
+  if (power_edge) latch_here();  // the probe's power switched: its signal makes an edge
   return Status::Ok;
+}
+
+void EmulatedCard::latch_here() noexcept {
+  for (int a = 0; a < kAxes; ++a) {
+    Axis& ax = axes_[a];
+    if (ax.latch_valid) continue;  // the first edge is held until read
+    ax.latched = encoder(a);
+    ax.latch_valid = true;
+  }
 }
 
 }  // namespace imess::sim

@@ -83,6 +83,36 @@ TEST_CASE("addresses and port numbers are checked where they are read") {
   CHECK(json_error(R"({"backend":{"type":"sim-parport","parport_base":"0x378"}})").empty());
 }
 
+TEST_CASE("drive-kit outputs: the port map's, or the backend's \"outputs\" table in their order") {
+  auto drive = [](const std::string& backend) {
+    DaemonConfig cfg;
+    load_config_text(R"({"backend":{"type":"sim-portio-drive")" + backend + "}}", "t.json", cfg);
+    finish_config(cfg);
+    return cfg.ports.drive;
+  };
+  auto b = drive("");
+  REQUIRE(b.output_count == 8);  // map B: 0x302 bits 0..7
+  CHECK(b.outputs[0].port == 0x302);
+  CHECK(b.outputs[0].mask == 0x0001);
+  CHECK(b.outputs[7].mask == 0x0080);
+  auto a = drive(R"(,"port_map":"mrm-a")");
+  REQUIRE(a.output_count == 7);  // map A: outputs port 0x30C bits 9..15
+  CHECK(a.outputs[0].port == 0x30C);
+  CHECK(a.outputs[0].mask == 0x0200);
+  CHECK(a.outputs[6].mask == 0x8000);
+  auto t = drive(R"(,"outputs":[{"port":"0x302","bit":3},{"port":769,"bit":15},{"port":"0x303","bit":8}])");
+  REQUIRE(t.output_count == 3);
+  CHECK(t.outputs[0].port == 0x302);
+  CHECK(t.outputs[0].mask == 0x0008);
+  CHECK(t.outputs[1].port == 0x301);
+  CHECK(t.outputs[1].mask == 0x8000);
+  CHECK(t.outputs[2].port == 0x303);
+  CHECK(t.outputs[2].mask == 0x0100);
+  CHECK(drive(R"(,"outputs":[])").output_count == 0);
+  CHECK(contains(json_error(R"({"backend":{"type":"sim-portio-drive","outputs":[{"port":"0x302","bit":0,"pin":3}]}})"),
+                 "unknown key 'backend.outputs[0].pin'"));
+}
+
 TEST_CASE("messdrc text: values, underflow, repeats, empty files and bad values") {
   DaemonConfig cfg;
   auto warnings = load_messdrc_text("# stylus\nTipRadius 1e-400\nSpeedLevel 0.5\nColour red\n", "rc", cfg);

@@ -1,5 +1,5 @@
 // Real-time discipline of the servo card's path following: follow(), the read_state() that
-// returns its reply, and a stop allocate nothing — on the request/reply link and on the
+// returns its reply, a stop and switching the probe power (set_output) allocate nothing — on the request/reply link and on the
 // stream over the byte-timed line — counted by replacing the global allocator.
 #include <catch2/catch.hpp>
 
@@ -23,6 +23,7 @@ TEST_CASE("card follow: follow() and the cycle's read_state() allocate nothing")
       rig.driver().stop(hal::AxisVec::Constant(1000));  // ends following; the next frame starts it again
       rig.driver().read_state(ms);
     }
+    if (i % 250 == 0 && !rig.driver().set_output(1, (i / 250) % 2 == 1)) ++failures;  // the probe's power
     rig.tick();
   }
   g_counting = false;
@@ -41,7 +42,7 @@ TEST_CASE("card stream: the driver's real-time calls on the stream and the byte-
   hal::AxisArray<hal::AxisMove> moves{};
   moves[0] = {sp.position.x() - 5, 50, 500};
   hal::AxisVec latched = hal::AxisVec::Zero();
-  long failures = 0;
+  long failures = 0, latches = 0;
   double v = 0;
   g_allocations = 0;
   g_counting = true;
@@ -49,7 +50,12 @@ TEST_CASE("card stream: the driver's real-time calls on the stream and the byte-
   for (int i = 0; i < 3000; ++i) {
     rig.clock().advance(MotionRig::kPeriod);
     if (!drv.read_state(ms)) ++failures;
-    if (i < 1000) {  // a path along X (setpoints out, status frames in), then a stop, a move, a latch read
+    // A latch is read as soon as it shows, as the core reads it: the probe power edges'.
+    if (ms.latch_valid()) {
+      if (!drv.read_latch(latched)) ++failures;
+      ++latches;
+    }
+    if (i < 1000) {  // a path along X (setpoints out, status frames in), then a stop, a move, set_position, reset
       v = std::min(50.0, v + 1.0);
       sp.position.x() += v * 0.001;
       sp.velocity = axes3(Vec3(v, 0, 0));
@@ -57,8 +63,8 @@ TEST_CASE("card stream: the driver's real-time calls on the stream and the byte-
     }
     if (i == 1000 && !drv.stop(hal::AxisVec::Constant(1000))) ++failures;
     if (i == 1500 && !drv.move(moves, 1u)) ++failures;
+    if (i % 400 == 0 && !drv.set_output(1, (i / 400) % 2 == 1)) ++failures;  // the probe's power, on the stream
     if (i == 2500) {
-      drv.read_latch(latched);  // none latched: false, no frame
       if (!drv.set_position(0, 100) || !drv.reset_faults()) ++failures;
     }
   }
@@ -68,4 +74,5 @@ TEST_CASE("card stream: the driver's real-time calls on the stream and the byte-
   CHECK(!ms.faulted());
   CHECK(drv.stream()->frames_sent() > 250);
   CHECK(drv.stream()->status_frames() > 500);
+  CHECK(latches >= 7);  // one per probe power edge (initialise()'s and the first set_output's may be one)
 }

@@ -1,6 +1,7 @@
 // Real-time discipline of the port backends: neither the servo-rate calls nor the base
 // routine allocate — counted by replacing the global allocator while the core jogs, hits,
-// retracts, moves, homes and stops on each backend, and while each follows a planned path.
+// retracts, moves, homes and stops on each backend, and while each follows a planned path
+// and switches its user outputs (set_output).
 #include <catch2/catch.hpp>
 
 #include "follow_rig.hpp"
@@ -21,8 +22,9 @@ core::CoreConfig brisk() {
   c.params.idle_open_time = 2;
   return c;
 }
-// Servo periods of follow() from a path planned beforehand, then stop() and a move(): the
-// allocations counted inside the loop only (the sampler is allocation-free).
+// Servo periods of follow() from a path planned beforehand, then stop() and a move(), the
+// backend's outputs switched on and off meanwhile: the allocations counted inside the loop
+// only (the sampler is allocation-free).
 template <class Rig>
 long allocations_following(Rig& rig, PathFeed& feed, int periods) {
   hal::MachineState ms;
@@ -30,9 +32,11 @@ long allocations_following(Rig& rig, PathFeed& feed, int periods) {
   g_allocations = 0;
   g_counting = true;
   bool ok = true;
+  REQUIRE(backend.output_count() >= 2);
   for (int i = 0; i < periods; ++i) {
     rig.clock().advance(Rig::kPeriod);
     ok = backend.read_state(ms) && ok;
+    if (i % 100 == 0) ok = backend.set_output(1 + (i / 100) % 2, (i / 200) % 2 == 0) && ok;
     if (i < periods / 2) {
       const hal::Setpoint sp = feed.next();
       ok = backend.follow(sp) && ok;
@@ -55,7 +59,11 @@ long allocations_following(Rig& rig, PathFeed& feed, int periods) {
 
 TEST_CASE("port backends: follow(), stop() after it and move() after it do not allocate") {
   {
-    StepperRig rig;
+    auto o = stepper_options();
+    o.driver.pins.pins[5] = hal::parse_pin_signal("out 1");   // a data pin: the base routine merges it
+    o.driver.pins.pins[17] = hal::parse_pin_signal("out 2");  // a control pin
+    o.sim.stepper.pins = o.driver.pins;
+    StepperRig rig(o);
     hal::MachineState ms;
     rig.servo_cycles(1);
     REQUIRE(rig.backend().read_state(ms));

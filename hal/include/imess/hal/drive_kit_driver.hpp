@@ -37,6 +37,13 @@ struct DriveKitAxisConfig {
   std::uint16_t enable_bit = 0;            // amplifier enable in the outputs port
 };
 
+// One bit of a 16-bit output port.
+struct PortBit {
+  std::uint16_t port = 0;
+  std::uint16_t mask = 0;  // a single bit
+};
+inline constexpr int kMaxDriveKitOutputs = 8;
+
 struct DriveKitConfig {
   int mode = 1;                         // 1: DAC mV; 2: increments per period, kit writes 0 back when taken
   std::uint16_t sync_port = 0x300;      // strobe written after each DAC update (0: none)
@@ -46,6 +53,10 @@ struct DriveKitConfig {
   std::uint16_t probe_bit = 0x0200;
   std::array<std::uint16_t, 4> safety_bits{0x1000, 0x2000, 0x4000, 0x8000};  // NC, 1 = closed; 0 = not fitted
   std::uint16_t safe_outputs = 0;       // outputs after a trip (everything off)
+  // User outputs 1..output_count (set_output): a bit each, in outputs_port (not an enable
+  // bit) or another port. All off at initialise() and after a safety trip or following error.
+  std::array<PortBit, kMaxDriveKitOutputs> outputs{};
+  int output_count = 0;
   double dac_limit_mv = 10000;
   double servo_period_ns = 1'000'000;
   AxisLayout layout;                    // the axes driven: axes[0 .. layout.count)
@@ -65,7 +76,13 @@ struct DriveKitConfig {
 // 0x0001/0x0002/0x0004, 0x0008/0x0010/0x0020, 0x0040/0x0080/0x0100, probe 0x0200, safety
 // 0x1000-0x8000; axes 4..8 the same pattern in inputs 2 (axis 9: no switches); enables
 // 1 << axis. The port ranges must not overlap: map B's positions reach its latches past 5.
+// User outputs: map B 1..8 = 0x302 bits 0..7 (bit 0 the manual's gripper); map A (where
+// 0x302 is a command port) 1..7 = outputs port 0x30C bits 9..15, above the enables.
 std::optional<DriveKitConfig> named_drive_kit_map(std::string_view name, int count = 3);
+// Throws std::invalid_argument naming the output ("output 2 (port 0x30C bit 1) ...") when
+// the user outputs cannot work: not one bit, an amplifier enable, a port the kit reads or
+// commands through (inputs, sync, latches, an axis' command or position port), one bit twice.
+void validate_drive_kit_outputs(const DriveKitConfig& config);
 
 class DriveKitDriver final : public MotionBackend {
  public:
@@ -82,6 +99,10 @@ class DriveKitDriver final : public MotionBackend {
   bool stop(const AxisVec& decel) noexcept override;
   bool set_position(int axis, double value) noexcept override;
   bool reset_faults() noexcept override;
+  // The configured user outputs (DriveKitConfig::outputs): read-modify-write of the port's
+  // shadow word. Switching one on is refused (false) while a safety input fault is latched.
+  int output_count() const noexcept override { return config_.output_count; }
+  bool set_output(int number, bool on) noexcept override;
 
   double max_following_error_seen(int axis) const noexcept { return axes_[axis].max_error; }
   unsigned long handshake_misses() const noexcept { return handshake_misses_; }
@@ -102,7 +123,11 @@ class DriveKitDriver final : public MotionBackend {
   };
   double position(int a) const noexcept;
   void write_command(int a, double velocity) noexcept;
+  // Commands zero, loops open, the outputs port = `outputs` less the user outputs, every
+  // user output off.
   void safe_state(std::uint16_t outputs) noexcept;
+  void user_outputs_off() noexcept;
+  std::uint16_t& shadow(int output) noexcept;
   std::uint16_t enable_bits() const noexcept;
   // The steps of read_state, in their order.
   std::uint32_t open_safety_inputs(std::uint16_t in) const noexcept;
@@ -121,7 +146,13 @@ class DriveKitDriver final : public MotionBackend {
   bool loops_closed_ = false, latch_valid_ = false, last_contact_ = false;
   AxisVec latched_ = AxisVec::Zero();
   ServoInterval servo_interval_;
-  std::uint16_t strobe_ = 0, outputs_ = 0;
+  std::uint16_t strobe_ = 0, outputs_ = 0;  // outputs_: the outputs port's word as written
+  // The words written to the other ports that carry user outputs (one per port, in
+  // shadow_ports_); per output its shadow slot, -1: the outputs port (outputs_).
+  std::array<std::uint16_t, kMaxDriveKitOutputs> shadow_ports_{}, shadow_words_{};
+  std::array<std::int8_t, kMaxDriveKitOutputs> output_slot_{};
+  std::uint16_t user_bits_on_outputs_port_ = 0;
+  int shadow_count_ = 0;
   std::uint32_t safety_faults_ = 0;
   unsigned long handshake_misses_ = 0;
   bool follow_fresh_ = false;  // a setpoint came since the last read_state

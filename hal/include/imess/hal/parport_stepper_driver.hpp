@@ -5,7 +5,9 @@
 // STOP, and the probe latch captured at the step count of the edge. follow() (a planned
 // path, one setpoint per servo period) replaces the trapezoids: LinuxCNC stepgen's position
 // mode, the absolute target step count for the period's end and the rate that spreads the
-// steps to go evenly over the period.
+// steps to go evenly over the period. User outputs ("out N" pins): set_output stores the
+// level in an atomic; the base routine, the only writer of the data and control registers
+// once running, merges it into every write.
 #pragma once
 #include <atomic>
 #include <string>
@@ -56,6 +58,10 @@ class ParportStepperDriver final : public MotionBackend, public BaseRateDriver {
   bool stop(const AxisVec& decel) noexcept override;
   bool set_position(int axis, double value) noexcept override;
   bool reset_faults() noexcept override;
+  // The pin map's "out 1".."out N". The level reaches the pin at the next base tick; it is
+  // kept across loops open/closed, STOP and Reset (off only until first switched on).
+  int output_count() const noexcept override { return pins_.output_count; }
+  bool set_output(int number, bool on) noexcept override;
 
   void base_tick() noexcept override;
   Nanos base_period() const noexcept override { return Nanos(static_cast<std::int64_t>(config_.base_period_ns)); }
@@ -70,6 +76,11 @@ class ParportStepperDriver final : public MotionBackend, public BaseRateDriver {
  private:
   std::uint16_t data_port() const noexcept { return config_.base; }
   std::uint16_t status_port() const noexcept { return static_cast<std::uint16_t>(config_.base + 1); }
+  std::uint16_t control_port() const noexcept { return static_cast<std::uint16_t>(config_.base + 2); }
+  // The control register's value with the user outputs active in `outputs`.
+  std::uint8_t control_value(std::uint8_t outputs) const noexcept {
+    return static_cast<std::uint8_t>(pins_.control_invert ^ pins_.enable_control_mask ^ outputs);
+  }
   bool active(std::uint8_t status, std::uint8_t mask) const noexcept {
     return mask != 0 && ((status ^ pins_.status_xor) & mask) != 0;
   }
@@ -93,8 +104,11 @@ class ParportStepperDriver final : public MotionBackend, public BaseRateDriver {
   std::atomic<bool> latch_valid_{false};
   AxisArray<std::atomic<std::int64_t>> latched_{};
   AxisArray<std::atomic<std::int64_t>> release_count_{};  // step count where the home switch last opened
+  // Servo side (set_output) writes, base side reads: the register bits of the user outputs
+  // that are on, before inversion.
+  std::atomic<std::uint8_t> output_data_{0}, output_control_{0};
   // Base side only.
-  std::uint8_t last_data_ = 0;
+  std::uint8_t last_data_ = 0, last_control_ = 0;
   bool last_contact_ = false;
   AxisArray<bool> last_switch_{};
   bool base_started_ = false;

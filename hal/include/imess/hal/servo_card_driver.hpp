@@ -48,6 +48,12 @@ class ServoCardDriver final : public MotionBackend {
   bool stop(const AxisVec& decel) noexcept override;
   bool set_position(int axis, double value) noexcept override;
   bool reset_faults() noexcept override;
+  // Output 1 powers the probe (card::output::kProbeOn on every axis module; initialise()
+  // switches it on). Op::WriteOutputs with the limit and reference switches on, request/reply
+  // or on the stream; nothing else (set_loops, reset_faults) writes the outputs.
+  int output_count() const noexcept override { return 1; }
+  bool set_output(int number, bool on) noexcept override;
+  bool probe_power() const noexcept { return probe_on_; }
 
   // Link transactions that failed or were refused since start (for Stats and -dt).
   unsigned long errors() const noexcept { return errors_ + (session_ ? session_->errors() : 0); }
@@ -78,6 +84,7 @@ class ServoCardDriver final : public MotionBackend {
   MachineState followed_{};     // the state that came back with the last Follow frame
   bool have_followed_ = false;  // not yet returned by read_state()
   bool comm_lost_ = false;      // a Follow frame failed: report kCommTimeout until reset
+  bool probe_on_ = false;       // output 1 as last written (initialise(): on)
 };
 
 }  // namespace imess::hal

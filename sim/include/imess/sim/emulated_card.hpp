@@ -2,9 +2,15 @@
 // hal/servo_card_protocol.hpp. Its firmware closes the position loops, runs trapezoid
 // profiles or follows the host's per-period setpoints, stops axes at limit switches,
 // watches the following error and latches all axes on the probe edge; the Mechanics
-// behind it is the machine. Once streaming (Op::StartStream) it also takes host frames on
-// a stream — timed setpoints (Op::Segment) executed on its own clock — and sends a status
-// frame every status period (emulated_card_stream.cpp).
+// behind it is the machine. Probe edges latch only while axis 0's kProbeOn output bit is
+// set (the probe powered). Switching the probe's power on or off makes an edge of its own,
+// as a real touch probe's does (DirectCMM's STARTUP/SHUTDOWN modes exist for it): whenever
+// Op::WriteOutputs changes axis 0's kProbeOn bit — the first power-on at initialisation
+// included — every axis latches where it stands, unless a latch is already held
+// (CardConfig::probe_power_edges: false leaves power changes without an edge). Once
+// streaming (Op::StartStream) it also takes host frames on a stream — timed setpoints
+// (Op::Segment) executed on its own clock — and sends a status frame every status period
+// (emulated_card_stream.cpp).
 #pragma once
 #include <array>
 #include <span>
@@ -29,6 +35,7 @@ struct CardConfig {
   bool absolute_scales = true;             // false: counters read 0 where the machine stands at power-on
   double follow_period = 0.001;            // s, the host period assumed until Follow frames measured it
   double follow_watchdog = 0.005;          // s, no Follow frame for this long (and 1.5 host periods): CommLost
+  bool probe_power_edges = true;           // switching the probe's power (kProbeOn) latches, as a real probe's edge
 };
 
 class EmulatedCard {
@@ -90,6 +97,8 @@ class EmulatedCard {
   void stream_fault() noexcept;
   void emit_status() noexcept;
   void shift_axis(int a, double new_offset) noexcept;
+  // Every axis latched where it stands now (unless a latch is held): a probe power edge.
+  void latch_here() noexcept;
   void write_state(unsigned mask, hal::LinkWriter& out) const noexcept;
 
   // The link operations (hal/servo_card_protocol.hpp), one each: read the request's

@@ -59,6 +59,8 @@ class BaseTickPump final : public hal::MotionBackend {
   bool stop(const hal::AxisVec& decel) noexcept override { return backend_.stop(decel); }
   bool set_position(int axis, double value) noexcept override { return backend_.set_position(axis, value); }
   bool reset_faults() noexcept override { return backend_.reset_faults(); }
+  int output_count() const noexcept override { return backend_.output_count(); }
+  bool set_output(int number, bool on) noexcept override { return backend_.set_output(number, on); }
 
  private:
   static constexpr std::int64_t kMaxCatchUp = 500'000'000;
