@@ -184,7 +184,7 @@ void read_journal_section(JsonObject& jn, DaemonConfig& cfg) {
 
 // "outputs": name -> { number, settle_ms, at_start, probe_power }. Names go on the wire
 // (SetOut name on|off), so they are one word of letters, digits and '_'.
-constexpr double kDefaultProbeArmingMs = 100;
+const double kDefaultProbeArmingMs = core::default_probe_output().settle_s * 1000;
 
 void read_outputs_section(JsonObject& outs, DaemonConfig& cfg) {
   auto& core = cfg.core;
@@ -341,13 +341,7 @@ void finish_config(DaemonConfig& cfg) {
   const auto* type = find_backend(cfg.backend);
   cfg.core.referenced_at_start = type && type->absolute_scales && cfg.sim.card.absolute_scales;
   if (!cfg.outputs_given && type && type->probe_power_output) {  // the card's probe output
-    core::OutputSettings probe;
-    const std::string name = "probe";
-    std::copy(name.begin(), name.end(), probe.name.begin());
-    probe.number = 1;
-    probe.probe_power = probe.at_start = true;
-    probe.settle_s = kDefaultProbeArmingMs / 1000;
-    cfg.core.outputs[0] = probe;
+    cfg.core.outputs[0] = core::default_probe_output();
     cfg.core.output_count = 1;
   }
   finish_backend_config(cfg);

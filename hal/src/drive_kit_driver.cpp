@@ -229,6 +229,12 @@ std::uint16_t& DriveKitDriver::shadow(int output) noexcept {
   return output_slot_[output] < 0 ? outputs_ : shadow_words_[output_slot_[output]];
 }
 
+bool DriveKitDriver::output_on(int number) const noexcept {
+  if (number < 1 || number > config_.output_count) return false;
+  const int slot = output_slot_[number - 1];
+  return ((slot < 0 ? outputs_ : shadow_words_[slot]) & config_.outputs[number - 1].mask) != 0;
+}
+
 bool DriveKitDriver::set_output(int number, bool on) noexcept {
   if (number < 1 || number > config_.output_count) return false;
   if (on && safety_faults_ != 0) return false;  // a safety input holds the outputs off until Reset

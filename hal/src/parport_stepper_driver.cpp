@@ -128,6 +128,12 @@ bool ParportStepperDriver::set_output(int number, bool on) noexcept {
   return true;
 }
 
+bool ParportStepperDriver::output_on(int number) const noexcept {
+  if (number < 1 || number > pins_.output_count) return false;
+  return (output_data_.load(std::memory_order_relaxed) & pins_.output_data[number - 1]) != 0 ||
+         (output_control_.load(std::memory_order_relaxed) & pins_.output_control[number - 1]) != 0;
+}
+
 // ------------------------------------------------------------------ servo rate
 
 bool ParportStepperDriver::read_state(MachineState& out) noexcept {

@@ -133,6 +133,10 @@ void ServoCardDriver::initialise(bool force_reboot) {
   for (int a = 0; a < kAxes; ++a) writer_.u8(output_bits(true));
   set_up_call("switching limit, reference and probe inputs on");
   probe_on_ = true;
+  // The probe's power-on edge latched the axes: part of set-up, read and dropped here.
+  begin(Op::ReadLatch);
+  table(kAllAxes);
+  set_up_call("clearing the latch of the probe's power-on");
   if (stream_link_) start_stream();
 }
 

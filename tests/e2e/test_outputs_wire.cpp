@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <optional>
 #include <fstream>
 #include <sstream>
 #include <unistd.h>
@@ -46,23 +47,33 @@ std::string private_arm_config() {
 TEST_CASE("probe power on the servo card: power edges are not hits, a Probe with the probe off fails ProbeOff") {
   DaemonProcess messd({"--config", std::string(IMESS_SOURCE_DIR) + "/tests/e2e/fast-cmm.json"});
   LineClient c(messd.port());
-  REQUIRE(c.request("Outputs") == std::string("Ok Outputs probe on ProbeArmed yes"));
+  // On at start; armed 100 ms after messd started the card.
+  std::optional<std::string> outputs;
+  for (int i = 0; i < 50 && outputs != std::string("Ok Outputs probe on ProbeArmed yes"); ++i) {
+    outputs = c.request("Outputs");
+    REQUIRE(outputs);
+    CHECK(outputs->rfind("Ok Outputs probe on ProbeArmed ", 0) == 0);
+    usleep(20'000);
+  }
+  REQUIRE(outputs == std::string("Ok Outputs probe on ProbeArmed yes"));
   // SHUTDOWN: the power-off edge is ignored; a Probe into the cube top fails before it moves.
   REQUIRE(c.request("SetOut 1 probe off") == std::string("Ok SetOut"));
   REQUIRE(c.until([](const std::string& l) { return l == "Done 1"; }, 20));
-  CHECK(seen(c, "Warn HitIgnored edge within the probe's arming time; no point taken"));
+  CHECK(seen(c, "Warn HitIgnored probe edge while the probe is switched off; no point taken"));
   REQUIRE(c.request("Outputs") == std::string("Ok Outputs probe off ProbeArmed no"));
-  c.send("Probe 2 Z70");  // the cube's top at z = 80 below the start (430, 330, 100)
+  c.send("Probe 2 Z81");  // the cube top at z = 80 below the start (430, 330, 100): the ball centre touches at 82
   REQUIRE(c.until([](const std::string& l) { return l.rfind("Failed 2", 0) == 0; }, 20));
   CHECK(seen(c, "Failed 2 ProbeOff the probe is switched off: SetOut <id> <its output> on first"));
   CHECK(count_prefix(c, "Hit ") == 0);
+  REQUIRE(c.until([](const std::string& l) { return l == "State idle"; }, 10));  // braked: it stands
   // STARTUP, then the same Probe measures the top.
-  c.send("SetOut 3 probe on\nProbe 4 Z70");
+  c.send("SetOut 3 probe on\nProbe 4 Z81");
   REQUIRE(c.until([](const std::string& l) { return l == "Done 4" || l.rfind("Failed 4", 0) == 0; }, 30));
   INFO(c.raw());
   CHECK(seen(c, "Done 3"));
   CHECK(seen(c, "Done 4"));
   CHECK(count_prefix(c, "Warn HitIgnored") == 2);  // the off and the on edge
+  CHECK(seen(c, "Warn HitIgnored edge within the probe's arming time; no point taken"));
   REQUIRE(count_prefix(c, "Hit ") == 1);
   for (const auto& l : c.seen())
     if (l.rfind("Hit ", 0) == 0) {

@@ -46,6 +46,8 @@ struct RigOptions {
 inline RigOptions default_options() {
   RigOptions o;
   o.core.referenced_at_start = o.sim.card.absolute_scales;
+  o.core.outputs[0] = core::default_probe_output();  // as messd configures the card's probe
+  o.core.output_count = 1;
   return o;
 }
 

@@ -75,6 +75,7 @@ class IdealFollower final : public hal::MotionBackend {
   }
   bool reset_faults() noexcept override { return true; }
   int output_count() const noexcept override { return static_cast<int>(outputs.size()); }
+  bool output_on(int number) const noexcept override { return number >= 1 && number <= output_count() && outputs[number - 1]; }
   // Records every switch with how many setpoints came before it (the next one is the
   // setpoint of the switching cycle); a probe power output makes the probe's power edge.
   bool set_output(int number, bool on) noexcept override {

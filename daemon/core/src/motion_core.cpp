@@ -112,6 +112,7 @@ void MotionCore::start_outputs(Nanos now) {
       probe_output_ = i;
       probe_powered_ = o.at_start;
       arming_until_ = now + std::chrono::nanoseconds(static_cast<std::int64_t>(o.settle_s * 1e9));
+      quiet_arming_ = true;
     }
   }
 }
@@ -131,12 +132,23 @@ const std::uint32_t* MotionCore::switch_outputs(const planner::Sample& smp, Nano
       if (config_.outputs[i].number != sw.output) continue;
       outputs_on_ = on ? (outputs_on_ | (1u << i)) : (outputs_on_ & ~(1u << i));
       if (i == probe_output_) {
+        quiet_arming_ = false;
         probe_powered_ = on;
         arming_until_ = now + std::chrono::nanoseconds(static_cast<std::int64_t>(config_.outputs[i].settle_s * 1e9));
       }
     }
   }
   return nullptr;
+}
+
+// The outputs as the backend holds them: a trip (a drive kit's safety input) switches them
+// off behind the core's back, the probe's power with them.
+void MotionCore::refresh_outputs() noexcept {
+  for (int i = 0; i < config_.output_count; ++i) {
+    const bool on = hw_.output_on(config_.outputs[i].number);
+    outputs_on_ = on ? (outputs_on_ | (1u << i)) : (outputs_on_ & ~(1u << i));
+    if (i == probe_output_ && !on) probe_powered_ = false;
+  }
 }
 
 void MotionCore::cycle(Nanos now) noexcept {
@@ -163,6 +175,7 @@ void MotionCore::cycle(Nanos now) noexcept {
       if (f == FaultKind::StopInput) homed_ = referenced_ = false;  // the step count is no longer trusted
       fault(f, now);
     }
+    refresh_outputs();
     if (ms_.latch_valid()) on_probe_latch(now);
   }
   take_stop(now);
@@ -441,6 +454,7 @@ void MotionCore::on_probe_latch(Nanos now) noexcept {
     return;
   }
   if (!probe_armed(now)) {  // the probe's power-on/-off edge, or an unpowered probe: not a hit
+    if (quiet_arming_ && now < arming_until_) return;  // the power-on of start-up: part of set-up, not news
     warn(Warning::HitIgnored, latched, now, probe_powered_ ? "edge within the probe's arming time; no point taken"
                                                            : "probe edge while the probe is switched off; no point taken");
     return;

@@ -221,6 +221,11 @@ void Server::queue_status(Session& s, std::uint32_t slot) {
 void Server::feed_segments() {
   planner::PlannedSegment seg;
   while (core_.segment_room() > 0 && planner_.take(seg)) {
+    // A Probe's search whose approach has already been answered (it failed before the
+    // search was fed): its id is closed, the search must never run. It is not sent.
+    const bool search = seg.probe == planner::ProbePhase::Search;
+    if (search && (in_loop_.empty() || in_loop_.back().first != seg.id) && (unsent_.empty() || unsent_.front() != seg.id))
+      continue;
     if (!core_.submit_segment({seg, core_.stop_ticket(), drops_})) {
       // cannot happen (room was checked, one producer); never lose an id silently
       broadcast(failed_line(seg.id, core::FailReason::Faulted));
@@ -228,7 +233,7 @@ void Server::feed_segments() {
       continue;
     }
     // A Probe's search after its approach: the same id, one entry (its approach took it from unsent_).
-    if (seg.probe == planner::ProbePhase::Search && !in_loop_.empty() && in_loop_.back().first == seg.id) {
+    if (search && !in_loop_.empty() && in_loop_.back().first == seg.id) {
       in_loop_.back().second += seg.duration();
       continue;
     }

@@ -103,6 +103,7 @@ class DriveKitDriver final : public MotionBackend {
   // shadow word. Switching one on is refused (false) while a safety input fault is latched.
   int output_count() const noexcept override { return config_.output_count; }
   bool set_output(int number, bool on) noexcept override;
+  bool output_on(int number) const noexcept override;
 
   double max_following_error_seen(int axis) const noexcept { return axes_[axis].max_error; }
   unsigned long handshake_misses() const noexcept { return handshake_misses_; }

@@ -114,6 +114,11 @@ class MotionBackend {
     (void)on;
     return false;
   }
+  // The output's state as the backend holds it (a trip may have switched it off).
+  virtual bool output_on(int number) const noexcept {
+    (void)number;
+    return false;
+  }
   // Decelerates every axis to rest with the given per-axis deceleration (mm/s², deg/s²).
   virtual bool stop(const AxisVec& decel) noexcept = 0;
   // Redefines the current position of one axis (homing: the index becomes value).

@@ -62,6 +62,7 @@ class ParportStepperDriver final : public MotionBackend, public BaseRateDriver {
   // kept across loops open/closed, STOP and Reset (off only until first switched on).
   int output_count() const noexcept override { return pins_.output_count; }
   bool set_output(int number, bool on) noexcept override;
+  bool output_on(int number) const noexcept override;
 
   void base_tick() noexcept override;
   Nanos base_period() const noexcept override { return Nanos(static_cast<std::int64_t>(config_.base_period_ns)); }

@@ -53,6 +53,7 @@ class ServoCardDriver final : public MotionBackend {
   // or on the stream; nothing else (set_loops, reset_faults) writes the outputs.
   int output_count() const noexcept override { return 1; }
   bool set_output(int number, bool on) noexcept override;
+  bool output_on(int number) const noexcept override { return number == 1 && probe_on_; }
   bool probe_power() const noexcept { return probe_on_; }
 
   // Link transactions that failed or were refused since start (for Stats and -dt).

@@ -61,6 +61,7 @@ class BaseTickPump final : public hal::MotionBackend {
   bool reset_faults() noexcept override { return backend_.reset_faults(); }
   int output_count() const noexcept override { return backend_.output_count(); }
   bool set_output(int number, bool on) noexcept override { return backend_.set_output(number, on); }
+  bool output_on(int number) const noexcept override { return backend_.output_on(number); }
 
  private:
   static constexpr std::int64_t kMaxCatchUp = 500'000'000;

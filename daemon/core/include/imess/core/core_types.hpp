@@ -128,6 +128,16 @@ struct OutputSettings {
   std::string_view name_view() const noexcept { return std::string_view(name.data()); }
 };
 
+// The servo card's probe output: "probe", output 1, on at start, armed 100 ms after a switch.
+inline OutputSettings default_probe_output() noexcept {
+  OutputSettings o;
+  o.name = {'p', 'r', 'o', 'b', 'e'};
+  o.number = 1;
+  o.settle_s = 0.1;
+  o.at_start = o.probe_power = true;
+  return o;
+}
+
 struct CoreConfig {
   AxisLayout layout;  // the machine's axes: axes[0 .. layout.count)
   CoreParams params;

@@ -74,6 +74,7 @@ class MotionCore {
   // Outputs: their start states (set-up), the switches of a sampler tick, and whether a
   // probe edge now is a hit (the probe powered and past its arming time).
   void start_outputs(Nanos now);
+  void refresh_outputs() noexcept;
   const std::uint32_t* switch_outputs(const planner::Sample& smp, Nanos now) noexcept;
   bool probe_armed(Nanos now) const noexcept { return probe_powered_ && now >= arming_until_; }
   void retract_from(const AxisVec& latched, const AxisVec& dir, Nanos now) noexcept;
@@ -192,6 +193,7 @@ class MotionCore {
   int probe_output_ = -1;
   bool probe_powered_ = true;
   Nanos arming_until_{0};         // probe edges before this are its power edges
+  bool quiet_arming_ = false;     // the arming of start-up: its edges go without a warning
   double since_last_s_ = 0;       // s since the previous cycle, the period at the first
 };
 
