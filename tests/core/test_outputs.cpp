@@ -69,12 +69,6 @@ void replan(FollowerRig& rig) {
   rig.planner().set_position(here);
 }
 
-std::vector<FailReason> reasons(const FollowerRig& rig) {
-  std::vector<FailReason> out;
-  for (auto& e : rig.events())
-    if (e.kind == EventKind::Failed) out.push_back(e.fail);
-  return out;
-}
 }  // namespace
 
 TEST_CASE("outputs: every configured output is set to its start state when the core starts") {
@@ -121,7 +115,7 @@ TEST_CASE("outputs: SetOutput switches when the path before it is at rest, holds
   while (k < rig.hw.setpoints.size() && rig.hw.setpoints[k].position[0] == 150.0) ++k;
   CHECK(static_cast<double>(k - sw.setpoints_before) * 1e-3 == Approx(kGripperSettle).margin(1.5e-3));
   CHECK(rig.core().snapshot().outputs == 0b11u);
-  CHECK(reasons(rig).empty());
+  CHECK(rig.fail_reasons().empty());
 }
 
 TEST_CASE("outputs: a switch the backend refuses fails the queue from there (Faulted) and the machine stops") {
@@ -135,7 +129,7 @@ TEST_CASE("outputs: a switch the backend refuses fails the queue from there (Fau
   REQUIRE(ended);
   CHECK(rig.ids(EventKind::Done) == std::vector<std::uint32_t>{1});
   CHECK(rig.ids(EventKind::Failed) == std::vector<std::uint32_t>{2, 3});
-  CHECK(reasons(rig) == std::vector<FailReason>{FailReason::Faulted, FailReason::Faulted});
+  CHECK(rig.fail_reasons() == std::vector<FailReason>{FailReason::Faulted, FailReason::Faulted});
   CHECK(rig.position().x() == Approx(150).margin(1e-9));
 }
 
@@ -183,7 +177,7 @@ TEST_CASE("probe power: switched off, its edge is ignored and a Probe fails Prob
   REQUIRE(rig.run_until([&] { return rig.ids(EventKind::Failed).size() == 2 && rig.mode() == Mode::Idle; }, 10));
   CHECK(rig.ids(EventKind::Done) == std::vector<std::uint32_t>{1});
   CHECK(rig.ids(EventKind::Failed) == std::vector<std::uint32_t>{2, 3});
-  CHECK(reasons(rig).front() == FailReason::ProbeOff);
+  CHECK(rig.fail_reasons().front() == FailReason::ProbeOff);
   CHECK(rig.position().x() < 100.01);  // it did not travel toward the part
   auto warns = rig.take(EventKind::Warn);
   REQUIRE(warns.size() == 1);  // the power-off edge

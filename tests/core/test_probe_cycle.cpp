@@ -54,12 +54,6 @@ void queue_probe(FollowerRig& rig, std::uint32_t id, Vec3 target, double feed = 
   rig.append(c->search);
 }
 
-std::vector<FailReason> reasons(const FollowerRig& rig) {
-  std::vector<FailReason> out;
-  for (auto& e : rig.events())
-    if (e.kind == EventKind::Failed) out.push_back(e.fail);
-  return out;
-}
 
 bool at_rest_done(FollowerRig& rig) {
   return rig.mode() == Mode::Idle && (!rig.ids(EventKind::Done).empty() || !rig.ids(EventKind::Failed).empty());
@@ -115,7 +109,7 @@ TEST_CASE("Probe: no edge up to SearchDist beyond the target: Failed PartNotFoun
   REQUIRE(run_wall(rig, kNoWall, [&] { return at_rest_done(rig); }, 20));
   rig.step();  // the machine state of the cycle after the last setpoint
   CHECK(rig.ids(EventKind::Failed) == std::vector<std::uint32_t>{3});
-  CHECK(reasons(rig) == std::vector<FailReason>{FailReason::PartNotFound});
+  CHECK(rig.fail_reasons() == std::vector<FailReason>{FailReason::PartNotFound});
   CHECK(rig.ids(EventKind::Done).empty());
   CHECK(rig.take(EventKind::MeasPt).empty());
   const Vec3 d = Vec3(20, 10, 0).normalized();
@@ -129,7 +123,7 @@ TEST_CASE("Probe: an edge on the fast approach is an unexpected hit: one Failed 
   REQUIRE(run_wall(rig, 130, [&] { return !rig.ids(EventKind::Failed).empty(); }, 20));
   rig.step();
   CHECK(rig.ids(EventKind::Failed) == std::vector<std::uint32_t>{4});  // approach and search: one id, one Failed
-  CHECK(reasons(rig) == std::vector<FailReason>{FailReason::UnexpectedHit});
+  CHECK(rig.fail_reasons() == std::vector<FailReason>{FailReason::UnexpectedHit});
   CHECK(rig.take(EventKind::MeasPt).empty());
   CHECK(rig.mode() == Mode::Retract);
   REQUIRE(run_wall(rig, 130, [&] { return rig.mode() == Mode::Idle; }, 5));
@@ -145,7 +139,7 @@ TEST_CASE("Probe: StopMv during the search fails it Stopped, once; no point, no 
   rig.stop();
   REQUIRE(run_wall(rig, kNoWall, [&] { return rig.mode() == Mode::Idle; }, 5));
   CHECK(rig.ids(EventKind::Failed) == std::vector<std::uint32_t>{5});
-  CHECK(reasons(rig) == std::vector<FailReason>{FailReason::Stopped});
+  CHECK(rig.fail_reasons() == std::vector<FailReason>{FailReason::Stopped});
   CHECK(rig.ids(EventKind::Done).empty());
   CHECK(rig.take(EventKind::MeasPt).empty());
 }

@@ -33,12 +33,6 @@ void queue_mixed(FollowerRig& rig) {
   rig.append(rig.line(5, 190, 200, 80, 30));
 }
 
-std::vector<FailReason> reasons(const FollowerRig& rig) {
-  std::vector<FailReason> out;
-  for (auto& e : rig.events())
-    if (e.kind == EventKind::Failed) out.push_back(e.fail);
-  return out;
-}
 }  // namespace
 
 TEST_CASE("a queue of lines, a dwell and an arc runs to its end: Done ids in order, at the target, idle") {
@@ -161,7 +155,7 @@ TEST_CASE("StopMv mid-queue brakes with the configured deceleration and fails ev
   CHECK(rig.mode() == Mode::Stopping);
   CHECK(rig.hw.stops == 1);
   CHECK(rig.ids(EventKind::Failed) == std::vector<std::uint32_t>{10, 11, 12});
-  for (auto r : reasons(rig)) CHECK(r == FailReason::Stopped);
+  for (auto r : rig.fail_reasons()) CHECK(r == FailReason::Stopped);
   CHECK(rig.ids(EventKind::Done).empty());
   // braking: 80 mm/s at X's 800 mm/s² takes 100 ms
   Vec3 prev = rig.position();
@@ -258,7 +252,7 @@ TEST_CASE("a probe edge during a queued segment: Failed UnexpectedHit, stop, ret
   rig.hw.touch();
   rig.step();
   CHECK(rig.ids(EventKind::Failed) == std::vector<std::uint32_t>{40, 41});
-  for (auto r : reasons(rig)) CHECK(r == FailReason::UnexpectedHit);
+  for (auto r : rig.fail_reasons()) CHECK(r == FailReason::UnexpectedHit);
   CHECK(rig.take(EventKind::MeasPt).empty());
   auto warns = rig.take(EventKind::Warn);
   REQUIRE(warns.size() == 1);
@@ -275,7 +269,7 @@ TEST_CASE("a backend that cannot follow: Failed Faulted for every queued id, the
   rig.feed(true);
   rig.run(0.1);
   CHECK(rig.ids(EventKind::Failed) == std::vector<std::uint32_t>{50, 51});
-  for (auto r : reasons(rig)) CHECK(r == FailReason::Faulted);
+  for (auto r : rig.fail_reasons()) CHECK(r == FailReason::Faulted);
   CHECK(rig.mode() == Mode::Idle);
   CHECK(rig.position() == Vec3(100, 100, 100));
 }
@@ -314,7 +308,7 @@ TEST_CASE("a limit switch entered along the path fails the queue IntoLimit and b
   rig.hw.inputs[0] = imess::hal::input::kLimitPos;
   rig.step();
   CHECK(rig.ids(EventKind::Failed) == std::vector<std::uint32_t>{80});
-  CHECK(reasons(rig) == std::vector<FailReason>{FailReason::IntoLimit});
+  CHECK(rig.fail_reasons() == std::vector<FailReason>{FailReason::IntoLimit});
   CHECK(rig.mode() == Mode::Stopping);
 }
 
@@ -325,7 +319,7 @@ TEST_CASE("a queue that does not start where the machine stands fails OffPath an
   rig.append(rig.line(90, 60, 50, 50, 20));
   rig.feed(true);
   rig.run(0.1);
-  CHECK(reasons(rig) == std::vector<FailReason>{FailReason::OffPath});
+  CHECK(rig.fail_reasons() == std::vector<FailReason>{FailReason::OffPath});
   CHECK(rig.hw.follow_calls <= 1);
   CHECK(rig.position() == Vec3(100, 100, 100));
 }

@@ -50,12 +50,7 @@ TEST_CASE("drive kit mode 2: increments with the write-back-zero handshake, frac
 }
 
 TEST_CASE("a blocked axis trips the following-error limit: loops open, DAC zero") {
-  auto o = drive_options();
-  o.sim.mechanics.start = axes3(hal::Vec3(10, 330, 100));
-  o.driver.initial_position = o.sim.mechanics.start;
-  for (auto& ax : o.driver.axes) ax.limit_neg_bit = ax.limit_pos_bit = 0;  // no limit switches fitted
-  o.sim.kits.ports = o.driver;
-  DriveRig rig(o);
+  DriveRig rig(drive_options_without_switches(hal::Vec3(10, 330, 100)));
   rig.start_core(drive_core());
   REQUIRE(rig.go_to(rig.position() + hal::Vec3(-60, 0, 0), 100) == core::Refusal::None);  // into the end stop
   REQUIRE(rig.run_until([&] { return rig.mode() == Mode::Fault; }, 5));

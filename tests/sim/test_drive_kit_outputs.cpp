@@ -111,12 +111,7 @@ TEST_CASE("drive kit outputs: a safety input trip switches every output off; on 
 }
 
 TEST_CASE("drive kit outputs: a following-error trip switches the outputs off") {
-  auto o = drive_options();
-  o.sim.mechanics.start = axes3(hal::Vec3(10, 330, 100));
-  o.driver.initial_position = o.sim.mechanics.start;
-  for (auto& ax : o.driver.axes) ax.limit_neg_bit = ax.limit_pos_bit = 0;  // no limit switches fitted
-  o.sim.kits.ports = o.driver;
-  DriveRig rig(o);
+  DriveRig rig(drive_options_without_switches(hal::Vec3(10, 330, 100)));
   core::CoreConfig c;
   c.params.max_speed = 80;
   c.params.max_accel = 2000;

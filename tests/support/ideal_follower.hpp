@@ -215,6 +215,13 @@ class FollowerRig final : public MotionRig {
     l.feed = f;
     return l;
   }
+  // The reasons of the Failed events, in order.
+  std::vector<core::FailReason> fail_reasons() const {
+    std::vector<core::FailReason> out;
+    for (auto& e : events_)
+      if (e.kind == EventKind::Failed) out.push_back(e.fail);
+    return out;
+  }
   std::vector<std::uint32_t> ids(EventKind k) const {
     std::vector<std::uint32_t> out;
     for (auto& e : events_)

@@ -105,6 +105,17 @@ inline DriveRigOptions drive_options(int mode = 1, const std::string& map = "mrm
   return o;
 }
 
+// Drive kits standing at `start` with no limit switches fitted (an axis blocked by its end
+// stop then trips the following-error limit).
+inline DriveRigOptions drive_options_without_switches(const hal::Vec3& start) {
+  auto o = drive_options();
+  o.sim.mechanics.start = axes3(start);
+  o.driver.initial_position = o.sim.mechanics.start;
+  for (auto& ax : o.driver.axes) ax.limit_neg_bit = ax.limit_pos_bit = 0;
+  o.sim.kits.ports = o.driver;
+  return o;
+}
+
 class DriveRig final : public MotionRig {
  public:
   explicit DriveRig(DriveRigOptions o = drive_options())
