@@ -205,6 +205,7 @@ void read_outputs_section(JsonObject& outs, DaemonConfig& cfg) {
     if (!o) continue;
     core::OutputSettings s;
     std::copy(name.begin(), name.end(), s.name.begin());
+    if (!o->has("number")) o->fail("number", "the backend's output number, a whole number from 1 to 32 (docs/hardware.md)");
     s.number = static_cast<int>(o->whole("number", 1, 1, 32));
     s.probe_power = o->boolean("probe_power", false);
     s.at_start = o->boolean("at_start", s.probe_power);

@@ -240,10 +240,12 @@ bool DriveKitDriver::set_output(int number, bool on) noexcept {
   if (on && safety_faults_ != 0) return false;  // a safety input holds the outputs off until Reset
   const PortBit& o = config_.outputs[number - 1];
   std::uint16_t& word = shadow(number - 1);
-  word = static_cast<std::uint16_t>(on ? (word | o.mask) : (word & ~o.mask));
+  const auto next = static_cast<std::uint16_t>(on ? (word | o.mask) : (word & ~o.mask));
   const unsigned long errors = port_.errors();
-  port_.out16(o.port, word);
-  return port_.errors() == errors;
+  port_.out16(o.port, next);
+  if (port_.errors() != errors) return false;  // not written: the shadow keeps what the port holds
+  word = next;
+  return true;
 }
 
 // ------------------------------------------------------------------ one servo period

@@ -65,6 +65,8 @@ const std::vector<BadConfig>& bad_configs() {
       {"two outputs power the probe", R"({"outputs": {"p1": {"number": 1, "probe_power": true}, "p2": {"number": 2, "probe_power": true}}})",
        {"key 'outputs.p2.probe_power'", "'p1' does"}},
       {"an output number out of range", R"({"outputs": {"pen": {"number": 0}}})", {"key 'outputs.pen.number'", "1", "32"}},
+      {"an output without its number", R"({"outputs": {"pen": {"settle_ms": 10}}})",
+       {"key 'outputs.pen.number'", "the backend's output number", "docs/hardware.md"}},
       {"an unknown output key", R"({"outputs": {"pen": {"number": 1, "colour": "red"}}})",
        {"unknown key 'outputs.pen.colour'", "number", "settle_ms", "probe_power", "at_start"}},
       {"sim.start of the wrong length", R"({"axes": {"letters": "XYC"}, "backend": {"type": "sim-portio-drive"}, "sim": {"start": [1, 2, 3, 4]}})",

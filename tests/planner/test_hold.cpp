@@ -95,3 +95,39 @@ TEST_CASE("hold: a dwell's clock stops while held") {
   CHECK(r.ticks.size() <= ref.ticks.size() + 501);
   CHECK(r.ticks.back().pose == pose_of({2, 0, 0}));
 }
+
+TEST_CASE("hold: a feed hold keeps a SetOutput from switching until resume, wherever it comes") {
+  // A 1 mm line braking to its planned stop, then an output; held at every third tick before
+  // the output would switch unheld.
+  const std::vector<Request> reqs{Line{1, pose_of({1, 0, 0}), 50}, SetOutput{2, 1, 1, 0}, Line{3, pose_of({2, 0, 0}), 50}};
+  int unheld = -1;
+  {
+    Planner p(make_machine("XYZ", -1000, 1000, 100, 1000));
+    const auto r = run(p, reqs);
+    for (std::size_t k = 0; k < r.ticks.size() && unheld < 0; ++k)
+      if (!r.ticks[k].switches.empty()) unheld = static_cast<int>(k);
+  }
+  REQUIRE(unheld > 30);
+  for (int hold_at = 0; hold_at < unheld; hold_at += 3) {
+    INFO("hold at tick " << hold_at);
+    Planner p(make_machine("XYZ", -1000, 1000, 100, 1000));
+    RunOptions o;
+    const int resume_at = 400;
+    o.on_tick = [&](int t, Sampler& s) {
+      if (t == hold_at) s.hold();
+      if (t == resume_at) s.resume();
+    };
+    const auto r = run(p, reqs, o);
+    int switched = -1, done2 = -1;
+    for (std::size_t k = 0; k < r.ticks.size(); ++k) {
+      if (!r.ticks[k].switches.empty() && switched < 0) switched = static_cast<int>(k);
+      for (auto id : r.ticks[k].done)
+        if (id == 2) done2 = static_cast<int>(k);
+    }
+    REQUIRE(switched >= 0);
+    CHECK(switched >= resume_at);  // not while held
+    CHECK(done2 >= switched);
+    CHECK(r.done == std::vector<std::uint32_t>{1, 2, 3});
+    CHECK(r.ticks.back().pose[0] == 2.0);
+  }
+}

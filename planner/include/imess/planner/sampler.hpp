@@ -82,27 +82,7 @@ class Sampler {
   template <class Pop>
   const Sample& advance(double dt, Pop&& pop) noexcept {
     begin_tick();
-    if (!has_next_) has_next_ = pop(next_);
-    if (!has_current_ && has_next_) promote(), has_next_ = pop(next_);
-    if (!has_current_) return rest();
-    const bool braking = update_braking(dt);
-    if (scaled_) return advance_scaled(dt, braking, pop);
-    double dtau = dt + carry_;
-    carry_ = 0;
-    while (tau_ + dtau >= current_.duration()) {
-      dtau -= current_.duration() - tau_;
-      complete();
-      if (!has_next_) return rest();
-      promote();
-      has_next_ = pop(next_);
-      if (sample_.done_count == kMaxCompletionsPerTick) {  // zero-time segments pile up: later
-        carry_ = dtau;
-        dtau = 0;
-        break;
-      }
-    }
-    tau_ += dtau;
-    return evaluate(current_.profile.at(tau_).v);
+    return advance_tick(dt, pop);
   }
 
   // Feed hold: decelerate along the path (at the segment's path acceleration) to rest;
@@ -116,6 +96,9 @@ class Sampler {
 
  private:
   void begin_tick() noexcept;
+  // A feed hold keeps an output from switching: the path waits at rest before a SetOutput
+  // until resume() (a segment braking to its planned stop reaches it while holding).
+  bool may_promote() const noexcept { return !(holding_ && next_.kind == SegmentKind::SetOutput); }
   void promote() noexcept;
   void complete() noexcept;
   const Sample& rest() noexcept;
@@ -130,6 +113,33 @@ class Sampler {
   // After the distance of a scaled tick: the new speed, and back to the plan when reached.
   const Sample& finish_scaled(double w_target, bool braking, double dt) noexcept;
 
+  // The tick after begin_tick(): what advance() does (advance_scaled comes back here when the
+  // plan is at rest, within the same tick: its completions and switches are kept).
+  template <class Pop>
+  const Sample& advance_tick(double dt, Pop&& pop) noexcept {
+    if (!has_next_) has_next_ = pop(next_);
+    if (!has_current_ && has_next_ && may_promote()) promote(), has_next_ = pop(next_);
+    if (!has_current_) return rest();
+    const bool braking = update_braking(dt);
+    if (scaled_) return advance_scaled(dt, braking, pop);
+    double dtau = dt + carry_;
+    carry_ = 0;
+    while (tau_ + dtau >= current_.duration()) {
+      dtau -= current_.duration() - tau_;
+      complete();
+      if (!has_next_ || !may_promote()) return rest();
+      promote();
+      has_next_ = pop(next_);
+      if (sample_.done_count == kMaxCompletionsPerTick) {  // zero-time segments pile up: later
+        carry_ = dtau;
+        dtau = 0;
+        break;
+      }
+    }
+    tau_ += dtau;
+    return evaluate(current_.profile.at(tau_).v);
+  }
+
   // A scaled tick: the path speed w changes by the path acceleration a·dt (down while
   // braking, up while resuming), the tick covers ½(w + w_new)·dt of path, and τ is found
   // where the profile has covered that length. Resuming rejoins the plan (k = 1) once w
@@ -139,7 +149,7 @@ class Sampler {
     if (!braking && current_.length <= 0) {  // the plan itself is at rest here: follow it
       scaled_ = false;
       k_ = 1;
-      return advance(dt, pop);
+      return advance_tick(dt, pop);
     }
     const double a = current_.a;
     const double w_target = braking ? std::max(0.0, w_ - a * dt) : resume_speed(a * dt, dt);
@@ -156,7 +166,7 @@ class Sampler {
         d -= current_.length - s_now;
       }
       complete();
-      if (!has_next_) return rest();
+      if (!has_next_ || !may_promote()) return rest();
       promote();
       has_next_ = pop(next_);
       if (braking && current_.v0 <= 0) d = 0;  // never past a planned stop while braking
