@@ -107,14 +107,19 @@ void MotionCore::start_outputs(Nanos now) {
     if (!hw_.set_output(o.number, o.at_start))
       throw std::runtime_error("output '" + name + "' (number " + std::to_string(o.number) + ") could not be switched " +
                                (o.at_start ? "on" : "off") + " at start");
-    if (o.at_start) outputs_on_ |= 1u << i;
     if (o.probe_power) {
       probe_output_ = i;
-      probe_powered_ = o.at_start;
-      arming_until_ = now + std::chrono::nanoseconds(static_cast<std::int64_t>(o.settle_s * 1e9));
+      probe_switched(o.at_start, now);
       quiet_arming_ = true;
     }
   }
+  refresh_outputs();
+}
+
+// The probe's power output switched: edges until its settle time has passed are power edges.
+void MotionCore::probe_switched(bool on, Nanos now) noexcept {
+  probe_powered_ = on;
+  arming_until_ = now + std::chrono::nanoseconds(static_cast<std::int64_t>(config_.outputs[probe_output_].settle_s * 1e9));
 }
 
 // The output switches of this sampler tick (SetOutput segments that began, the path at
@@ -126,18 +131,15 @@ const std::uint32_t* MotionCore::switch_outputs(const planner::Sample& smp, Nano
     const bool on = sw.value != 0;
     if (!hw_.set_output(sw.output, on)) {
       ++hardware_errors_;
+      refresh_outputs();
       return &sw.id;
     }
-    for (int i = 0; i < config_.output_count; ++i) {
-      if (config_.outputs[i].number != sw.output) continue;
-      outputs_on_ = on ? (outputs_on_ | (1u << i)) : (outputs_on_ & ~(1u << i));
-      if (i == probe_output_) {
-        quiet_arming_ = false;
-        probe_powered_ = on;
-        arming_until_ = now + std::chrono::nanoseconds(static_cast<std::int64_t>(config_.outputs[i].settle_s * 1e9));
-      }
+    if (probe_output_ >= 0 && config_.outputs[probe_output_].number == sw.output) {
+      quiet_arming_ = false;
+      probe_switched(on, now);
     }
   }
+  if (smp.switch_count > 0) refresh_outputs();  // Outputs shows the switch in this cycle's snapshot
   return nullptr;
 }
 

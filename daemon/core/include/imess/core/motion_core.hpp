@@ -74,7 +74,8 @@ class MotionCore {
   // Outputs: their start states (set-up), the switches of a sampler tick, and whether a
   // probe edge now is a hit (the probe powered and past its arming time).
   void start_outputs(Nanos now);
-  void refresh_outputs() noexcept;
+  void refresh_outputs() noexcept;  // outputs_on_ from the backend (the one place it is set)
+  void probe_switched(bool on, Nanos now) noexcept;
   const std::uint32_t* switch_outputs(const planner::Sample& smp, Nanos now) noexcept;
   bool probe_armed(Nanos now) const noexcept { return probe_powered_ && now >= arming_until_; }
   void retract_from(const AxisVec& latched, const AxisVec& dir, Nanos now) noexcept;
