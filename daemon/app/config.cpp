@@ -4,6 +4,7 @@
 #include <boost/asio/ip/address.hpp>
 #include <map>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -223,6 +224,66 @@ void read_outputs_section(JsonObject& outs, DaemonConfig& cfg) {
   }
 }
 
+// "programs": the folder Load reads, G28's pose, and which outputs and axes program words
+// switch and move (docs/configuration.md). Read after "axes" and "outputs", whose names it uses.
+void read_programs_section(JsonObject& p, const std::string& path, DaemonConfig& cfg) {
+  auto& pc = cfg.server.programs;
+  const auto& layout = cfg.core.layout;
+  std::string folder = p.text("folder", "");
+  if (!folder.empty()) {
+    std::filesystem::path f(folder);
+    if (f.is_relative()) f = std::filesystem::absolute(std::filesystem::path(path).parent_path() / f);
+    pc.folder = f.lexically_normal().string();
+  }
+  if (p.has("home")) {
+    const hal::AxisVec home = p.axis_values("home", hal::AxisVec::Zero(), layout, 1e5);
+    pc.home.assign(home.data(), home.data() + layout.count);
+  }
+  auto output_name = [&](JsonObject& o, const std::string& key, const std::string& name) {
+    for (int i = 0; i < cfg.core.output_count; ++i)
+      if (cfg.core.outputs[i].name_view() == name) return;
+    std::string names;
+    for (int i = 0; i < cfg.core.output_count; ++i) names += (names.empty() ? "" : ", ") + std::string(cfg.core.outputs[i].name_view());
+    o.fail(key, "the name of an output of the \"outputs\" section (" + (names.empty() ? std::string("none configured") : names) + ")");
+  };
+  if (auto g = p.object("gcode")) {
+    pc.spindle = g->text("spindle", "");
+    if (!pc.spindle.empty()) output_name(*g, "spindle", pc.spindle);
+    if (auto outs = g->texts("outputs", "an output name")) {
+      if (outs->size() > 32) g->fail("outputs", "at most 32 output names (M62-M65 P0 ... P31)");
+      for (const auto& n : *outs) output_name(*g, "outputs", n);
+      pc.outputs = *outs;
+    }
+    g->finish();
+  }
+  if (auto h = p.object("hpgl")) {
+    pc.pen = h->text("pen", "z");
+    if (pc.pen != "z") output_name(*h, "pen", pc.pen);
+    pc.pen_up_z = h->number("pen_up_z", pc.pen_up_z, -1e5, 1e5);
+    pc.pen_down_z = h->number("pen_down_z", pc.pen_down_z, -1e5, 1e5);
+    pc.pen_feed = h->number("pen_feed", pc.pen_feed, 0.001, 1e4);
+    pc.origin_x = h->number("origin_x", pc.origin_x, -1e5, 1e5);
+    pc.origin_y = h->number("origin_y", pc.origin_y, -1e5, 1e5);
+    pc.hpgl_feed = h->number("feed", pc.hpgl_feed, 0.001, 1e4);
+    h->finish();
+  }
+  if (auto m = p.object("mrm")) {
+    auto letter = [&](const std::string& key, char def) {
+      const std::string t = m->text(key, std::string(1, def));
+      if (t.size() != 1 || layout.index_of(t[0]) < 0)
+        m->fail(key, "one axis letter of this machine (" + layout.names() + ")");
+      return t[0];
+    };
+    pc.mrm_a = letter("A", pc.mrm_a);
+    pc.mrm_b = letter("B", pc.mrm_b);
+    pc.mrm_c = letter("C", pc.mrm_c);
+    pc.gripper = m->text("gripper", pc.gripper);
+    output_name(*m, "gripper", pc.gripper);
+    m->finish();
+  }
+  p.finish();
+}
+
 void read_sim_section(JsonObject& s, DaemonConfig& cfg) {
   auto& m = cfg.sim.mechanics;
   m.start = s.axis_values("start", m.start, cfg.core.layout, 1e5);
@@ -259,6 +320,7 @@ void load_config_text(const std::string& text, const std::string& path, DaemonCo
   if (auto b = top.object("backend")) read_backend_section(*b, cfg);
   if (auto jn = top.object("journal")) read_journal_section(*jn, cfg);
   if (auto o = top.object("outputs")) read_outputs_section(*o, cfg);
+  if (auto p = top.object("programs")) read_programs_section(*p, path, cfg);
   if (auto s = top.object("sim")) read_sim_section(*s, cfg);
   top.finish();
   const auto* type = find_backend(cfg.backend);

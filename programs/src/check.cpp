@@ -17,6 +17,18 @@ std::string lower(std::string_view s) {
   return out;
 }
 
+// The kind of a planner refusal in the words of the translators' errors (docs/programs.md).
+const char* plan_kind(planner::PlanError e) {
+  switch (e) {
+    case planner::PlanError::OutOfTravel: return kind_name(ErrorKind::OutOfTravel);
+    case planner::PlanError::BadFeed:
+    case planner::PlanError::BadPose:
+    case planner::PlanError::BadDwell: return kind_name(ErrorKind::BadValue);
+    case planner::PlanError::ProbeNoDirection: return "probe without direction";
+    default: return kind_name(ErrorKind::BadArc);
+  }
+}
+
 double fastest_axis(const planner::Machine& m) {
   double v = 0;
   for (int i = 0; i < m.count; ++i) v = std::max(v, m.axes[i].max_velocity);
@@ -151,7 +163,7 @@ Check check_items(const std::vector<Item>& items, const planner::Machine& machin
     if (probe && !planner::probe_cycle(item_id(i), dry.position(), std::get<Probe>(item.step).target, {1, 0, 1, 1})) {
       c.ok = false;
       c.error_line = item.line;
-      c.error = "line " + std::to_string(item.line) + ":1: probe has no direction: found a target on the start, accepted a target " +
+      c.error = "line " + std::to_string(item.line) + ":1: probe without direction: found a target on the start, accepted a target " +
                 std::to_string(planner::kMinProbeTravel) + " mm away or more";
       break;
     }
@@ -159,7 +171,7 @@ Check check_items(const std::vector<Item>& items, const planner::Machine& machin
       c.ok = false;
       c.error_line = item.line;
       const std::string why = planner::describe(r, machine);  // "segment N: <why>"
-      c.error = "line " + std::to_string(item.line) + ":1: " + why.substr(why.find(": ") + 2);
+      c.error = "line " + std::to_string(item.line) + ":1: " + plan_kind(r.error) + ": " + why.substr(why.find(": ") + 2);
       break;
     }
     if (probe) dry.flush();  // the machine stops at the hit (or at the target): a probe ends at rest

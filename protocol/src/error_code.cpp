@@ -25,6 +25,7 @@ constexpr std::array kErrors{
     ErrorInfo{ErrorCode::HostNotAllowed, "HostNotAllowed", "this host may not connect, control or force a take-over"},
     ErrorInfo{ErrorCode::Dropped, "Dropped", "the connection is closed: the client stopped reading or fell silent"},
     ErrorInfo{ErrorCode::NotInJournal, "NotInJournal", "those hits were rotated out of the journal; the text names the oldest seq kept"},
+    ErrorInfo{ErrorCode::BadProgram, "BadProgram", "the program was refused before anything moved; the text names line:column, what was found and what is accepted"},
     ErrorInfo{ErrorCode::UnknownParameter, "UnknownParameter", "no parameter of that name; Get lists them"},
     ErrorInfo{ErrorCode::ReadOnlyParameter, "ReadOnlyParameter", "the parameter can be read but not set"},
     ErrorInfo{ErrorCode::Internal, "Internal", "the daemon failed internally; see its log"},

@@ -65,7 +65,7 @@ TEST_CASE("check: an arc leaving the travel is refused with its line, though bot
   const auto bad = check_program(Language::Gcode, "G1 F600 X10\nG1 Y-8\nG3 X10 Y8 R-10\n", s);
   REQUIRE_FALSE(bad.ok);  // the big arc round the left reaches X -16
   CHECK(bad.error_line == 3);
-  CHECK_THAT(bad.error, Catch::StartsWith("line 3:1: axis X leaves its travel"));
+  CHECK_THAT(bad.error, Catch::StartsWith("line 3:1: out of travel: axis X leaves its travel"));
 }
 
 TEST_CASE("check: a translation error keeps its line and column") {

@@ -34,6 +34,10 @@ std::string fixed(double v, int decimals = 3) {
 void Server::on_line(Session& s, const protocol::FramedLine& line) {
   if (s.dropping()) return;
   if (config_.log_traffic) spdlog::info("[{}] > {}", s.id(), line.text);
+  if (s.info().upload) {  // the lines of a program being uploaded, up to '.'
+    upload_line(s, line);
+    return;
+  }
   if (!line.overlong && protocol::is_blank(line.text)) return;  // no command: telnet users press Enter
   const std::uint32_t slot = s.reserve_reply();
   if (line.overlong) {
@@ -75,13 +79,27 @@ bool Server::to_core(Session& s, std::uint32_t slot, core::Command c) {
 // StopMv from anyone, always accepted and answered at once: the stop lane takes no ring
 // slot, so neither a crowd pressing stop nor a full ring can delay or refuse a stop.
 void Server::stop_request(Session& s, std::uint32_t slot) {
-  stop_machine();
+  stop_machine("StopMv");
   reply(s, slot, format_ok("StopMv"));
 }
+
+namespace {
+// What would move the machine besides the program: refused while one runs.
+bool moves_machine(const protocol::Command& cmd) {
+  return std::holds_alternative<protocol::StartMv>(cmd) || std::holds_alternative<protocol::GoTo>(cmd) ||
+         std::holds_alternative<protocol::Home>(cmd) || std::holds_alternative<protocol::Free>(cmd) ||
+         std::holds_alternative<protocol::Reset>(cmd) || std::holds_alternative<protocol::HandMv>(cmd) ||
+         std::holds_alternative<protocol::ForcePt>(cmd) || std::holds_alternative<protocol::MoveTo>(cmd) ||
+         std::holds_alternative<protocol::ArcTo>(cmd) || std::holds_alternative<protocol::Dwell>(cmd) ||
+         std::holds_alternative<protocol::Probe>(cmd) || std::holds_alternative<protocol::SetOut>(cmd) ||
+         std::holds_alternative<protocol::JogAx>(cmd);
+}
+}  // namespace
 
 void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command& cmd) {
   using core::CommandKind;
   if (!allowed(s, cmd, slot)) return;
+  if (moves_machine(cmd) && program_busy(s, slot, protocol::verb_name(cmd))) return;
   // StartMv, GoTo, HandMv: x y z on the machine's X Y Z axes; GoTo leaves the others where they are.
   auto xyz_to_core = [&](CommandKind kind, const protocol::Xyz& p, double speed) {
     core::Command c{kind};
@@ -126,8 +144,17 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Outputs&) { outputs_status(s, slot); },
           [&](const protocol::Queue&) { queue_status(s, slot); },
           [&](const protocol::Pause&) { to_core(s, slot, {CommandKind::Pause}); },
-          [&](const protocol::Resume&) { to_core(s, slot, {CommandKind::Resume}); },
+          [&](const protocol::Resume&) {
+            resume_program();
+            to_core(s, slot, {CommandKind::Resume});
+          },
           [&](const protocol::JogAx& c) { jog_axes(s, slot, c); },
+          [&](const protocol::Programs&) { list_programs(s, slot); },
+          [&](const protocol::Load& c) { load_program(s, slot, c.name); },
+          [&](const protocol::Upload& c) { begin_upload(s, slot, c.name); },
+          [&](const protocol::Run& c) { run_program(s, slot, c.detached); },
+          [&](const protocol::Abort&) { abort_program(s, slot); },
+          [&](const protocol::Program&) { program_status(s, slot); },
       },
       cmd);
 }
@@ -143,7 +170,7 @@ void Server::hello(Session& s, std::uint32_t slot, const protocol::Hello& c) {
     if (owner) announce_control();  // everyone sees the owner under its new name
   }
   const bool sim = core_.snapshot().simulated;
-  reply(s, slot, format_ok("Hello", "IMESS 1 messd " + config_.version + " Caps jog goto home probe hand stats journal queue" +
+  reply(s, slot, format_ok("Hello", "IMESS 1 messd " + config_.version + " Caps jog goto home probe hand stats journal queue programs" +
                                  (sim ? " sim" : "")));
 }
 

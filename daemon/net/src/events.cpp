@@ -96,6 +96,7 @@ void Server::pump_events() {
 }
 
 void Server::report_position() {
+  show_block(false);
   const auto& snap = core_.snapshot();
   const hal::Vec3 p = layout().cartesian(snap.position);
   std::string line = protocol::format_curr_cor({p.x(), p.y(), p.z()});

@@ -34,7 +34,7 @@ void Server::check_watch() {
   if (Clock::now() - s.last_received() < std::chrono::milliseconds(info.watch_ms)) return;
   info.watch_fired_for = s.last_received();  // once per silence; the next bytes re-arm it
   const bool was_moving = moving(core_.snapshot().mode) || info.in_flight > 0;
-  stop_machine();
+  stop_machine("Watch");
   if (!was_moving) return;
   log_limited(spdlog::level::warn, "watch",
               "client " + std::to_string(s.id()) + " silent for " + std::to_string(info.watch_ms) + " ms (Watch): machine stopped");

@@ -263,6 +263,10 @@ void Server::flush_check() {
 void Server::on_segment_end(const core::Event& e) {
   auto it = std::find_if(in_loop_.begin(), in_loop_.end(), [&](const auto& x) { return x.first == e.id; });
   if (it != in_loop_.end()) in_loop_.erase(it);
+  if (program_segment_end(e)) {  // a program's: Block and ProgEnd speak for it
+    flush_check();
+    return;
+  }
   const bool probe_closed = probe_open_ && *probe_open_ == e.id && (e.kind == core::EventKind::Failed || e.probe_end);
   if (e.kind == core::EventKind::Done) {
     broadcast(protocol::format_event("Done", std::to_string(e.id)));
@@ -285,13 +289,22 @@ void Server::on_segment_end(const core::Event& e) {
 }
 
 void Server::drop_planned(core::FailReason why) {
-  for (auto id : unsent_) broadcast(failed_line(id, why));
+  const bool program = program_.running() || program_.tail;  // its ids are not broadcast
+  if (!program)
+    for (auto id : unsent_) broadcast(failed_line(id, why));
   unsent_.clear();
   probe_open_.reset();
   fail_held(why);
   planner::Pose here{};
   planner_.set_position(here);  // discards what was not taken; the next queue starts anew
   planning_ = false;
+  // A limit, a fault or an unexpected touch dropped the loop's queue: the program failed
+  // (a stop ends it as aborted, in stop_machine).
+  if (program_.running() && why != core::FailReason::Stopped) {
+    const std::size_t block = std::max(program_.shown_block, program_.done_block + 1);
+    const int line = block >= 1 && block <= program_.items.size() ? program_.items[block - 1].line : 0;
+    end_program(ProgramOutcome::Failed, line, "Failed " + std::string(fail_wording(why).name));
+  }
 }
 
 }  // namespace imess::net

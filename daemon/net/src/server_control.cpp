@@ -24,9 +24,10 @@ Controller Server::controller(Session& s) const { return {s.id(), controller_nam
 
 // The stop lane (read first in every motion cycle); the queued moves the loop has not
 // received fail here, those it has fail there (their ids were stamped before this stop).
-void Server::stop_machine() {
+void Server::stop_machine(std::string_view who) {
   core_.request_stop();
   drop_planned(core::FailReason::Stopped);
+  if (program_.running()) end_program(ProgramOutcome::Aborted, program_.shown_block > 0 ? program_.items[program_.shown_block - 1].line : 0, std::string(who));
 }
 
 void Server::announce_control() {
@@ -36,8 +37,18 @@ void Server::announce_control() {
 }
 
 void Server::lose_control(Session& s, std::string_view why) {
+  // A program started detached by this client goes on without it (anyone may stop it, the
+  // next controller may Pause, Resume or Abort it).
+  const bool detached = why == "disconnected" || why == "dropped";
+  if (detached && program_.running() && program_.detached && control_.owns(s.id())) {
+    control_.release(s.id());
+    log_limited(spdlog::level::info, "control-lost", "client " + std::to_string(s.id()) + " " + std::string(why) +
+                                                         ": program " + program_.loaded->name + " runs on detached");
+    announce_control();
+    return;
+  }
   if (!control_.release(s.id())) return;
-  stop_machine();  // the dead-man: whatever this client started must not outlive its control
+  stop_machine(why);  // the dead-man: whatever this client started must not outlive its control
   log_limited(spdlog::level::info, "control-lost", "client " + std::to_string(s.id()) + " " + std::string(why) + ": machine stopped");
   announce_control();
 }
@@ -69,7 +80,7 @@ void Server::take(Session& s, std::uint32_t slot, const protocol::Take& t) {
     case ControlOutcome::TakenOver: {
       // The operator at the machine takes over: stop first (with a move queue, the previous
       // owner's moves would be paused and kept for it, as DirectCMM did; there is none yet).
-      stop_machine();
+      stop_machine("Take force");
       const auto& was = *control_.previous();
       if (auto it = sessions_.find(was.session); it != sessions_.end())
         send(*it->second, control_taken_warning(*control_.owner()));

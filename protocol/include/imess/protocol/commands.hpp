@@ -77,6 +77,14 @@ struct Outputs {};
 struct Queue {};                                            // pending count, running id
 struct Pause {};                                            // feed hold on the path
 struct Resume {};
+// Programs (G-code, HPGL, MRM; docs/programs.md): the controller's folder, loading one by
+// name or sent over the connection (the lines up to a line '.'), running it, aborting it.
+struct Programs {};
+struct Load { std::string name; };
+struct Upload { std::string name; };
+struct Run { bool detached = false; };
+struct Abort {};
+struct Program {};
 inline constexpr double kMaxDwellSeconds = 3600;
 inline constexpr int kMaxArcTurns = 1000;  // ArcTo P: 1 (the arc alone) ... this
 
@@ -85,6 +93,7 @@ inline constexpr int kWatchMaxMs = 60000;
 
 using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo, Home, Free,
                              Reset, Set, Get, Stats, HandMv, Quit, Replay, Take, Release, Watch, Version,
-                             MoveTo, ArcTo, Dwell, Queue, Pause, Resume, Probe, JogAx, SetOut, Outputs>;
+                             MoveTo, ArcTo, Dwell, Queue, Pause, Resume, Probe, JogAx, SetOut, Outputs,
+                             Programs, Load, Upload, Run, Abort, Program>;
 
 }  // namespace imess::protocol

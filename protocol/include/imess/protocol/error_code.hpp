@@ -28,6 +28,7 @@ enum class ErrorCode : int {
   HostNotAllowed = 210,   // this host may not connect / control / force a take-over (configuration)
   Dropped = 211,          // the daemon closes this connection: it stopped reading, or fell silent
   NotInJournal = 212,     // Replay of hits rotated out of the journal; the text names the oldest kept
+  BadProgram = 213,       // a program refused before anything moved: line:column, what was found, what is accepted
   // 3xx: parameters
   UnknownParameter = 300, // Get/Set of a name that does not exist
   ReadOnlyParameter = 301,

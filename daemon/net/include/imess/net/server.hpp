@@ -18,6 +18,7 @@
 #include "imess/net/control.hpp"
 #include "imess/net/host_list.hpp"
 #include "imess/net/log_limiter.hpp"
+#include "imess/net/program_run.hpp"
 #include "imess/net/session.hpp"
 #include "imess/planner/planner.hpp"
 #include "imess/protocol/commands.hpp"
@@ -59,6 +60,7 @@ struct ServerConfig {
   std::string version = "0.1.0";
   double period_us = 1000;          // the motion loop's period (Get Period)
   std::string backend = "unknown";  // the backend type (Get Backend): one word
+  ProgramConfig programs;           // the programs folder and how program words map to this machine
 };
 
 // A queued command on the wire; after an unfinished Probe it waits in the server, unplanned
@@ -100,7 +102,8 @@ class Server {
   Controller controller(Session& s) const;
   // Stops whatever moves, for the dead-man, Release, disconnect and take-over. The one
   // place a stop is made for control reasons (the motion core's stop lane replaces its body).
-  void stop_machine();
+  // `who` names the stop in a running program's ProgEnd (StopMv, Abort, disconnected ...).
+  void stop_machine(std::string_view who = "StopMv");
   // liveness.cpp
   void every_millisecond();  // check_watch, journal sync when due
   void check_watch();     // every millisecond: the owner's dead-man
@@ -139,6 +142,27 @@ class Server {
   void flush_check();                     // flush when the loop holds too little motion
   void on_segment_end(const core::Event& e);  // Done / Failed
   void drop_planned(core::FailReason why);    // fail what the loop has not received, plan anew
+  // programs.cpp: the programs folder, Load / Upload / Run / Abort / Program, running one
+  programs::Setup program_setup(const planner::Pose& start) const;
+  bool resolve_outputs(std::vector<programs::Item>& items, std::string& error) const;
+  bool check_program_text(const LoadedProgram& p, const planner::Pose& start, std::vector<programs::Item>& items,
+                          programs::Check& check, std::string& error) const;
+  bool program_busy(Session& s, std::uint32_t slot, std::string_view verb);  // answers Err 202 while one runs
+  void list_programs(Session& s, std::uint32_t slot);
+  void load_program(Session& s, std::uint32_t slot, const std::string& name);
+  void finish_load(Session& s, std::uint32_t slot, std::string_view verb, const std::string& name, std::string text);
+  void begin_upload(Session& s, std::uint32_t slot, const std::string& name);
+  void upload_line(Session& s, const protocol::FramedLine& line);
+  void run_program(Session& s, std::uint32_t slot, bool detached);
+  void abort_program(Session& s, std::uint32_t slot);
+  void program_status(Session& s, std::uint32_t slot);
+  void resume_program();
+  void feed_program();
+  void program_progress();
+  bool program_segment_end(const core::Event& e);
+  void fail_program(int line, const std::string& why);
+  void end_program(ProgramOutcome how, int line, const std::string& text);
+  void show_block(bool now_or_never);
   // axes.cpp: the machine's axes on the wire
   const hal::AxisLayout& layout() const noexcept;
   std::string no_axis_text(char letter) const;
@@ -187,6 +211,7 @@ class Server {
   std::optional<std::uint32_t> probe_open_;  // a Probe planned whose Done has not come yet
   std::deque<QueuedCommand> held_;           // commands queued after it, unplanned
   bool flush_check_posted_ = false;
+  ProgramRun program_;  // the one program loaded or running (programs.cpp)
 };
 
 }  // namespace imess::net

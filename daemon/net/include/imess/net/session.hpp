@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "imess/net/program_run.hpp"
 #include "imess/protocol/line_framer.hpp"
 
 namespace imess::net {
@@ -23,6 +24,7 @@ struct ClientInfo {
   int watch_ms = 0;              // Watch: dead-man interval, 0 = off
   std::chrono::steady_clock::time_point watch_fired_for{};  // last_received() when the dead-man last fired
   std::uint32_t in_flight = 0;   // commands in the motion loop's ring, not yet answered
+  std::optional<ProgramUpload> upload;  // Upload: the program's lines until a line '.'
 };
 
 class Session : public std::enable_shared_from_this<Session> {

@@ -1,0 +1,67 @@
+// Programs in messd: what the configuration says about running them (the folder, G28's pose,
+// which outputs M3/M62/the HPGL pen/the MRM gripper switch, the MRM axis letters) and the
+// state of the one program loaded or running. The io thread owns both (programs.cpp).
+#pragma once
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "imess/programs/check.hpp"
+
+namespace imess::net {
+
+struct ProgramConfig {
+  std::string folder;                 // absolute; empty: no folder (Load and Programs say so)
+  std::vector<double> home;           // G28 pose in machine coordinates (axis order); empty: all 0
+  std::string spindle;                // output switched by M3/M4 (on) and M5 (off); empty: none
+  std::vector<std::string> outputs;   // M62–M65 P0, P1 … switch these outputs
+  std::string pen = "z";              // HPGL pen: "z" (a Z move) or an output's name
+  double pen_up_z = 5, pen_down_z = 0, pen_feed = 10;  // mm, mm, mm/s
+  double origin_x = 0, origin_y = 0;  // machine X Y of plotter point 0,0
+  double hpgl_feed = 20;              // mm/s pen-down until VS sets one
+  char mrm_a = 'A', mrm_b = 'B', mrm_c = 'C';  // machine axes the MRM words A B C move
+  std::string gripper = "gripper";    // output of MRM M03/M04 (when the machine has it)
+  std::size_t max_lines = 1000000, max_bytes = 16u << 20;  // a program larger is refused
+};
+
+// A program that translated and passed the whole check.
+struct LoadedProgram {
+  std::string name;
+  programs::Language lang = programs::Language::Gcode;
+  std::string text;
+  programs::Check check;
+};
+
+// A program being sent over the connection (Upload … then a line '.').
+struct ProgramUpload {
+  std::string name;
+  std::string text;
+  std::size_t lines = 0;
+  bool too_large = false;
+};
+
+enum class ProgramState : std::uint8_t { None, Loaded, Running, Paused, Ended };
+enum class ProgramOutcome : std::uint8_t { Ok, Failed, Aborted };
+
+struct ProgramRun {
+  std::optional<LoadedProgram> loaded;
+  ProgramState state = ProgramState::None;
+  std::vector<programs::Item> items;  // of the run, translated from where it started
+  std::size_t next = 0;               // the next item to plan
+  bool detached = false;
+  bool feeding_done = false;          // End reached or every item planned
+  std::optional<std::uint32_t> probe;  // a probe planned whose end has not come: nothing after it is planned
+  std::optional<std::size_t> pause_at;  // an M0 reached: planning waits until everything before it is done
+  bool tail = false;  // the loop still holds segments of a program that ended: their Done/Failed are not broadcast
+  std::size_t done_block = 0;         // the last item whose Done came (1-based)
+  std::size_t shown_block = 0;        // the last Block event's item (1-based; 0: none yet)
+  std::chrono::nanoseconds shown_at{-1000000000};  // its time on the motion loop's clock
+  bool running() const noexcept { return state == ProgramState::Running || state == ProgramState::Paused; }
+};
+
+const char* state_name(ProgramState s);
+const char* outcome_name(ProgramOutcome o);
+
+}  // namespace imess::net
