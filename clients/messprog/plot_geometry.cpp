@@ -74,7 +74,7 @@ ViewScale::ViewScale(const Range& h, const Range& v, const Panel& panel) : panel
 std::vector<double> ticks(double lo, double hi) {
   std::vector<double> out;
   if (!(hi > lo)) return out;
-  const double raw = (hi - lo) / 5;
+  const double raw = (hi - lo) / 7;
   const double decade = std::pow(10.0, std::floor(std::log10(raw)));
   double step = decade;
   for (double f : {1.0, 2.0, 5.0, 10.0})

@@ -48,7 +48,7 @@ class ViewScale {
   double hc_ = 0, vc_ = 0, scale_ = 1;
 };
 
-// Round values (steps of 1, 2 or 5 × 10^k, about five of them) within [lo, hi].
+// Round values (steps of 1, 2 or 5 × 10^k, five to ten of them) within [lo, hi].
 std::vector<double> ticks(double lo, double hi);
 // Decimals that print every tick of that spacing exactly (step 0.5 → 1, step 20 → 0).
 int tick_decimals(const std::vector<double>& ticks);
