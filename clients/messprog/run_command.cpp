@@ -66,11 +66,9 @@ bool RunLoop::send(const std::vector<std::string>& lines) {
   std::string chunk;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     chunk += lines[i];
-    if (chunk.size() < kSendChunk && i + 1 < lines.size()) {
-      chunk += '\n';
-      continue;
-    }
-    if (!conn_.send_line(chunk)) return false;  // send_line ends the chunk with '\n'
+    chunk += '\n';  // every line ends here, so a blank last line of a chunk is sent too
+    if (chunk.size() < kSendChunk && i + 1 < lines.size()) continue;
+    if (!conn_.send_line(chunk)) return false;  // sent as it is: it ends in '\n'
     chunk.clear();
     drain();  // what messd says meanwhile waits in pending_, so it never blocks on us
     if (!conn_.is_open()) return false;

@@ -313,6 +313,26 @@ TEST_CASE("messprog run: Hello, Take, Upload with every line and '.', Run; progr
   CHECK(r.err.empty());
 }
 
+TEST_CASE("messprog run: a program of many kilobytes arrives line for line, blank lines included") {
+  ProgramPeerScript script;
+  script.run = {"Ok Run {NAME}", "ProgEnd {NAME} ok 1 end"};
+  ProgramPeer peer(script);
+  TempDir dir;
+  std::string text;
+  std::vector<std::string> lines;
+  // 70 000 blank lines between two moves: more than one 64 KiB chunk, and a chunk that ends
+  // with a blank line.
+  lines.push_back("G0 X1");
+  lines.insert(lines.end(), 70000, "");
+  lines.push_back("G0 X2");
+  for (const auto& l : lines) text += l + "\n";
+  const auto file = write(dir, "big.nc", text);
+  const auto r = run_program(messprog({"run", file, peer.address()}), std::chrono::seconds(20));
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK(peer.uploaded_lines() == lines);
+}
+
 TEST_CASE("messprog run: ProgEnd failed is exit 1 with the line and its text; Run detached when asked") {
   ProgramPeerScript script;
   script.run = {"Ok Run {NAME}", "Block {NAME} 2 2/3", "ProgEnd {NAME} failed 2 Failed PartNotFound"};
