@@ -149,7 +149,7 @@ TEST_CASE("messprog check: a program error is FILE:LINE:COL: kind: found ..., ac
   CHECK_THAT(r.err, Catch::StartsWith(arc + ":2:1: ") && Catch::Contains("axis Y"));
 }
 
-TEST_CASE("messprog check: an unreadable file is exit 1 naming it; bad arguments are exit 2 naming them") {
+TEST_CASE("messprog check: an unreadable file is exit 1 naming it — bad arguments are exit 2 naming them") {
   TempDir dir;
   auto r = run_program(messprog({"check", dir.file("missing.nc")}));
   CHECK(r.status == 1);
@@ -290,7 +290,7 @@ TEST_CASE("messprog plot: the MRM arm's second view is C against X") {
 
 // ---- run ----
 
-TEST_CASE("messprog run: Hello, Take, Upload with every line and '.', Run; progress; ProgEnd ok is exit 0") {
+TEST_CASE("messprog run: Hello, Take, Upload with every line and '.', Run — progress — ProgEnd ok is exit 0") {
   ProgramPeerScript script;
   script.run = {"Ok Run {NAME}", "Block {NAME} 2 1/3", "Block {NAME} 3 2/3", "Block {NAME} 4 3/3", "ProgEnd {NAME} ok 4 end"};
   ProgramPeer peer(script);
@@ -333,7 +333,7 @@ TEST_CASE("messprog run: a program of many kilobytes arrives line for line, blan
   CHECK(peer.uploaded_lines() == lines);
 }
 
-TEST_CASE("messprog run: ProgEnd failed is exit 1 with the line and its text; Run detached when asked") {
+TEST_CASE("messprog run: ProgEnd failed is exit 1 with the line and its text — Run detached when asked") {
   ProgramPeerScript script;
   script.run = {"Ok Run {NAME}", "Block {NAME} 2 2/3", "ProgEnd {NAME} failed 2 Failed PartNotFound"};
   ProgramPeer peer(script);
@@ -382,7 +382,7 @@ TEST_CASE("messprog run: a messd without programs, or control held by another cl
   }
 }
 
-TEST_CASE("messprog run: Ctrl-C without a terminal sends Abort; ProgEnd aborted is exit 1") {
+TEST_CASE("messprog run: Ctrl-C without a terminal sends Abort — ProgEnd aborted is exit 1") {
   ProgramPeerScript script;
   script.run = {"Ok Run {NAME}", "Block {NAME} 2 1/2"};  // and then nothing: it runs until stopped
   ProgramPeer peer(script);
@@ -441,7 +441,7 @@ TEST_CASE("upload_name: the base name, blanks replaced, the language's extension
   CHECK(upload_name("arm", Language::Mrm) == "arm.mrm");
 }
 
-TEST_CASE("RunSession on a terminal: Ctrl-C pauses and asks; r resumes, a aborts, a second Ctrl-C aborts") {
+TEST_CASE("RunSession on a terminal: Ctrl-C pauses and asks — r resumes, a aborts, a second Ctrl-C aborts") {
   Upload upload{"p.nc", {"G0 X1", "M0", "G0 X2"}};
   RunSession s(upload, {"p.nc", "localhost:1066", false, true});
   CHECK(s.start().send == std::vector<std::string>{"Hello messprog"});
@@ -475,7 +475,7 @@ TEST_CASE("RunSession on a terminal: Ctrl-C pauses and asks; r resumes, a aborts
   CHECK(out.errors == std::vector<std::string>{"messprog: p.nc aborted at line 3: Abort", "  3 | G0 X2"});
 }
 
-TEST_CASE("RunSession: Ctrl-C before Run ends at once; without a terminal it aborts, twice leaves") {
+TEST_CASE("RunSession: Ctrl-C before Run ends at once — without a terminal it aborts, twice leaves") {
   Upload upload{"p.nc", {"G0 X1"}};
   RunSession early(upload, {"p.nc", "h:1", false, false});
   early.start();
