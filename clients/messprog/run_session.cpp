@@ -99,6 +99,7 @@ RunOutput RunSession::on_reply(std::string_view line) {
         return finish(out, 1);
       }
       if (ok->verb != "Load") return out;
+      if (!ok->args.empty()) upload_.name = ok->args[0];  // the events name the program as messd filed it
       out.notes.push_back("messprog: messd checked " + upload_.name + ": " + load_summary(ok->args));
       out.send.push_back(settings_.detached ? "Run detached" : "Run");
       phase_ = Phase::Starting;
