@@ -1,0 +1,18 @@
+// messprog check: figures on stdout and exit 0, or the program's first error on stderr and exit 1.
+#include "check_command.hpp"
+
+#include <iostream>
+
+#include "check_report.hpp"
+#include "dry_run.hpp"
+
+namespace imess::messprog {
+
+int run_check_command(const ProgOptions& options) {
+  const DryRun d = dry_run(options);
+  if (!d.check.ok) return report_program_error(options, d.check);
+  std::cout << check_report(options.file, options.lang, d.check, d.machine, describe_machine(d.machine, d.setup));
+  return 0;
+}
+
+}  // namespace imess::messprog

@@ -1,0 +1,13 @@
+// Ctrl-C and SIGTERM for messprog run: each SIGINT is counted, so every press is handled
+// (pause, then abort); the handlers only count and are installed without SA_RESTART, so a
+// waiting poll() returns at once.
+#pragma once
+
+namespace imess::messprog {
+
+void install_interrupts();
+// SIGINTs since the last call (0 when none).
+int take_interrupts() noexcept;
+bool terminate_requested() noexcept;  // SIGTERM came
+
+}  // namespace imess::messprog
