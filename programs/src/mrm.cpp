@@ -99,8 +99,10 @@ class MrmTranslator {
         if (v != std::floor(v)) fail(ErrorKind::BadNumber, at, text, std::string("a whole number of 0.1 ") + (L == 'X' || L == 'Y' ? "mm" : "degree"));
         const bool linear = L == 'X' || L == 'Y';
         const char axis = L == 'A' ? o_.a_axis : L == 'B' ? o_.b_axis : L == 'C' ? o_.c_axis : L;
-        const int k = index(axis);
-        if (k < 0) fail(ErrorKind::AxisNotOnMachine, at, text + " (machine axis " + std::string(1, axis) + ")", "words for the machine's axes");
+        const int k = axis ? index(axis) : -1;
+        if (k < 0)
+          fail(ErrorKind::AxisNotOnMachine, at, text + (axis ? " (machine axis " + std::string(1, axis) + ")" : " (no rotary axis left for it)"),
+               "words for the machine's axes");
         const double feed = linear ? feed_ : speed_;
         if (!(feed > 0)) fail(ErrorKind::NoFeed, at, text + (linear ? " before any F" : " before any S"), linear ? "an F word (mm/min) before X/Y moves" : "an S word (degrees/min) before A/B/C moves");
         Pose t = pos_;
@@ -123,6 +125,14 @@ class MrmTranslator {
   bool ended_ = false;
 };
 }  // namespace
+
+void use_rotary_order(MrmOptions& options, const planner::Machine& machine) {
+  char* words[] = {&options.a_axis, &options.b_axis, &options.c_axis};
+  int next = 0;
+  for (int i = 0; i < machine.count && next < 3; ++i)
+    if (machine.axes[i].kind == planner::AxisKind::Rotary) *words[next++] = machine.axes[i].letter;
+  for (; next < 3; ++next) *words[next] = 0;  // refused when used: no rotary axis left
+}
 
 Translation translate_mrm(std::string_view text, const MrmOptions& options) {
   MrmTranslator t(options);

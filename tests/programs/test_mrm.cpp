@@ -64,6 +64,25 @@ TEST_CASE("mrm: A B C go to the configured machine axes") {
         Lines{"2 LINE X0 Y0 A0 B0 C10 F10", "3 LINE X0 Y0 A20 B0 C10 F10", "4 LINE X0 Y0 A20 B30 C10 F10"});
 }
 
+TEST_CASE("mrm: on the arm A B C move the rotary axes in the machine's order (use_rotary_order)") {
+  MrmOptions o;
+  o.machine = imess::planner::make_machine("XYCUV", -1000, 1000, 100, 1000);
+  o.machine.axes[3].kind = o.machine.axes[4].kind = imess::planner::AxisKind::Rotary;  // the tilt joints
+  use_rotary_order(o, o.machine);
+  CHECK(o.a_axis == 'C');  // the rotation about Z
+  CHECK(o.b_axis == 'U');  // U1
+  CHECK(o.c_axis == 'V');  // U2
+  CHECK(run("S600\nA100\nB200\nC300", o) ==
+        Lines{"2 LINE X0 Y0 C10 U0 V0 F10", "3 LINE X0 Y0 C10 U20 V0 F10", "4 LINE X0 Y0 C10 U20 V30 F10"});
+  // Fewer rotary axes than words: the words left over have no axis and are refused.
+  MrmOptions two;
+  two.machine = imess::planner::make_machine("XYCU", -1000, 1000, 100, 1000);
+  two.machine.axes[3].kind = imess::planner::AxisKind::Rotary;
+  use_rotary_order(two, two.machine);
+  CHECK(two.b_axis == 'U');
+  CHECK(err("S600\nC10", two) == "line 2:1: axis not on this machine: found C10 (no rotary axis left for it), accepted words for the machine's axes");
+}
+
 TEST_CASE("mrm errors: every kind with line:column") {
   CHECK(err("N1 F1000 X5") == "line 1:10: more than one word on a line: found 'X' after F1000, accepted one word per line (after an optional N)");
   CHECK(err("N1 N2") == "line 1:4: more than one word on a line: found a second N, accepted one N, then one word");
