@@ -49,6 +49,20 @@ class ExampleBench {
                << c.probe_length << "), time " << c.time << " s");
   }
 
+  // The dry run, which must pass (its figures in the test's output), and the translation.
+  struct Passed {
+    programs::Check check;
+    programs::Translation translation;
+  };
+  Passed passed() const {
+    Passed p{check(), translation()};
+    INFO(p.check.error);
+    REQUIRE(p.check.ok);
+    REQUIRE(p.translation.ok);
+    report(p.check);
+    return p;
+  }
+
   const app::DaemonConfig& config() const { return rig_.config(); }
   const sim::Scene& scene() const { return rig_.config().sim.scene; }
   double ball_radius() const { return rig_.config().sim.mechanics.probe.ball_radius; }
@@ -70,6 +84,15 @@ class ExampleBench {
 };
 
 inline hal::Vec3 xyz(const planner::Pose& p) { return {p[0], p[1], p[2]}; }
+
+// The dry run's bounding box on X Y Z.
+inline void check_box(const programs::Check& c, const hal::Vec3& low, const hal::Vec3& high) {
+  for (int a = 0; a < 3; ++a) {
+    INFO("axis " << "XYZ"[a]);
+    CHECK(c.low[a] == Approx(low[a]));
+    CHECK(c.high[a] == Approx(high[a]));
+  }
+}
 
 // Every point of a planned segment that moves, about every 0.2 mm (and at least 8 along an
 // arc), from its start (first = true) or just after it.

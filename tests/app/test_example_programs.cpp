@@ -35,12 +35,7 @@ TEST_CASE("examples: mrm-manual.mrm on the MRM arm — X Y and the tilts back at
   REQUIRE(gripper > 0);
   b.setup.mrm.gripper_output = static_cast<std::uint16_t>(gripper);
 
-  const auto c = b.check();
-  INFO(c.error);
-  REQUIRE(c.ok);
-  b.report(c);
-  const auto t = b.translation();
-  REQUIRE(t.ok);
+  const auto [c, t] = b.passed();
   const planner::Pose start = b.setup.start;
   const planner::Pose end = programs::end_pose(t.items, start);
   // Back at the start within a count (0.01 mm, 0.01°) on X, Y and both tilt joints.
@@ -50,7 +45,7 @@ TEST_CASE("examples: mrm-manual.mrm on the MRM arm — X Y and the tilts back at
   }
   // The A word's joint, the rotation about Z, ends half a turn on: the part was turned.
   CHECK(end[2] == Approx(start[2] + 180).margin(1e-9));
-  // The manual's reach: X +500 mm, Y +300 mm, U1 +90°, C +180°, all within the travel.
+  // The manual's reach: X +500 mm, Y +300 mm, U1 +90°; every axis within its travel.
   CHECK(c.high[0] == Approx(start[0] + 500));
   CHECK(c.high[1] == Approx(start[1] + 300));
   CHECK(c.high[3] == Approx(start[3] + 90));
@@ -92,21 +87,10 @@ TEST_CASE("examples: shd-drawing.plt on the SHD stepper machine — a frame with
   b.setup.hpgl.pen_up_z = start[2];
   b.setup.hpgl.pen_down_z = start[2] - 10;
 
-  const auto c = b.check();
-  INFO(c.error);
-  REQUIRE(c.ok);
-  b.report(c);
-  const auto t = b.translation();
-  REQUIRE(t.ok);
-  const planner::Pose end = programs::end_pose(t.items, start);
-  for (int a = 0; a < 3; ++a) CHECK(end[a] == start[a]);
+  const auto [c, t] = b.passed();
+  CHECK(programs::end_pose(t.items, start) == start);
   // Everything inside the frame, 160 x 60 mm from plotter 0,0; the pen between its heights.
-  CHECK(c.low[0] == Approx(start[0]));
-  CHECK(c.high[0] == Approx(start[0] + 160));
-  CHECK(c.low[1] == Approx(start[1]));
-  CHECK(c.high[1] == Approx(start[1] + 60));
-  CHECK(c.low[2] == Approx(start[2] - 10));
-  CHECK(c.high[2] == Approx(start[2]));
+  check_box(c, xyz(start) - hal::Vec3(0, 0, 10), xyz(start) + hal::Vec3(160, 60, 0));
   // Drawn moves at the pen-down height only, travel moves at the pen-up height only.
   int drawn = 0;
   planner::Pose here = start;
@@ -127,21 +111,10 @@ TEST_CASE("examples: shd-drawing.plt on the SHD stepper machine — a frame with
 TEST_CASE("examples: pocket-helix.ngc on the 3D-Step machine — helical entry, rounded pocket, back at the start") {
   ExampleBench b("sim-parport-3dstep.json", "pocket-helix.ngc");
   const planner::Pose start = b.setup.start;
-  const auto c = b.check();
-  INFO(c.error);
-  REQUIRE(c.ok);
-  b.report(c);
-  const auto t = b.translation();
-  REQUIRE(t.ok);
-  const planner::Pose end = programs::end_pose(t.items, start);
-  for (int a = 0; a < 3; ++a) CHECK(end[a] == start[a]);
-  // The pocket 40 x 30 mm about X450 Y350, floor Z91; the path also passes the start.
-  CHECK(c.low[0] == Approx(430));
-  CHECK(c.high[0] == Approx(470));
-  CHECK(c.low[1] == Approx(start[1]));
-  CHECK(c.high[1] == Approx(365));
-  CHECK(c.low[2] == Approx(91));
-  CHECK(c.high[2] == Approx(start[2]));
+  const auto [c, t] = b.passed();
+  CHECK(programs::end_pose(t.items, start) == start);
+  // The pocket 40 x 30 mm about X450 Y350, floor Z91, and the way from and to the start.
+  check_box(c, {430, start[1], 91}, {470, 365, start[2]});
   // One helix (an arc that goes down, with a whole extra turn) and eight 5 mm corners in the XY plane.
   int helices = 0, corners = 0;
   planner::Pose here = start;
