@@ -30,7 +30,7 @@ TEST_CASE("examples: mrm-manual.mrm on the MRM arm — X Y and the tilts back at
   ExampleBench b("sim-mrm-arm.json", "mrm-manual.mrm");
   const auto& m = b.setup.machine;
   REQUIRE(m.count == 5);
-  programs::use_rotary_order(b.setup.mrm, m);  // A = C (rotation about Z), B = U (U1), C = V (U2)
+  // MrmOptions as they come: A = C (rotation about Z), B = U (U1), C = V (U2); the gripper by name.
   const int gripper = b.output_number("gripper");
   REQUIRE(gripper > 0);
   b.setup.mrm.gripper_output = static_cast<std::uint16_t>(gripper);
