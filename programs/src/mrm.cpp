@@ -20,6 +20,13 @@ class MrmTranslator {
   explicit MrmTranslator(const MrmOptions& o) : o_(o), m_(o.machine) {
     planner::validate(m_);
     pos_ = o.start;
+    // A B C: the letters given, else the machine's rotary axes in order (0: none left).
+    int next = 0;
+    for (int i = 0; i < m_.count && next < 3; ++i)
+      if (m_.axes[i].kind == planner::AxisKind::Rotary) rotary_[next++] = m_.axes[i].letter;
+    const char given[3] = {o.a_axis, o.b_axis, o.c_axis};
+    for (int w = 0; w < 3; ++w)
+      if (given[w]) rotary_[w] = given[w];
   }
 
   std::vector<Item> run(std::string_view text) {
@@ -98,9 +105,11 @@ class MrmTranslator {
       default: {  // X Y A B C: incremental moves in 0.1 mm / 0.1°
         if (v != std::floor(v)) fail(ErrorKind::BadNumber, at, text, std::string("a whole number of 0.1 ") + (L == 'X' || L == 'Y' ? "mm" : "degree"));
         const bool linear = L == 'X' || L == 'Y';
-        const char axis = L == 'A' ? o_.a_axis : L == 'B' ? o_.b_axis : L == 'C' ? o_.c_axis : L;
-        const int k = index(axis);
-        if (k < 0) fail(ErrorKind::AxisNotOnMachine, at, text + " (machine axis " + std::string(1, axis) + ")", "words for the machine's axes");
+        const char axis = linear ? L : rotary_[L - 'A'];
+        const int k = axis ? index(axis) : -1;
+        if (k < 0)
+          fail(ErrorKind::AxisNotOnMachine, at, text + (axis ? " (machine axis " + std::string(1, axis) + ")" : " (the machine has no rotary axis for it)"),
+               "words for the machine's axes");
         const double feed = linear ? feed_ : speed_;
         if (!(feed > 0)) fail(ErrorKind::NoFeed, at, text + (linear ? " before any F" : " before any S"), linear ? "an F word (mm/min) before X/Y moves" : "an S word (degrees/min) before A/B/C moves");
         Pose t = pos_;
@@ -119,6 +128,7 @@ class MrmTranslator {
   std::uint32_t next_id_ = 0;
   int line_ = 0;
   Pose pos_{};
+  char rotary_[3] = {0, 0, 0};   // the machine axis of A, B, C (0: none)
   double feed_ = 0, speed_ = 0;  // mm/s, deg/s
   bool ended_ = false;
 };

@@ -32,12 +32,13 @@ std::string private_arm_config() {
   std::stringstream text;
   text << in.rdbuf();
   std::string json = text.str();
-  const std::string shipped = "/tmp/imess-ports-arm";
+  // The port_io key's value, not the same path in the file's _comment.
+  const std::string shipped = "\"file\": \"/tmp/imess-ports-arm\"";
   const auto at = json.find(shipped);
   REQUIRE(at != std::string::npos);
   const std::string dir = std::filesystem::temp_directory_path().string();
   const std::string tag = std::to_string(getpid());
-  json.replace(at, shipped.size(), dir + "/imess-test-ports-arm-" + tag);
+  json.replace(at, shipped.size(), "\"file\": \"" + dir + "/imess-test-ports-arm-" + tag + "\"");
   const std::string path = dir + "/imess-test-arm-" + tag + ".json";
   std::ofstream(path) << json;
   return path;

@@ -17,18 +17,20 @@ const char* kManualExample =
 }  // namespace
 
 TEST_CASE("mrm: the manual's example program, item by item") {
+  // The default machine X Y C A B: the words A, B, C move its rotary axes in order, C (the
+  // rotation about Z), A (U1), B (U2).
   CHECK(run(kManualExample) ==
         Lines{"3 LINE X500 Y0 C0 A0 B0 F16.666667", "4 LINE X500 Y300 C0 A0 B0 F16.666667",
-              "5 LINE X500 Y300 C0 A0 B90 F10", "6 OUT 0=1", "7 LINE X500 Y300 C0 A180 B90 F10", "8 OUT 0=0",
-              "9 LINE X500 Y300 C0 A180 B0 F10", "10 LINE X500 Y0 C0 A180 B0 F16.666667",
-              "11 LINE X0 Y0 C0 A180 B0 F16.666667", "12 END"});
+              "5 LINE X500 Y300 C0 A90 B0 F10", "6 OUT 0=1", "7 LINE X500 Y300 C180 A90 B0 F10", "8 OUT 0=0",
+              "9 LINE X500 Y300 C180 A0 B0 F10", "10 LINE X500 Y0 C180 A0 B0 F16.666667",
+              "11 LINE X0 Y0 C180 A0 B0 F16.666667", "12 END"});
 }
 
-TEST_CASE("mrm: the manual's example returns X, Y and the tilt B, gripper off; A stays at +180°") {
+TEST_CASE("mrm: the manual's example returns X, Y and the tilts, gripper off; the A word's rotation ends at +180°") {
   // BRIEF §5 says the program "returns to the start with the gripper off". Read as printed
   // (all moves incremental, A 0.1°), the sum of the X, Y and B moves is zero and the gripper
-  // ends off, but N7 A1800 turns A by 180° and nothing turns it back: the manual's claim
-  // holds for every axis but A (see docs/programs.md).
+  // ends off, but N7 A1800 turns A's joint by 180° and nothing turns it back: the half turn
+  // given to the held part (see docs/programs.md).
   const MrmOptions o;
   const auto t = translate_mrm(kManualExample, o);
   REQUIRE(t.ok);
@@ -44,15 +46,15 @@ TEST_CASE("mrm: the manual's example returns X, Y and the tilt B, gripper off; A
   CHECK(gripper == 0);
   CHECK(sum[0] == 0);    // X
   CHECK(sum[1] == 0);    // Y
-  CHECK(sum[2] == 0);    // C
-  CHECK(sum[4] == 0);    // B
-  CHECK(sum[3] == 180);  // A: the manual's inconsistency
+  CHECK(sum[3] == 0);    // A, U1: the B word
+  CHECK(sum[4] == 0);    // B, U2
+  CHECK(sum[2] == 180);  // C, the rotation about Z: the A word
   CHECK(std::holds_alternative<End>(t.items.back().step));
 }
 
 TEST_CASE("mrm: units, optional N, blank lines, nothing after M02") {
   CHECK(run("F600\n\nN7 X-15\nS60\nC3600\nM2\nX5\n") ==
-        Lines{"3 LINE X-1.5 Y0 C0 A0 B0 F10", "5 LINE X-1.5 Y0 C360 A0 B0 F1", "6 END"});
+        Lines{"3 LINE X-1.5 Y0 C0 A0 B0 F10", "5 LINE X-1.5 Y0 C0 A0 B360 F1", "6 END"});
 }
 
 TEST_CASE("mrm: A B C go to the configured machine axes") {
@@ -62,6 +64,20 @@ TEST_CASE("mrm: A B C go to the configured machine axes") {
   o.c_axis = 'A';
   CHECK(run("S600\nA100\nC200\nB300", o) ==
         Lines{"2 LINE X0 Y0 A0 B0 C10 F10", "3 LINE X0 Y0 A20 B0 C10 F10", "4 LINE X0 Y0 A20 B30 C10 F10"});
+}
+
+TEST_CASE("mrm: by default A B C move the machine's rotary axes in its order (the arm: C U V)") {
+  MrmOptions o;
+  o.machine = imess::planner::make_machine("XYCUV", -1000, 1000, 100, 1000);
+  o.machine.axes[3].kind = o.machine.axes[4].kind = imess::planner::AxisKind::Rotary;  // the tilt joints
+  CHECK(run("S600\nA100\nB200\nC300", o) ==
+        Lines{"2 LINE X0 Y0 C10 U0 V0 F10", "3 LINE X0 Y0 C10 U20 V0 F10", "4 LINE X0 Y0 C10 U20 V30 F10"});
+  // Fewer rotary axes than words: a word left over has no axis and is refused.
+  MrmOptions two;
+  two.machine = imess::planner::make_machine("XYCU", -1000, 1000, 100, 1000);
+  two.machine.axes[3].kind = imess::planner::AxisKind::Rotary;
+  CHECK(run("S600\nB10", two) == Lines{"2 LINE X0 Y0 C0 U1 F10"});
+  CHECK(err("S600\nC10", two) == "line 2:1: axis not on this machine: found C10 (the machine has no rotary axis for it), accepted words for the machine's axes");
 }
 
 TEST_CASE("mrm errors: every kind with line:column") {
@@ -81,5 +97,7 @@ TEST_CASE("mrm errors: every kind with line:column") {
   CHECK(err("F100\nX20000") == "line 2:1: out of travel: found X at 2000, accepted X within -1000 ... 1000");
   MrmOptions o;
   o.machine = imess::planner::make_machine("XYAB", -1000, 1000, 100, 1000);
+  CHECK(err("S600\nC10", o) == "line 2:1: axis not on this machine: found C10 (the machine has no rotary axis for it), accepted words for the machine's axes");
+  o.c_axis = 'C';
   CHECK(err("S600\nC10", o) == "line 2:1: axis not on this machine: found C10 (machine axis C), accepted words for the machine's axes");
 }

@@ -184,7 +184,8 @@ TEST_CASE("properties: random HPGL (PU/PD, PA/PR) ends where the plotter units a
 TEST_CASE("properties: random MRM programs end at the sum of their moves, gripper as last set") {
   MrmOptions o;
   o.machine = imess::planner::make_machine("XYCAB", -1e6, 1e6, 100, 1000);
-  const char letters[] = {'X', 'Y', 'C', 'A', 'B'};
+  // Word k moves machine axis k: X, Y, then A B C the rotary axes C A B in the machine's order.
+  const char letters[] = {'X', 'Y', 'A', 'B', 'C'};
   for (unsigned seed = 1; seed <= 40; ++seed) {
     std::mt19937 rng(seed);
     std::uniform_int_distribution<int> value(-30000, 30000), pick(0, 99);
