@@ -269,7 +269,8 @@ void read_programs_section(JsonObject& p, const std::string& path, DaemonConfig&
   }
   if (auto m = p.object("mrm")) {
     auto letter = [&](const std::string& key, char def) {
-      const std::string t = m->text(key, std::string(1, def));
+      if (!m->has(key)) return def;
+      const std::string t = m->text(key, "");
       if (t.size() != 1 || layout.index_of(t[0]) < 0)
         m->fail(key, "one axis letter of this machine (" + layout.names() + ")");
       return t[0];

@@ -7,6 +7,10 @@
 #include "config.hpp"
 #include "imess/hal/motion_backend.hpp"
 
+namespace imess::sim {
+class StepperMachine;
+}
+
 namespace imess::app {
 
 class Machine {
@@ -15,6 +19,9 @@ class Machine {
   virtual hal::MotionBackend& backend() = 0;
   virtual hal::SimHooks* sim_hooks() = 0;  // nullptr on real hardware
   virtual std::string describe() const = 0;
+  // The simulated step/dir machine behind a simulated parallel port (its step counts, lost
+  // steps and timing violations, for tests); nullptr elsewhere.
+  virtual sim::StepperMachine* stepper_sim() { return nullptr; }
   // Optional fast thread of a backend with a base-period routine (steppers on a real
   // port). main() starts it after the motion loop and stops it before; returns a line
   // for the log ("" when there is none).

@@ -13,6 +13,7 @@
 
 #include "config_rig.hpp"
 #include "imess/core/path_machine.hpp"
+#include "imess/net/program_run.hpp"
 #include "imess/programs/check.hpp"
 #include "imess/sim/scene.hpp"
 
@@ -27,8 +28,10 @@ class ExampleBench {
     std::stringstream s;
     s << in.rdbuf();
     text_ = s.str();
-    setup.machine = core::path_machine(rig_.core().config());
-    for (int a = 0; a < setup.machine.count; ++a) setup.start[a] = rig_.config().sim.mechanics.start[a];
+    // The set-up messd's runner makes from the configuration's "programs" section.
+    planner::Pose start{};
+    for (int a = 0; a < rig_.core().config().layout.count; ++a) start[a] = rig_.config().sim.mechanics.start[a];
+    setup = net::program_setup(rig_.config().server.programs, rig_.core().config(), core::path_machine(rig_.core().config()), start);
     options = core::path_options(rig_.core().config());
   }
 

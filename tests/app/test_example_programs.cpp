@@ -30,10 +30,11 @@ TEST_CASE("examples: mrm-manual.mrm on the MRM arm — X Y and the tilts back at
   ExampleBench b("sim-mrm-arm.json", "mrm-manual.mrm");
   const auto& m = b.setup.machine;
   REQUIRE(m.count == 5);
-  // MrmOptions as they come: A = C (rotation about Z), B = U (U1), C = V (U2); the gripper by name.
+  // MrmOptions as they come: A = C (rotation about Z), B = U (U1), C = V (U2); the gripper by
+  // name, from the configuration's programs section.
   const int gripper = b.output_number("gripper");
   REQUIRE(gripper > 0);
-  b.setup.mrm.gripper_output = static_cast<std::uint16_t>(gripper);
+  REQUIRE(b.setup.mrm.gripper_output == gripper);
 
   const auto [c, t] = b.passed();
   const planner::Pose start = b.setup.start;
@@ -80,12 +81,13 @@ TEST_CASE("examples: mrm-manual.mrm on the MRM arm — X Y and the tilts back at
 TEST_CASE("examples: shd-drawing.plt on the SHD stepper machine — a frame with IMESS in it, back at plotter 0,0") {
   ExampleBench b("sim-parport-shd.json", "shd-drawing.plt");
   const planner::Pose start = b.setup.start;
-  // Plotter 0,0 is where the machine stands; the pen is up at the start's Z, down 10 mm lower.
-  b.setup.hpgl.origin_x = start[0];
-  b.setup.hpgl.origin_y = start[1];
-  b.setup.hpgl.pen = programs::HpglOptions::Pen::ZMove;
-  b.setup.hpgl.pen_up_z = start[2];
-  b.setup.hpgl.pen_down_z = start[2] - 10;
+  // The configuration's programs.hpgl: plotter 0,0 where the machine stands, the pen up at
+  // the start's Z and down 10 mm lower.
+  REQUIRE(b.setup.hpgl.origin_x == start[0]);
+  REQUIRE(b.setup.hpgl.origin_y == start[1]);
+  REQUIRE(b.setup.hpgl.pen == programs::HpglOptions::Pen::ZMove);
+  REQUIRE(b.setup.hpgl.pen_up_z == start[2]);
+  REQUIRE(b.setup.hpgl.pen_down_z == start[2] - 10);
 
   const auto [c, t] = b.passed();
   CHECK(programs::end_pose(t.items, start) == start);

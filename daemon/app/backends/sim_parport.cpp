@@ -26,6 +26,7 @@ class SimParportMachine final : public Machine {
   // Steppers hold their position and have no encoders: the carriage cannot be pushed by hand.
   hal::SimHooks* sim_hooks() override { return nullptr; }
   std::string describe() const override { return driver_.describe() + " (simulated stepper CMM)"; }
+  sim::StepperMachine* stepper_sim() override { return &cmm_.stepper(); }
 
  private:
   sim::SimulatedStepperCmm cmm_;

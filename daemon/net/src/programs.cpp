@@ -77,11 +77,18 @@ planner::Pose pose_of(const core::AxisVec& v, int count) {
 }
 }  // namespace
 
-// The language set-up from the configuration; outputs by tags (resolve_outputs).
-programs::Setup Server::program_setup(const planner::Pose& start) const {
-  const ProgramConfig& pc = config_.programs;
+namespace {
+const core::OutputSettings* output_named(const core::CoreConfig& cfg, std::string_view name) {
+  for (int i = 0; i < cfg.output_count; ++i)
+    if (cfg.outputs[i].name_view() == name) return &cfg.outputs[i];
+  return nullptr;
+}
+}  // namespace
+
+programs::Setup program_setup(const ProgramConfig& pc, const core::CoreConfig& core, const planner::Machine& machine,
+                              const planner::Pose& start) {
   programs::Setup s;
-  s.machine = planner_.machine();
+  s.machine = machine;
   s.start = start;
   for (std::size_t a = 0; a < pc.home.size() && a < planner::kMaxAxes; ++a) s.gcode.home[a] = pc.home[a];
   if (!pc.spindle.empty()) s.gcode.spindle_output = kSpindleTag;
@@ -95,36 +102,37 @@ programs::Setup Server::program_setup(const planner::Pose& start) const {
   s.hpgl.pen_feed = pc.pen_feed;
   if (pc.pen != "z") {
     s.hpgl.pen = programs::HpglOptions::Pen::Output;
-    const auto* out = find_output(pc.pen);
+    const auto* out = output_named(core, pc.pen);
     s.hpgl.pen_output = out ? static_cast<std::uint16_t>(out->number) : 0;
   }
   s.mrm.a_axis = pc.mrm_a;
   s.mrm.b_axis = pc.mrm_b;
   s.mrm.c_axis = pc.mrm_c;
-  const auto* grip = find_output(pc.gripper);
+  const auto* grip = output_named(core, pc.gripper);
   s.mrm.gripper_output = grip ? static_cast<std::uint16_t>(grip->number) : 0;
   return s;
 }
 
-// Every SetOutput gets the machine's output number and its settle time; one the machine
-// lacks refuses the program (by its line).
-bool Server::resolve_outputs(std::vector<programs::Item>& items, std::string& error) const {
-  const auto& cfg = core_.config();
+bool resolve_program_outputs(std::vector<programs::Item>& items, const ProgramConfig& pc, const core::CoreConfig& core,
+                             std::string& error) {
   for (auto& item : items) {
     auto* o = std::get_if<planner::SetOutput>(&item.step);
     if (!o) continue;
     const core::OutputSettings* out = nullptr;
     if (o->output == kSpindleTag) {
-      out = find_output(config_.programs.spindle);
-    } else if (o->output >= kDigitalTag && o->output - kDigitalTag < config_.programs.outputs.size()) {
-      out = find_output(config_.programs.outputs[o->output - kDigitalTag]);
+      out = output_named(core, pc.spindle);
+    } else if (o->output >= kDigitalTag && static_cast<std::size_t>(o->output - kDigitalTag) < pc.outputs.size()) {
+      out = output_named(core, pc.outputs[o->output - kDigitalTag]);
     } else {
-      for (int i = 0; i < cfg.output_count; ++i)
-        if (cfg.outputs[i].number == o->output) out = &cfg.outputs[i];
+      for (int i = 0; i < core.output_count; ++i)
+        if (core.outputs[i].number == o->output) out = &core.outputs[i];
     }
     if (!out) {
+      std::string names;
+      for (int i = 0; i < core.output_count; ++i) names += (names.empty() ? "" : ", ") + std::string(core.outputs[i].name_view());
       error = "line " + std::to_string(item.line) + ":1: not configured: found a switch of output " +
-              std::to_string(o->output) + ", accepted " + output_names() + " (programs section: spindle, outputs, pen, gripper)";
+              std::to_string(o->output) + ", accepted the machine's outputs (" + (names.empty() ? "none" : names) +
+              ") as the programs section maps them (spindle, outputs, pen, gripper)";
       return false;
     }
     o->output = static_cast<std::uint16_t>(out->number);
@@ -136,13 +144,13 @@ bool Server::resolve_outputs(std::vector<programs::Item>& items, std::string& er
 // Translates and checks the program from `start`; the items of the run in `items`.
 bool Server::check_program_text(const LoadedProgram& p, const planner::Pose& start, std::vector<programs::Item>& items,
                                 programs::Check& check, std::string& error) const {
-  const programs::Setup setup = program_setup(start);
+  const programs::Setup setup = program_setup(config_.programs, core_.config(), planner_.machine(), start);
   programs::Translation t = programs::translate(p.lang, p.text, setup);
   if (!t.ok) {
     error = t.error.message();
     return false;
   }
-  if (!resolve_outputs(t.items, error)) return false;
+  if (!resolve_program_outputs(t.items, config_.programs, core_.config(), error)) return false;
   check = programs::check_items(t.items, setup.machine, planner_.options(), start);
   check.lines = static_cast<std::size_t>(std::count(p.text.begin(), p.text.end(), '\n')) +
                 (!p.text.empty() && p.text.back() != '\n' ? 1 : 0);

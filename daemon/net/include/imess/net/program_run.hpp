@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "imess/core/core_types.hpp"
 #include "imess/programs/check.hpp"
 
 namespace imess::net {
@@ -21,7 +22,7 @@ struct ProgramConfig {
   double pen_up_z = 5, pen_down_z = 0, pen_feed = 10;  // mm, mm, mm/s
   double origin_x = 0, origin_y = 0;  // machine X Y of plotter point 0,0
   double hpgl_feed = 20;              // mm/s pen-down until VS sets one
-  char mrm_a = 'A', mrm_b = 'B', mrm_c = 'C';  // machine axes the MRM words A B C move
+  char mrm_a = 0, mrm_b = 0, mrm_c = 0;  // machine axes the MRM words A B C move (0: the rotary axes in order)
   std::string gripper = "gripper";    // output of MRM M03/M04 (when the machine has it)
   std::size_t max_lines = 1000000, max_bytes = 16u << 20;  // a program larger is refused
 };
@@ -60,6 +61,16 @@ struct ProgramRun {
   std::chrono::nanoseconds shown_at{-1000000000};  // its time on the motion loop's clock
   bool running() const noexcept { return state == ProgramState::Running || state == ProgramState::Paused; }
 };
+
+// The translators' set-up for this machine from the configuration: the machine, where it
+// stands, G28's pose, the HPGL pen and origin, the MRM axes; outputs by the tags that
+// resolve_program_outputs() turns into the machine's output numbers.
+programs::Setup program_setup(const ProgramConfig& pc, const core::CoreConfig& core, const planner::Machine& machine,
+                              const planner::Pose& start);
+// Every SetOutput of `items` gets the machine's output number and its settle time; false
+// (with `error` naming the line) when a program switches an output the machine lacks.
+bool resolve_program_outputs(std::vector<programs::Item>& items, const ProgramConfig& pc, const core::CoreConfig& core,
+                             std::string& error);
 
 const char* state_name(ProgramState s);
 const char* outcome_name(ProgramOutcome o);

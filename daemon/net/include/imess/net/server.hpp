@@ -143,8 +143,6 @@ class Server {
   void on_segment_end(const core::Event& e);  // Done / Failed
   void drop_planned(core::FailReason why);    // fail what the loop has not received, plan anew
   // programs.cpp: the programs folder, Load / Upload / Run / Abort / Program, running one
-  programs::Setup program_setup(const planner::Pose& start) const;
-  bool resolve_outputs(std::vector<programs::Item>& items, std::string& error) const;
   bool check_program_text(const LoadedProgram& p, const planner::Pose& start, std::vector<programs::Item>& items,
                           programs::Check& check, std::string& error) const;
   bool program_busy(Session& s, std::uint32_t slot, std::string_view verb);  // answers Err 202 while one runs
