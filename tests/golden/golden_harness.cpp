@@ -166,6 +166,8 @@ class Harness {
     }
   }
 
+  test::ConfigRig& rig() { return rig_; }
+
   void finish(std::vector<Entry>& out) {
     settle();
     collect(out, false);
@@ -249,7 +251,10 @@ class Harness {
 
 }  // namespace
 
-std::vector<Entry> replay(const std::vector<Entry>& script, const std::string& name) {
+std::vector<Entry> replay(const std::vector<Entry>& script, const std::string& name) { return replay(script, name, {}); }
+
+std::vector<Entry> replay(const std::vector<Entry>& script, const std::string& name,
+                          const std::function<void(test::ConfigRig&)>& inspect) {
   spdlog::set_level(spdlog::level::off);  // messd's log is not part of the transcript
   std::vector<Entry> out;
   std::unique_ptr<Harness> h;
@@ -287,6 +292,7 @@ std::vector<Entry> replay(const std::vector<Entry>& script, const std::string& n
     }
   }
   if (h) h->finish(out);
+  if (h && inspect) inspect(h->rig());
   return out;
 }
 
