@@ -40,6 +40,7 @@ app::DaemonConfig configure(const app::CliOptions& cli) {
   if (cli.port) cfg.server.port = static_cast<std::uint16_t>(*cli.port);
   if (cli.listen) cfg.server.listen = *cli.listen;
   if (cli.journal) cfg.journal.dir = *cli.journal;
+  if (cli.programs) cfg.server.programs.folder = std::filesystem::absolute(*cli.programs).lexically_normal().string();
   if (cfg.journal.dir.empty()) cfg.journal.dir = app::default_journal_dir();
   if (cli.home) cfg.home_on_start = true;
   if (cli.no_realtime) cfg.realtime = false;

@@ -63,7 +63,7 @@ std::string name_problem(const std::string& name) {
   if (name.size() > 255) return "a name of at most 255 characters";
   for (char c : name)
     if (c == '/' || c == '\\' || static_cast<unsigned char>(c) < 33 || static_cast<unsigned char>(c) > 126)
-      return "a file name without '/', '\\\\', blanks or control characters";
+      return "a file name without '/', '\\', blanks or control characters";
   if (name.find("..") != std::string::npos || name.front() == '.') return "a file name not starting with '.' and without '..'";
   if (!programs::language_of(name))
     return std::string("a name ending in one of ") + programs::kExtensions + " (it gives the language)";
