@@ -20,10 +20,6 @@ int index_of(const planner::Machine& m, char letter) {
   return -1;
 }
 
-// The machine letter an MRM rotary word moves: the arm's own letter when present, else the word's.
-char mrm_axis(const planner::Machine& m, char arm_letter, char word) {
-  return index_of(m, arm_letter) >= 0 ? arm_letter : word;
-}
 
 }  // namespace
 
@@ -48,9 +44,11 @@ planner::Machine offline_machine(Language lang, const OfflineSpec& spec) {
                                              kOfflineMaxVelocity, kOfflineMaxAccel);
   if (lang == Language::Hpgl && (index_of(m, 'X') < 0 || index_of(m, 'Y') < 0))
     throw UsageError("--axes '" + letters + "': HPGL draws in X and Y; accepted: letters including X and Y (and Z for the pen)");
+  // The arm: X and Y its linear base, every other axis a rotary joint (the MRM words A B C
+  // move the rotary axes in order, as on config/sim-mrm-arm.json).
   if (lang == Language::Mrm)
-    for (char moved : {mrm_axis(m, 'U', 'A'), mrm_axis(m, 'V', 'B')})
-      if (const int i = index_of(m, moved); i >= 0) m.axes[i].kind = planner::AxisKind::Rotary;
+    for (int i = 0; i < m.count; ++i)
+      if (m.axes[i].letter != 'X' && m.axes[i].letter != 'Y') m.axes[i].kind = planner::AxisKind::Rotary;
   return m;
 }
 
@@ -59,9 +57,7 @@ programs::Setup offline_setup(const planner::Machine& machine) {
   s.machine = machine;
   for (int i = 0; i < machine.count; ++i)
     s.start[i] = std::clamp(0.0, machine.axes[i].travel_min, machine.axes[i].travel_max);
-  s.mrm.a_axis = mrm_axis(machine, 'U', 'A');
-  s.mrm.b_axis = mrm_axis(machine, 'V', 'B');
-  s.mrm.c_axis = 'C';
+  // MRM A B C: the machine's rotary axes in order (MrmOptions' default; on XYCUV A → C, B → U, C → V).
   if (index_of(machine, 'Z') < 0) s.hpgl.pen = programs::HpglOptions::Pen::Output;
   return s;
 }

@@ -115,7 +115,7 @@ TEST_CASE("messprog check: an arc's box is its circle, and a long program's time
   CHECK_THAT(r.out, Catch::Matches("[\\s\\S]*estimated time 12[67]\\.[0-9]{2} s \\(0:02:0[67]\\)[\\s\\S]*"));
 }
 
-TEST_CASE("messprog check: MRM on the arm's generic machine XYCUV, its A word turning U in degrees") {
+TEST_CASE("messprog check: MRM on the arm's generic machine XYCUV, A B C turning its rotary joints C U V in order") {
   TempDir dir;
   const auto file = write(dir, "arm.mrm", "N1 F1000\nN2 X5000\nN3 S600\nN4 A900\nN5 C-450\nN6 M02\n");
   const auto r = run_program(messprog({"check", file}));
@@ -123,8 +123,8 @@ TEST_CASE("messprog check: MRM on the arm's generic machine XYCUV, its A word tu
   CHECK(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("machine: axes XYCUV") && Catch::Contains("(degrees for C U V)"));
   CHECK_THAT(r.out, Catch::Contains("  X        0.000 ..      500.000 mm\n"));
-  CHECK_THAT(r.out, Catch::Contains("  U        0.000 ..       90.000 deg\n"));
-  CHECK_THAT(r.out, Catch::Contains("  C      -45.000 ..        0.000 deg\n"));
+  CHECK_THAT(r.out, Catch::Contains("  C        0.000 ..       90.000 deg\n"));   // A900
+  CHECK_THAT(r.out, Catch::Contains("  V      -45.000 ..        0.000 deg\n"));   // C-450
 }
 
 TEST_CASE("messprog check: a program error is FILE:LINE:COL: kind: found ..., accepted ... and exit 1") {
@@ -279,7 +279,7 @@ TEST_CASE("messprog plot: a bad output name is exit 2, a program error exit 1 an
 
 TEST_CASE("messprog plot: the MRM arm's second view is C against X") {
   TempDir dir;
-  const auto file = write(dir, "arm.mrm", "N1 F1000\nN2 X5000\nN3 S600\nN4 C-450\nN5 M02\n");
+  const auto file = write(dir, "arm.mrm", "N1 F1000\nN2 X5000\nN3 S600\nN4 A-450\nN5 M02\n");
   const auto svg_path = dir.file("arm.svg");
   REQUIRE(run_program(messprog({"plot", file, "-o", svg_path})).status == 0);
   const auto svg = read_file(svg_path);
