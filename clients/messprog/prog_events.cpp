@@ -49,7 +49,9 @@ std::optional<BlockEvent> parse_block(std::string_view line) {
 }
 
 std::optional<ProgPauseEvent> parse_prog_pause(std::string_view line) {
-  const auto w = words(trimmed(line), 4);
+  // messd sends "ProgPause <name> <line> M0" (docs/protocol.md); the reason word, and any
+  // later one, is not needed here.
+  const auto w = words(trimmed(line), 3);
   ProgPauseEvent p;
   if (w.size() != 3 || w[0] != "ProgPause" || !number(w[2], p.line)) return std::nullopt;
   p.name = std::string(w[1]);

@@ -1,4 +1,4 @@
-// The program events messd broadcasts while a program runs (docs/prog-protocol: Block,
+// The program events messd broadcasts while a program runs (docs/protocol.md: Block,
 // ProgPause, ProgEnd) and the figures of its `Ok Load` reply, read from their lines.
 #pragma once
 #include <cstddef>
@@ -16,7 +16,7 @@ struct BlockEvent {
   std::size_t index = 0, total = 0;  // 1-based item index, item count
 };
 
-// `ProgPause <name> <line>`: an M0 was reached; the machine stands until Resume.
+// `ProgPause <name> <line> M0`: an M0 was reached; the machine stands until Resume.
 struct ProgPauseEvent {
   std::string name;
   int line = 0;
@@ -27,7 +27,7 @@ struct ProgEndEvent {
   enum class Outcome { Ok, Failed, Aborted } outcome = Outcome::Ok;
   std::string name;
   int line = 0;
-  std::string text;  // "end", "Failed PartNotFound", "Abort", "StopMv", "disconnect"
+  std::string text;  // "end", "Failed PartNotFound", "Abort", "StopMv", "disconnected"
 };
 
 // nullopt when the line is not that event or is malformed.

@@ -83,17 +83,33 @@ RunOutput RunSession::on_reply(std::string_view line) {
         return finish(out, 1);
       }
       if (ok->verb != "Take") return out;
+      // The lines follow only messd's Ok Upload: were Upload refused (the name, control taken
+      // over meanwhile), every program line would reach messd as a command of its own.
       out.send.push_back("Upload " + upload_.name);
-      out.send.insert(out.send.end(), upload_.lines.begin(), upload_.lines.end());
+      phase_ = Phase::Announcing;
+      return out;
+    case Phase::Announcing:
+      if (err) {
+        out.errors.push_back("messprog: messd refused Upload " + upload_.name + ": " + err_text(*err));
+        return finish(out, 1);
+      }
+      if (ok->verb != "Upload") return out;
+      out.send = upload_.lines;
       out.send.push_back(".");
       phase_ = Phase::Uploading;
       return out;
     case Phase::Uploading:
       if (err) {
-        // "Upload part.nc: line 3:7: kind: ..." → "part.nc:3:7: kind: ..." with the local file's name
         std::string text = err->text;
         const std::string prefix = "Upload " + upload_.name + ": ";
         if (text.rfind(prefix, 0) == 0) text = text.substr(prefix.size());
+        if (text.rfind("line ", 0) != 0) {
+          // no line of the program to name (Err 202: another program runs; the size limits):
+          // messd's words as they are
+          out.errors.push_back("messprog: messd refused " + upload_.name + ": " + err_text(*err));
+          return finish(out, 1);
+        }
+        // "Upload part.nc: line 3:7: kind: ..." → "part.nc:3:7: kind: ..." with the local file's name
         out.errors.push_back("messprog: messd refused " + upload_.name + " (Err " + std::to_string(err->code) + "):");
         out.errors.push_back(located_error(settings_.file, text));
         return finish(out, 1);
@@ -166,6 +182,7 @@ RunOutput RunSession::interrupt() {
   switch (phase_) {
     case Phase::Greeting:
     case Phase::Taking:
+    case Phase::Announcing:
     case Phase::Uploading:
       out.errors.push_back("messprog: interrupted before Run: nothing was started");
       return finish(out, 1);
@@ -205,6 +222,7 @@ RunOutput RunSession::answer(std::string_view text) {
   if (c == 'r' || c == 'R') {
     asking_ = false;
     out.send.push_back("Resume");
+    out.notes.push_back("messprog: Resume sent");  // and the progress line comes back under it
     return out;
   }
   out.notes.push_back("messprog: answer a (abort the program) or r (resume it)");

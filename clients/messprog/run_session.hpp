@@ -1,6 +1,6 @@
 // The conversation of `messprog run` with messd, as pure logic (no sockets, no terminal):
-// Hello messprog (its Caps must name `programs`), Take, Upload <name> + the program's
-// lines + ".", then Run [detached] once messd answered `Ok Load`; then the Block, ProgPause
+// Hello messprog (its Caps must name `programs`), Take, Upload <name>, after its `Ok Upload`
+// the program's lines + ".", then Run [detached] once messd answered `Ok Load`; then the Block, ProgPause
 // and ProgEnd events, and what Ctrl-C and the operator's answers send. Every step returns
 // what to send, what to print and, at the end, the exit status.
 #pragma once
@@ -26,7 +26,8 @@ struct RunOutput {
 
 class RunSession {
  public:
-  enum class Phase { Greeting, Taking, Uploading, Starting, Running, Ended };
+  // Announcing: "Upload <name>" sent, its Ok awaited; Uploading: the lines and "." sent.
+  enum class Phase { Greeting, Taking, Announcing, Uploading, Starting, Running, Ended };
 
   struct Settings {
     std::string file;       // as named on the command line, for messages
@@ -46,7 +47,11 @@ class RunSession {
 
   Phase phase() const { return phase_; }
   bool asking() const { return asking_; }
-  bool holds_control() const { return phase_ != Phase::Greeting && phase_ != Phase::Taking && phase_ != Phase::Ended; }
+  // For the keep-alive blank line: never while messd awaits the program's lines (Announcing),
+  // where a blank line would be one of them.
+  bool holds_control() const {
+    return phase_ != Phase::Greeting && phase_ != Phase::Taking && phase_ != Phase::Announcing && phase_ != Phase::Ended;
+  }
 
  private:
   RunOutput on_reply(std::string_view line);

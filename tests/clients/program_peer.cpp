@@ -33,7 +33,11 @@ ProgramPeer::ProgramPeer(ProgramPeerScript script) {
       state->uploading = true;
       state->name = line.substr(7);
       state->lines.clear();
-      return {};
+      if (!script.upload.empty()) {
+        state->uploading = false;  // refused: what follows is read as commands
+        return {with_name(script.upload, state->name)};
+      }
+      return {"Ok Upload " + state->name + " send the lines, then a line '.'"};
     }
     if (line == "Run" || line == "Run detached") {
       if (script.run.empty()) return {"Ok Run " + state->name};

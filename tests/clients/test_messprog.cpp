@@ -288,7 +288,46 @@ TEST_CASE("messprog plot: the MRM arm's second view is C against X") {
                                         Catch::Contains("C -45.000 .. 0.000 deg"));
 }
 
+TEST_CASE("messprog check passes each shipped example program, and plot draws the bore inspection's 8 probe targets") {
+  const std::string folder = std::string(IMESS_SOURCE_DIR) + "/examples/programs/";
+  for (const char* name : {"bore-inspection.ngc", "mrm-manual.mrm", "pocket-helix.ngc", "shd-drawing.plt"}) {
+    INFO(name);
+    const auto r = run_program(messprog({"check", folder + name}));
+    INFO(r.out << r.err);
+    CHECK(r.status == 0);
+    CHECK_THAT(r.out, Catch::StartsWith(folder + name + ": ok ("));
+    CHECK(r.err.empty());
+  }
+  TempDir dir;
+  const auto svg_path = dir.file("bore.svg");
+  const auto r = run_program(messprog({"plot", folder + "bore-inspection.ngc", "-o", svg_path}));
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("8 probing moves"));
+  const std::string svg = read_file(svg_path);
+  for (const char* id : {"view-xy", "view-xz"}) {
+    INFO(id);
+    const auto view = group(svg, id);
+    CHECK(count(view, "class=\"probe-target\"") == 8);
+    CHECK(count(view, "<path class=\"probe\"") == 8);
+  }
+}
+
 // ---- run ----
+
+TEST_CASE("program events as messd words them: Block, ProgPause with its M0, ProgEnd with its text") {
+  const auto b = parse_block("Block part.ngc 12 5/40");
+  REQUIRE(b);
+  CHECK((b->name == "part.ngc" && b->line == 12 && b->index == 5 && b->total == 40));
+  const auto pause = parse_prog_pause("ProgPause part.ngc 17 M0");  // docs/protocol.md: <name> <line> M0
+  REQUIRE(pause);
+  CHECK((pause->name == "part.ngc" && pause->line == 17));
+  CHECK(parse_prog_pause("ProgPause part.ngc 17"));
+  CHECK_FALSE(parse_prog_pause("ProgPause part.ngc M0"));
+  const auto end = parse_prog_end("ProgEnd part.ngc aborted 10 disconnected");
+  REQUIRE(end);
+  CHECK((end->outcome == ProgEndEvent::Outcome::Aborted && end->line == 10 && end->text == "disconnected"));
+}
 
 TEST_CASE("messprog run: Hello, Take, Upload with every line and '.', Run — progress — ProgEnd ok is exit 0") {
   ProgramPeerScript script;
@@ -347,15 +386,42 @@ TEST_CASE("messprog run: ProgEnd failed is exit 1 with the line and its text —
 
 TEST_CASE("messprog run: messd refusing the program is exit 1 with FILE:LINE:COL, and nothing is run") {
   ProgramPeerScript script;
-  script.load = "Err 105 Upload {NAME}: line 2:1: unsupported code: found G81, accepted G0 G1 G2 G3";
+  script.load = "Err 213 Upload {NAME}: line 2:1: unsupported code: found G81, accepted G0 G1 G2 G3";
   ProgramPeer peer(script);
   TempDir dir;
   const auto file = write(dir, "drill.tap", "G0 X1\nG81 X2\n");
   const auto r = run_program(messprog({"run", file, peer.address()}));
   CHECK(r.status == 1);
-  CHECK_THAT(r.err, Catch::Contains("messprog: messd refused drill.tap (Err 105):\n" + file +
+  CHECK_THAT(r.err, Catch::Contains("messprog: messd refused drill.tap (Err 213):\n" + file +
                                     ":2:1: unsupported code: found G81, accepted G0 G1 G2 G3\n"));
   CHECK(peer.daemon().received().back() == ".");  // no Run
+}
+
+TEST_CASE("messprog run: a refusal at the '.' that names no line (another program runs) is shown as messd says it") {
+  ProgramPeerScript script;
+  script.load = "Err 202 Upload: program other.ngc is running; Pause, Abort or wait for its ProgEnd";
+  ProgramPeer peer(script);
+  TempDir dir;
+  const auto file = write(dir, "p.nc", "G0 X1\n");
+  const auto r = run_program(messprog({"run", file, peer.address()}));
+  CHECK(r.status == 1);
+  CHECK(r.err == "messprog: messd refused p.nc: Err 202 Upload: program other.ngc is running; Pause, Abort or wait "
+                 "for its ProgEnd\n");
+  CHECK(peer.daemon().received().back() == ".");  // no Run
+}
+
+TEST_CASE("messprog run: the program's lines follow only an Ok Upload — a refused Upload sends none of them") {
+  ProgramPeerScript script;
+  // Control taken over between Take and Upload: had the lines gone out, each would be a command.
+  script.upload = "Err 209 the machine is controlled by messjog at 127.0.0.1 (client 3)";
+  ProgramPeer peer(script);
+  TempDir dir;
+  const auto file = write(dir, "p.nc", "G0 X1\nG0 X2\n");
+  const auto r = run_program(messprog({"run", file, peer.address()}));
+  CHECK(r.status == 1);
+  CHECK(r.err == "messprog: messd refused Upload p.nc: Err 209 the machine is controlled by messjog at 127.0.0.1 "
+                 "(client 3)\n");
+  CHECK(peer.daemon().received() == std::vector<std::string>{"Hello messprog", "Take", "Upload p.nc"});
 }
 
 TEST_CASE("messprog run: a messd without programs, or control held by another client, is exit 1 before any upload") {
@@ -446,7 +512,9 @@ TEST_CASE("RunSession on a terminal: Ctrl-C pauses and asks — r resumes, a abo
   RunSession s(upload, {"p.nc", "localhost:1066", false, true});
   CHECK(s.start().send == std::vector<std::string>{"Hello messprog"});
   CHECK(s.on_line("Ok Hello IMESS 1 messd 0.1.0 Caps queue programs").send == std::vector<std::string>{"Take"});
-  CHECK(s.on_line("Ok Take").send == std::vector<std::string>{"Upload p.nc", "G0 X1", "M0", "G0 X2", "."});
+  CHECK(s.on_line("Ok Take").send == std::vector<std::string>{"Upload p.nc"});
+  CHECK(s.on_line("Ok Upload p.nc send the lines, then a line '.'").send ==
+        std::vector<std::string>{"G0 X1", "M0", "G0 X2", "."});
   CHECK(s.on_line("Ok Load p.nc Lang gcode").send == std::vector<std::string>{"Run"});
   CHECK(s.on_line("Ok Run p.nc").notes.size() == 1);
   CHECK(s.phase() == RunSession::Phase::Running);
@@ -462,8 +530,9 @@ TEST_CASE("RunSession on a terminal: Ctrl-C pauses and asks — r resumes, a abo
   CHECK(s.answer("r\n").send == std::vector<std::string>{"Resume"});
   CHECK_FALSE(s.asking());
 
-  out = s.on_line("ProgPause p.nc 2");  // M0: the same question
+  out = s.on_line("ProgPause p.nc 2 M0");  // M0, as messd words it: the same question
   CHECK(out.ask);
+  CHECK(out.notes == std::vector<std::string>{"messprog: M0 at line 2: the machine waits"});
   CHECK(s.answer(" r").send == std::vector<std::string>{"Resume"});
 
   CHECK(s.interrupt().send == std::vector<std::string>{"Pause"});
@@ -487,6 +556,7 @@ TEST_CASE("RunSession: Ctrl-C before Run ends at once — without a terminal it 
   s.start();
   s.on_line("Ok Hello IMESS 1 messd 0.1.0 Caps programs");
   s.on_line("Ok Take");
+  s.on_line("Ok Upload p.nc send the lines, then a line '.'");
   s.on_line("Ok Load p.nc");
   CHECK(s.interrupt().send == std::vector<std::string>{"Abort"});
   out = s.interrupt();

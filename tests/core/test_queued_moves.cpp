@@ -221,6 +221,41 @@ TEST_CASE("Pause brakes on the path and Resume finishes it at the target") {
   CHECK(rig.position().isApprox(b, 1e-12));
 }
 
+TEST_CASE("a stop ends a feed hold: the next queue starts moving, not held at its start") {
+  FollowerRig rig;
+  rig.append(rig.line(40, 300, 100, 100, 60));
+  rig.feed(true);
+  rig.run(0.5);
+  REQUIRE(rig.send({CommandKind::Pause}) == Refusal::None);
+  rig.run(0.5);
+  REQUIRE(rig.core().snapshot().path_held);
+  rig.stop();
+  CHECK(rig.run_until([&] { return rig.mode() == Mode::Idle; }, 5));
+  CHECK(rig.ids(EventKind::Failed) == std::vector<std::uint32_t>{40});
+  CHECK_FALSE(rig.core().snapshot().path_held);
+  const Vec3 here = rig.position();
+  rig.planner().set_position({here.x(), here.y(), here.z()});
+  rig.append(rig.line(41, here.x(), 200, here.z(), 60));
+  rig.feed(true);
+  CHECK(rig.run_until([&] { return rig.ids(EventKind::Done) == std::vector<std::uint32_t>{41}; }, 10));
+  CHECK(rig.position().isApprox(Vec3(here.x(), 200, here.z()), 1e-9));
+
+  // A Pause sent just before a stop reaches the loop after it (the stop lane is read first):
+  // it is superseded like a move sent before the stop, and holds nothing.
+  rig.planner().set_position({here.x(), 200, here.z()});
+  rig.append(rig.line(42, here.x(), 250, here.z(), 60));
+  rig.feed(true);
+  rig.run(0.3);
+  REQUIRE(rig.mode() == Mode::Path);
+  imess::core::Command pause{CommandKind::Pause};
+  pause.client = 1;
+  pause.seq = 4242;
+  REQUIRE(rig.core().submit(pause));
+  rig.stop();
+  CHECK(rig.run_until([&] { return rig.mode() == Mode::Idle; }, 5));
+  CHECK_FALSE(rig.core().snapshot().path_held);
+}
+
 TEST_CASE("a full segment ring refuses the next segment at once and the loop keeps running") {
   FollowerRig rig;
   for (std::uint32_t i = 0; i < 200; ++i) rig.append(rig.line(100 + i, 100 + (i + 1) * 0.5, 100, 100, 50));

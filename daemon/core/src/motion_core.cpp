@@ -205,6 +205,9 @@ void MotionCore::take_stop(Nanos now) noexcept {
   stop_taken_ = t;
   pending_ = Pending::None;
   fail_queue(FailReason::Stopped, now, false);  // also those in the ring; the io side knows of its stop
+  // The stop drops the queue and with it a feed hold (Pause): left on, it held the next queue
+  // or program at its start, at rest and without a word (Run after Ctrl-C, abort in messprog).
+  sampler_.resume();
   if (mode_ == Mode::Jog || mode_ == Mode::Move || mode_ == Mode::Home || mode_ == Mode::Path) {
     stop_motion();
     stopped_from_ = mode_;
@@ -214,10 +217,12 @@ void MotionCore::take_stop(Nanos now) noexcept {
   // exception to "a stop brakes at once": braking would leave the probe deflected).
 }
 
+// A Pause too: the stop lane is read ahead of the commands, so a Pause sent just before a stop
+// (messprog's Ctrl-C, then "a") would otherwise come after it and hold the next queue.
 bool MotionCore::superseded(const Command& c) const noexcept {
   return c.ticket <= stop_taken_ &&
          (c.kind == CommandKind::StartMv || c.kind == CommandKind::JogAx || c.kind == CommandKind::GoTo ||
-          c.kind == CommandKind::Home);
+          c.kind == CommandKind::Home || c.kind == CommandKind::Pause);
 }
 
 void MotionCore::handle(const Command& c, Nanos now) noexcept {
