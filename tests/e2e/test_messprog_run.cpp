@@ -263,7 +263,7 @@ TEST_CASE("messprog run --detached killed mid-run: the program goes on and ends 
   const auto file = write(dir, "slow.ngc", kSlowSquare);
   {
     ChildProcess p(messprog_run(file, messd.port(), true));
-    REQUIRE(watch.until_prefix("Block slow.ngc ", 30));
+    REQUIRE(watch.until_prefix("Block slow.ngc 3 ", 30));
     REQUIRE(p.wait_for_output("messprog: running slow.ngc (detached)", std::chrono::seconds(30)));
     p.signal(SIGKILL);
     REQUIRE(p.wait(std::chrono::seconds(10)) == 128 + SIGKILL);
@@ -283,7 +283,7 @@ TEST_CASE("messprog run --detached killed mid-run: the program goes on and ends 
   }
   {
     ChildProcess p(messprog_run(file, messd.port()));
-    REQUIRE(watch.until_prefix("Block slow.ngc ", 30));
+    REQUIRE(watch.until_prefix("Block slow.ngc 3 ", 30));
     REQUIRE(p.wait_for_output("messprog: running slow.ngc; Ctrl-C aborts", std::chrono::seconds(30)));
     p.signal(SIGKILL);
     REQUIRE(p.wait(std::chrono::seconds(10)) == 128 + SIGKILL);
