@@ -11,9 +11,15 @@ int g_taken = 0;
 extern "C" void on_interrupt(int) { g_interrupts = g_interrupts + 1; }
 extern "C" void on_terminate(int) { g_terminate = 1; }
 
+// SA_RESTART: a write to the terminal that the signal interrupts is restarted. Without it a
+// Ctrl-C landing while the progress line was written failed that write with EINTR, which
+// puts std::cout in its bad state for good: the question "abort or resume?" and all that
+// followed was never shown, while messd held the program. poll() is never restarted
+// (signal(7)), so the loop still wakes at once.
 void install(int sig, void (*handler)(int)) {
   struct sigaction sa {};
   sa.sa_handler = handler;
+  sa.sa_flags = SA_RESTART;
   sigemptyset(&sa.sa_mask);
   sigaction(sig, &sa, nullptr);
 }

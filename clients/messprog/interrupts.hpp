@@ -1,6 +1,7 @@
 // Ctrl-C and SIGTERM for messprog run: each SIGINT is counted, so every press is handled
-// (pause, then abort); the handlers only count and are installed without SA_RESTART, so a
-// waiting poll() returns at once.
+// (pause, then abort); the handlers only count. They are installed with SA_RESTART, so an
+// interrupted write to the terminal goes on instead of failing; a waiting poll() returns
+// at once all the same (poll is never restarted).
 #pragma once
 
 namespace imess::messprog {

@@ -11,6 +11,7 @@
 #include "child_process.hpp"
 #include "fake_daemon.hpp"
 #include "imess/client/usage_error.hpp"
+#include "interrupts.hpp"
 #include "progress_view.hpp"
 #include "program_peer.hpp"
 #include "run_session.hpp"
@@ -563,6 +564,20 @@ TEST_CASE("RunSession: Ctrl-C before Run ends at once — without a terminal it 
   CHECK(out.send.empty());
   REQUIRE(out.exit);
   CHECK(*out.exit == 1);
+}
+
+TEST_CASE("messprog's Ctrl-C and SIGTERM handlers restart interrupted writes (a failed write silences std::cout)") {
+  struct sigaction saved_int {}, saved_term {};
+  sigaction(SIGINT, nullptr, &saved_int);
+  sigaction(SIGTERM, nullptr, &saved_term);
+  imess::messprog::install_interrupts();
+  struct sigaction now {};
+  sigaction(SIGINT, nullptr, &now);
+  CHECK((now.sa_flags & SA_RESTART) != 0);
+  sigaction(SIGTERM, nullptr, &now);
+  CHECK((now.sa_flags & SA_RESTART) != 0);
+  sigaction(SIGINT, &saved_int, nullptr);
+  sigaction(SIGTERM, &saved_term, nullptr);
 }
 
 TEST_CASE("ProgressView: percent of blocks done, a bar on a terminal, plain lines at most once a second") {
