@@ -35,6 +35,17 @@ void Server::on_line(Session& s, const protocol::FramedLine& line) {
   if (s.dropping()) return;
   if (config_.log_traffic) spdlog::info("[{}] > {}", s.id(), line.text);
   if (s.info().upload) {  // the lines of a program being uploaded, up to '.'
+    // Except a stop: StopMv and Abort are no line of any program language, and the operator
+    // typing a program into telnet must still be able to stop the machine from there.
+    if (!line.overlong) {
+      const auto parsed = protocol::parse_command(line.text);
+      if (const auto* cmd = std::get_if<protocol::Command>(&parsed);
+          cmd && (std::holds_alternative<protocol::StopMv>(*cmd) || std::holds_alternative<protocol::Abort>(*cmd))) {
+        const std::uint32_t slot = s.reserve_reply();
+        on_command(s, slot, *cmd);
+        return;
+      }
+    }
     upload_line(s, line);
     return;
   }

@@ -206,6 +206,15 @@ void Server::load_program(Session& s, std::uint32_t slot, const std::string& nam
     reply(s, slot, format_err(ErrorCode::BadValue, "Load " + name + ": no such program in the programs folder; Programs lists them"));
     return;
   }
+  // A symbolic link may point anywhere; only a file inside the folder is a program (an error
+  // message quotes what it read, so no other file of the controller is shown to a client).
+  const auto real = std::filesystem::canonical(path, ec);
+  const auto root = std::filesystem::canonical(folder, ec);
+  const auto rel = real.lexically_relative(root);
+  if (ec || rel.empty() || *rel.begin() == "..") {
+    reply(s, slot, format_err(ErrorCode::BadValue, "Load " + name + ": the file lies outside the programs folder (a link); accepted: files in the folder"));
+    return;
+  }
   if (size > config_.programs.max_bytes) {
     reply(s, slot, format_err(ErrorCode::BadProgram, "Load " + name + ": " + std::to_string(size) + " bytes; accepted up to " +
                                                          std::to_string(config_.programs.max_bytes)));
@@ -287,7 +296,9 @@ void Server::run_program(Session& s, std::uint32_t slot, bool detached) {
   const auto& snap = core_.snapshot();
   if ((snap.mode != core::Mode::Idle && snap.mode != core::Mode::Free) || planning_ || !in_loop_.empty() || program_.tail) {
     reply(s, slot, format_err(ErrorCode::Busy, "Run: the machine is busy (State " + std::string(mode_name(snap.mode)) +
-                                                   "); run when it stands and the queue is empty, or StopMv"));
+                                                   (snap.mode == core::Mode::Fault
+                                                        ? "); clear the fault with Reset first"
+                                                        : "); run when it stands and the queue is empty, or StopMv")));
     return;
   }
   const planner::Pose here = pose_of(snap.position, layout().count);
