@@ -194,6 +194,24 @@ TEST_CASE("segments sent before a stop and taken after it are failed, never run"
   CHECK(rig.position().isApprox(Vec3(100, 100, 100)));
 }
 
+TEST_CASE("segments sent after a stop, before the loop took it, run once the machine stands") {
+  // A Run or MoveTo in the same write after a StopMv or Abort: planned from where the machine
+  // stands, stamped with the stop's ticket. The stop fails what was sent before it only.
+  FollowerRig rig;
+  rig.append(rig.line(21, 200, 100, 100, 50));
+  rig.planner().flush();
+  planner::PlannedSegment s;
+  REQUIRE(rig.planner().take(s));
+  rig.core().request_stop();  // the stop is issued before the segment is stamped
+  imess::core::QueuedSegment q{s, rig.core().stop_ticket(), 0};
+  REQUIRE(rig.core().submit_segment(q));
+  rig.step();
+  rig.run(3.0);
+  CHECK(rig.ids(EventKind::Failed).empty());
+  CHECK(rig.ids(EventKind::Done) == std::vector<std::uint32_t>{21});
+  CHECK(rig.position().isApprox(Vec3(200, 100, 100)));
+}
+
 TEST_CASE("Pause brakes on the path and Resume finishes it at the target") {
   FollowerRig rig;
   rig.append(rig.line(30, 300, 250, 150, 60));

@@ -204,7 +204,7 @@ void MotionCore::take_stop(Nanos now) noexcept {
   if (t == stop_taken_) return;
   stop_taken_ = t;
   pending_ = Pending::None;
-  fail_queue(FailReason::Stopped, now, false);  // also those in the ring; the io side knows of its stop
+  fail_queue(FailReason::Stopped, now, false);  // also those in the ring sent before it; the io side knows of its stop
   // The stop drops the queue and with it a feed hold (Pause): left on, it held the next queue
   // or program at its start, at rest and without a word (Run after Ctrl-C, abort in messprog).
   sampler_.resume();
@@ -893,7 +893,16 @@ void MotionCore::fail_queue(FailReason why, Nanos now, bool tell) noexcept {
   for (int i = 0; i < held_count_; ++i) fail_segment(held_ids_[i], held_probe_[i], why, now);
   held_count_ = 0;
   QueuedSegment q;
-  while (segments_.pop(q)) fail_segment(q.seg.id, q.seg.probe, stale(q) ? FailReason::Stopped : why, now);
+  // The stop lane (tell false) fails the segments sent before the stop (stale by their
+  // ticket), not those the io side sent after it (a Run or MoveTo in the same write after a
+  // StopMv or Abort, or after the controller's disconnect: planned from where the machine
+  // stands, since nothing may be planned while it moves); those wait in the ring and start
+  // once it stands (start_path checks they start where it is). Failing them too ended such a
+  // Run at once, "ProgEnd … failed … Failed Stopped" (tests/golden/test_program_properties.cpp).
+  while (!segments_.empty() && (tell || stale(segments_.front()))) {
+    segments_.pop(q);
+    fail_segment(q.seg.id, q.seg.probe, stale(q) ? FailReason::Stopped : why, now);
+  }
   planner::Pose here{};
   for (int a = 0; a < n_; ++a) here[a] = ms_.position[a];
   sampler_.set_position(here);

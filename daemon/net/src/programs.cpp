@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "imess/net/server.hpp"
 #include "imess/net/wording.hpp"
@@ -145,7 +146,18 @@ bool resolve_program_outputs(std::vector<programs::Item>& items, const ProgramCo
 bool Server::check_program_text(const LoadedProgram& p, const planner::Pose& start, std::vector<programs::Item>& items,
                                 programs::Check& check, std::string& error) const {
   const programs::Setup setup = program_setup(config_.programs, core_.config(), planner_.machine(), start);
-  programs::Translation t = programs::translate(p.lang, p.text, setup);
+  programs::Translation t;
+  try {
+    t = programs::translate(p.lang, p.text, setup);
+  } catch (const std::invalid_argument& e) {
+    // A translator refuses this machine as its set-up (docs/programs.md: e.g. HPGL with a Z
+    // pen on a machine without Z). Uncaught, this left the io handler and ended messd — an
+    // Upload or a Load of any .plt on config/sim-mrm-arm.json did (found by
+    // tests/golden/test_program_properties.cpp). It is a program this machine cannot run.
+    error = std::string("line 1:1: not configured: found a ") + programs::language_name(p.lang) +
+            " program, which this machine cannot run (" + e.what() + "), accepted programs in a language its axes and the programs section allow";
+    return false;
+  }
   if (!t.ok) {
     error = t.error.message();
     return false;
@@ -330,10 +342,11 @@ void Server::run_program(Session& s, std::uint32_t slot, bool detached) {
 }
 
 void Server::abort_program(Session& s, std::uint32_t slot) {
-  if (program_.running())
-    stop_machine("Abort");
-  else
-    core_.request_stop();  // Abort is a stop for anyone, program or not
+  // Abort is a stop for anyone, program or not: without a program it is a StopMv, so it
+  // also drops what the planner holds. (It was core_.request_stop() alone: the loop failed
+  // the segments it had, then the queue's tail that the planner still held was sent after
+  // the stop and moved the machine again — found by tests/golden/test_program_properties.cpp.)
+  stop_machine("Abort");
   reply(s, slot, format_ok("Abort"));
 }
 
