@@ -268,7 +268,7 @@ void Server::begin_upload(Session& s, std::uint32_t slot, const std::string& nam
     reply(s, slot, format_err(ErrorCode::BadValue, "Upload " + name + ": expected " + why));
     return;
   }
-  s.info().upload = ProgramUpload{name, {}, 0, false};
+  s.info().upload = ProgramUpload{name, {}, 0, {}};
   reply(s, slot, format_ok("Upload", name + " send the lines, then a line '.'"));
 }
 
@@ -277,10 +277,12 @@ void Server::upload_line(Session& s, const protocol::FramedLine& line) {
   auto& up = *s.info().upload;
   const auto& pc = config_.programs;
   if (line.text != ".") {
-    if (line.overlong || up.lines >= pc.max_lines || up.text.size() + line.text.size() + 1 > pc.max_bytes) {
-      up.too_large = true;  // keep reading to the '.', answer then
-      return;
-    }
+    if (!up.refused.empty()) return;  // keep reading to the '.', answer then
+    const std::string at = "line " + std::to_string(up.lines + 1) + ": ";
+    if (line.overlong) up.refused = at + "longer than " + std::to_string(protocol::kMaxLineLength) + " characters";
+    else if (up.lines >= pc.max_lines) up.refused = at + "more than " + std::to_string(pc.max_lines) + " lines";
+    else if (up.text.size() + line.text.size() + 1 > pc.max_bytes) up.refused = at + "more than " + std::to_string(pc.max_bytes) + " bytes";
+    if (!up.refused.empty()) return;
     up.text.append(line.text);
     up.text.push_back('\n');
     ++up.lines;
@@ -289,8 +291,8 @@ void Server::upload_line(Session& s, const protocol::FramedLine& line) {
   ProgramUpload done = std::move(up);
   s.info().upload.reset();
   const std::uint32_t slot = s.reserve_reply();
-  if (done.too_large) {
-    reply(s, slot, format_err(ErrorCode::BadProgram, "Upload " + done.name + ": accepted up to " +
+  if (!done.refused.empty()) {
+    reply(s, slot, format_err(ErrorCode::BadProgram, "Upload " + done.name + ": " + done.refused + "; accepted up to " +
                                                          std::to_string(pc.max_lines) + " lines, " + std::to_string(pc.max_bytes) +
                                                          " bytes, lines of " + std::to_string(protocol::kMaxLineLength) +
                                                          " characters; the program was discarded"));

@@ -40,7 +40,7 @@ struct ProgramUpload {
   std::string name;
   std::string text;
   std::size_t lines = 0;
-  bool too_large = false;
+  std::string refused;  // the first limit exceeded ("line 7: longer than 200 characters"); empty: none
 };
 
 enum class ProgramState : std::uint8_t { None, Loaded, Running, Paused, Ended };
