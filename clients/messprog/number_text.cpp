@@ -1,16 +1,14 @@
-// Number formatting with snprintf (locale-independent in the C locale the clients run in).
+// Number formatting: the wire's fixed-point writer (locale-independent, never "-0.000").
 #include "number_text.hpp"
 
-#include <cmath>
-#include <cstdio>
+#include "imess/protocol/numbers.hpp"
 
 namespace imess::messprog {
 
 std::string fixed(double value, int decimals) {
-  if (value == 0 || std::abs(value) < 0.5 * std::pow(10.0, -decimals)) value = 0;  // no "-0.000"
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
-  return buf;
+  std::string s;
+  protocol::append_fixed(s, value, decimals);  // no "-0.000"
+  return s;
 }
 
 std::string number_text(double value, int max_decimals) {

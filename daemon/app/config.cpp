@@ -240,8 +240,7 @@ void read_programs_section(JsonObject& p, const std::string& path, DaemonConfig&
     pc.home.assign(home.data(), home.data() + layout.count);
   }
   auto output_name = [&](JsonObject& o, const std::string& key, const std::string& name) {
-    for (int i = 0; i < cfg.core.output_count; ++i)
-      if (cfg.core.outputs[i].name_view() == name) return;
+    if (core::find_output(cfg.core, name)) return;
     std::string names;
     for (int i = 0; i < cfg.core.output_count; ++i) names += (names.empty() ? "" : ", ") + std::string(cfg.core.outputs[i].name_view());
     o.fail(key, "the name of an output of the \"outputs\" section (" + (names.empty() ? std::string("none configured") : names) + ")");

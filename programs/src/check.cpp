@@ -184,11 +184,14 @@ Check check_items(const std::vector<Item>& items, const planner::Machine& machin
   return c;
 }
 
+std::size_t line_count(std::string_view text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + (!text.empty() && text.back() != '\n' ? 1 : 0);
+}
+
 Check check_program(Language lang, std::string_view text, const Setup& setup, const planner::PlannerOptions& options,
                     const SegmentVisitor& visit) {
   Check c;
-  c.lines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) +
-            (!text.empty() && text.back() != '\n' ? 1 : 0);
+  c.lines = line_count(text);
   const Translation t = translate(lang, text, setup);
   if (!t.ok) {
     c.ok = false;

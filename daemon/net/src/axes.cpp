@@ -119,4 +119,10 @@ std::string Server::machine_help_line(const protocol::VerbSpec& v) const {
   return line;
 }
 
+planner::Pose Server::pose_of(const core::AxisVec& v) const noexcept {
+  planner::Pose p{};
+  for (int a = 0; a < layout().count; ++a) p[a] = v[a];
+  return p;
+}
+
 }  // namespace imess::net

@@ -81,7 +81,7 @@ void Server::check_clients() {
 
 void Server::drop(Session& s, std::string_view why) {
   log_limited(spdlog::level::warn, "drop-silent", "client " + std::to_string(s.id()) + " (" + s.peer() + "): " + std::string(why));
-  lose_control(s, "dropped");
+  lose_control(s, "dropped", true);
   s.drop(protocol::format_err(protocol::ErrorCode::Dropped, why));
 }
 

@@ -45,9 +45,7 @@ planner::AppendResult Server::check_held(const QueuedCommand& c) const {
 // holds the rest again). One the planner refuses now fails with the planner's reason.
 void Server::plan_held(const core::AxisVec& from) {
   if (held_.empty()) return;
-  planner::Pose here{};
-  for (int a = 0; a < layout().count; ++a) here[a] = from[a];
-  planner_.set_position(here);
+  planner_.set_position(pose_of(from));
   planning_ = true;
   while (!held_.empty() && !probe_open_) {
     const QueuedCommand c = held_.front();

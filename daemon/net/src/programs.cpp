@@ -5,7 +5,6 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -13,6 +12,7 @@
 #include "imess/net/server.hpp"
 #include "imess/net/wording.hpp"
 #include "imess/protocol/messages.hpp"
+#include "imess/protocol/numbers.hpp"
 
 namespace imess::net {
 
@@ -53,12 +53,6 @@ constexpr auto kBlockEvery = std::chrono::milliseconds(100);
 constexpr std::uint16_t kSpindleTag = 60000;
 constexpr std::uint16_t kDigitalTag = 61000;
 
-std::string fixed(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
-
 // A name in the programs folder: one file name, printable, no path.
 std::string name_problem(const std::string& name) {
   if (name.size() > 255) return "a name of at most 255 characters";
@@ -71,19 +65,6 @@ std::string name_problem(const std::string& name) {
   return {};
 }
 
-planner::Pose pose_of(const core::AxisVec& v, int count) {
-  planner::Pose p{};
-  for (int a = 0; a < count; ++a) p[a] = v[a];
-  return p;
-}
-}  // namespace
-
-namespace {
-const core::OutputSettings* output_named(const core::CoreConfig& cfg, std::string_view name) {
-  for (int i = 0; i < cfg.output_count; ++i)
-    if (cfg.outputs[i].name_view() == name) return &cfg.outputs[i];
-  return nullptr;
-}
 }  // namespace
 
 programs::Setup program_setup(const ProgramConfig& pc, const core::CoreConfig& core, const planner::Machine& machine,
@@ -103,13 +84,13 @@ programs::Setup program_setup(const ProgramConfig& pc, const core::CoreConfig& c
   s.hpgl.pen_feed = pc.pen_feed;
   if (pc.pen != "z") {
     s.hpgl.pen = programs::HpglOptions::Pen::Output;
-    const auto* out = output_named(core, pc.pen);
+    const auto* out = core::find_output(core, pc.pen);
     s.hpgl.pen_output = out ? static_cast<std::uint16_t>(out->number) : 0;
   }
   s.mrm.a_axis = pc.mrm_a;
   s.mrm.b_axis = pc.mrm_b;
   s.mrm.c_axis = pc.mrm_c;
-  const auto* grip = output_named(core, pc.gripper);
+  const auto* grip = core::find_output(core, pc.gripper);
   s.mrm.gripper_output = grip ? static_cast<std::uint16_t>(grip->number) : 0;
   return s;
 }
@@ -121,9 +102,9 @@ bool resolve_program_outputs(std::vector<programs::Item>& items, const ProgramCo
     if (!o) continue;
     const core::OutputSettings* out = nullptr;
     if (o->output == kSpindleTag) {
-      out = output_named(core, pc.spindle);
+      out = core::find_output(core, pc.spindle);
     } else if (o->output >= kDigitalTag && static_cast<std::size_t>(o->output - kDigitalTag) < pc.outputs.size()) {
-      out = output_named(core, pc.outputs[o->output - kDigitalTag]);
+      out = core::find_output(core, pc.outputs[o->output - kDigitalTag]);
     } else {
       for (int i = 0; i < core.output_count; ++i)
         if (core.outputs[i].number == o->output) out = &core.outputs[i];
@@ -164,8 +145,7 @@ bool Server::check_program_text(const LoadedProgram& p, const planner::Pose& sta
   }
   if (!resolve_program_outputs(t.items, config_.programs, core_.config(), error)) return false;
   check = programs::check_items(t.items, setup.machine, planner_.options(), start);
-  check.lines = static_cast<std::size_t>(std::count(p.text.begin(), p.text.end(), '\n')) +
-                (!p.text.empty() && p.text.back() != '\n' ? 1 : 0);
+  check.lines = programs::line_count(p.text);
   if (!check.ok) {
     error = check.error;
     return false;
@@ -248,14 +228,16 @@ void Server::finish_load(Session& s, std::uint32_t slot, std::string_view verb, 
   std::vector<programs::Item> items;
   std::string error;
   const auto& snap = core_.snapshot();
-  if (!check_program_text(p, pose_of(snap.position, layout().count), items, p.check, error)) {
+  if (!check_program_text(p, pose_of(snap.position), items, p.check, error)) {
     reply(s, slot, format_err(ErrorCode::BadProgram, std::string(verb) + " " + name + ": " + error));
     return;
   }
   const auto& c = p.check;
-  const std::string summary = name + " Lang " + programs::language_name(p.lang) + " Lines " + std::to_string(c.lines) +
-                              " Blocks " + std::to_string(c.blocks) + " Segments " + std::to_string(c.segments) +
-                              " Length " + fixed(c.length, 3) + " Time " + fixed(c.time, 1);
+  std::string summary = name + " Lang " + programs::language_name(p.lang) + " Lines " + std::to_string(c.lines) +
+                        " Blocks " + std::to_string(c.blocks) + " Segments " + std::to_string(c.segments) + " Length ";
+  protocol::append_fixed(summary, c.length, 3);
+  summary += " Time ";
+  protocol::append_fixed(summary, c.time, 1);
   program_.loaded = std::move(p);
   program_.state = ProgramState::Loaded;
   program_.items.clear();
@@ -315,7 +297,7 @@ void Server::run_program(Session& s, std::uint32_t slot, bool detached) {
                                                         : "); run when it stands and the queue is empty, or StopMv")));
     return;
   }
-  const planner::Pose here = pose_of(snap.position, layout().count);
+  const planner::Pose here = pose_of(snap.position);
   std::vector<programs::Item> items;
   std::string error;
   if (!check_program_text(*program_.loaded, here, items, program_.loaded->check, error)) {
@@ -452,7 +434,7 @@ bool Server::program_segment_end(const core::Event& e) {
     pr.done_block = std::max(pr.done_block, static_cast<std::size_t>(e.id));
     if (pr.probe && *pr.probe == e.id) {
       pr.probe.reset();
-      planner_.set_position(pose_of(e.end, layout().count));  // where the probe stopped
+      planner_.set_position(pose_of(e.end));  // where the probe stopped
     }
   } else {
     const auto* probe = item ? std::get_if<programs::Probe>(&item->step) : nullptr;

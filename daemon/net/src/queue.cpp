@@ -81,9 +81,7 @@ bool Server::plan_from_here(std::string& why) {
           "); queue moves when it stands, or StopMv";
     return false;
   }
-  planner::Pose here{};
-  for (int a = 0; a < layout().count; ++a) here[a] = snap.position[a];
-  planner_.set_position(here);
+  planner_.set_position(pose_of(snap.position));
   planning_ = true;
   return true;
 }
@@ -184,10 +182,7 @@ planner::AppendResult Server::plan(const QueuedCommand& c) {
 }
 
 const core::OutputSettings* Server::find_output(std::string_view name) const noexcept {
-  const auto& cfg = core_.config();
-  for (int i = 0; i < cfg.output_count; ++i)
-    if (cfg.outputs[i].name_view() == name) return &cfg.outputs[i];
-  return nullptr;
+  return core::find_output(core_.config(), name);
 }
 
 std::string Server::output_names() const {

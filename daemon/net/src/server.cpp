@@ -192,7 +192,7 @@ void Server::closed(Session& s) {
   log_limited(spdlog::level::info, "disconnect", "client " + std::to_string(s.id()) + " (" + s.peer() + ") " + s.close_reason());
   auto keep = sessions_[s.id()];  // s lives until this handler returns
   sessions_.erase(s.id());
-  lose_control(s, "disconnected");
+  lose_control(s, "disconnected", true);
 }
 
 void Server::log_limited(spdlog::level::level_enum level, std::string_view message_class, const std::string& text) {

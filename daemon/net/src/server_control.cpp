@@ -36,11 +36,10 @@ void Server::announce_control() {
   broadcast(control_event(owner));
 }
 
-void Server::lose_control(Session& s, std::string_view why) {
+void Server::lose_control(Session& s, std::string_view why, bool gone) {
   // A program started detached by this client goes on without it (anyone may stop it, the
   // next controller may Pause, Resume or Abort it).
-  const bool detached = why == "disconnected" || why == "dropped";
-  if (detached && program_.running() && program_.detached && control_.owns(s.id())) {
+  if (gone && program_.running() && program_.detached && control_.owns(s.id())) {
     control_.release(s.id());
     log_limited(spdlog::level::info, "control-lost", "client " + std::to_string(s.id()) + " " + std::string(why) +
                                                          ": program " + program_.loaded->name + " runs on detached");
@@ -107,7 +106,7 @@ void Server::release(Session& s, std::uint32_t slot) {
     reply(s, slot, format_err(ErrorCode::NotInControl, held_text(*owner) + "; only the owner can release it"));
     return;
   }
-  lose_control(s, "released control");
+  lose_control(s, "released control", false);
   reply(s, slot, format_ok("Release"));
 }
 

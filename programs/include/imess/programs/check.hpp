@@ -75,6 +75,9 @@ Check check_items(const std::vector<Item>& items, const planner::Machine& machin
                   const planner::PlannerOptions& options, const Pose& start, double rapid_feed = 0,
                   const SegmentVisitor& visit = {});
 
+// The number of source lines of a program text (a last line without its LF counts).
+std::size_t line_count(std::string_view text);
+
 // translate() then check_items(); a translation error gives ok = false with its message.
 Check check_program(Language lang, std::string_view text, const Setup& setup,
                     const planner::PlannerOptions& options = {}, const SegmentVisitor& visit = {});

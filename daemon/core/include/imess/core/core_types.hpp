@@ -138,6 +138,10 @@ inline OutputSettings default_probe_output() noexcept {
   return o;
 }
 
+struct CoreConfig;
+// The configured output of that name, or nullptr.
+const OutputSettings* find_output(const CoreConfig& config, std::string_view name) noexcept;
+
 struct CoreConfig {
   AxisLayout layout;  // the machine's axes: axes[0 .. layout.count)
   CoreParams params;
@@ -149,6 +153,12 @@ struct CoreConfig {
   std::array<OutputSettings, kMaxOutputs> outputs{};  // outputs[0 .. output_count)
   int output_count = 0;
 };
+
+inline const OutputSettings* find_output(const CoreConfig& config, std::string_view name) noexcept {
+  for (int i = 0; i < config.output_count; ++i)
+    if (config.outputs[i].name_view() == name) return &config.outputs[i];
+  return nullptr;
+}
 
 // Commands through the ring. Stops and parameter changes have lanes of their own
 // (MotionCore::request_stop, MotionCore::set_param) and never wait behind these.

@@ -97,7 +97,9 @@ class Server {
   bool allowed(Session& s, const protocol::Command& cmd, std::uint32_t slot);
   void take(Session& s, std::uint32_t slot, const protocol::Take& t);
   void release(Session& s, std::uint32_t slot);
-  void lose_control(Session& s, std::string_view why);  // release + stop + announce
+  // release + stop + announce; `gone`: the client left (disconnected, dropped), so a program
+  // it ran detached goes on.
+  void lose_control(Session& s, std::string_view why, bool gone);
   void announce_control();
   Controller controller(Session& s) const;
   // Stops whatever moves, for the dead-man, Release, disconnect and take-over. The one
@@ -170,6 +172,7 @@ class Server {
   // axis the words name replaced.
   static const protocol::PathWords* words_of(const QueuedCommand& c) noexcept;
   planner::Pose target_of(const protocol::PathWords& w, const planner::Pose& start) const noexcept;
+  planner::Pose pose_of(const core::AxisVec& v) const noexcept;  // the machine's axes of v as a planner pose
   void jog_axes(Session& s, std::uint32_t slot, const protocol::JogAx& c);
   std::string ax_pos_line() const;
   std::string machine_help_line(const protocol::VerbSpec& v) const;
