@@ -2,6 +2,8 @@
 #include "config.hpp"
 
 #include <boost/asio/ip/address.hpp>
+#include <algorithm>
+#include <cctype>
 #include <map>
 #include <cstdlib>
 #include <filesystem>
@@ -112,6 +114,9 @@ namespace {
 void read_server_section(JsonObject& s, DaemonConfig& cfg) {
   cfg.server.port = static_cast<std::uint16_t>(s.whole("port", cfg.server.port, 0, 65535));
   cfg.server.listen = checked_address(s, "listen", cfg.server.listen);
+  const auto ipp = s.whole("ippdme_port", cfg.server.ippdme.on ? cfg.server.ippdme.port : 0, 0, 65535);
+  cfg.server.ippdme.on = ipp != 0;
+  cfg.server.ippdme.port = static_cast<std::uint16_t>(ipp);
   read_param_keys(s, "server", cfg);  // report_hz: the ReportHz parameter
   cfg.server.max_clients = static_cast<std::size_t>(s.whole("max_clients", static_cast<long long>(cfg.server.max_clients), 1, 10000));
   cfg.server.event_backstop_ms = s.number("event_backstop_ms", cfg.server.event_backstop_ms, 1, 600000);
@@ -224,6 +229,31 @@ void read_outputs_section(JsonObject& outs, DaemonConfig& cfg) {
   }
 }
 
+// "ippdme": the tools the I++ DME server offers (docs/configuration.md); the port is
+// server.ippdme_port.
+void read_ippdme_section(JsonObject& i, DaemonConfig& cfg) {
+  auto& tools = cfg.server.ippdme.tools;
+  if (auto list = i.objects("tools")) {
+    tools.clear();
+    for (auto& t : *list) {
+      net::IppConfig::Tool tool;
+      tool.name = t.text("name", "");
+      if (tool.name.empty() || !std::isalpha(static_cast<unsigned char>(tool.name[0])) ||
+          !std::all_of(tool.name.begin(), tool.name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)); }))
+        t.fail("name", "a tool name of letters and digits starting with a letter");
+      if (tool.name == "NoTool" || tool.name == "UnDefTool" || tool.name == "BaseTool")
+        t.fail("name", "a name other than the reserved NoTool, UnDefTool and BaseTool");
+      for (const auto& other : tools)
+        if (other.name == tool.name) t.fail("name", "a name not given to another tool");
+      if (t.has("radius")) tool.radius = t.number("radius", 0, 0, 50);
+      t.finish();
+      tools.push_back(std::move(tool));
+    }
+    if (list->empty()) i.fail("tools", "at least one tool (or no \"tools\" key: one RefTool with motion.tip_radius)");
+  }
+  i.finish();
+}
+
 // "programs": the folder Load reads, G28's pose, and which outputs and axes program words
 // switch and move (docs/configuration.md). Read after "axes" and "outputs", whose names it uses.
 void read_programs_section(JsonObject& p, const std::string& path, DaemonConfig& cfg) {
@@ -321,6 +351,7 @@ void load_config_text(const std::string& text, const std::string& path, DaemonCo
   if (auto jn = top.object("journal")) read_journal_section(*jn, cfg);
   if (auto o = top.object("outputs")) read_outputs_section(*o, cfg);
   if (auto p = top.object("programs")) read_programs_section(*p, path, cfg);
+  if (auto i = top.object("ippdme")) read_ippdme_section(*i, cfg);
   if (auto s = top.object("sim")) read_sim_section(*s, cfg);
   top.finish();
   const auto* type = find_backend(cfg.backend);

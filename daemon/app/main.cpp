@@ -39,6 +39,12 @@ app::DaemonConfig configure(const app::CliOptions& cli) {
     for (const auto& w : app::load_messdrc(*rc, cfg)) spdlog::warn("{}", w);
   if (cli.port) cfg.server.port = static_cast<std::uint16_t>(*cli.port);
   if (cli.listen) cfg.server.listen = *cli.listen;
+  if (cli.ippdme_port) {
+    cfg.server.ippdme.on = *cli.ippdme_port != 0;
+    cfg.server.ippdme.port = static_cast<std::uint16_t>(*cli.ippdme_port);
+  } else if (cli.port && *cli.port == 0 && cfg.server.ippdme.on) {
+    cfg.server.ippdme.port = 0;  // a test's messd: any free port for both, so many can run at once
+  }
   if (cli.journal) cfg.journal.dir = *cli.journal;
   if (cli.programs) cfg.server.programs.folder = std::filesystem::absolute(*cli.programs).lexically_normal().string();
   if (cfg.journal.dir.empty()) cfg.journal.dir = app::default_journal_dir();
@@ -156,6 +162,10 @@ void serve_until_signal(boost::asio::io_context& io, net::Server& server, const 
     io.stop();
   });
   std::printf("messd: OK, listening on %s:%u\n", config.listen.c_str(), static_cast<unsigned>(server.port()));
+  if (server.ipp_port())
+    std::printf("messd: I++ DME on %s:%u\n", config.listen.c_str(), static_cast<unsigned>(server.ipp_port()));
+  else
+    std::printf("messd: I++ DME off\n");
   std::fflush(stdout);
   io.run();
 }

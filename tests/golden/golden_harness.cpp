@@ -71,6 +71,8 @@ journal::JournalConfig journal_config(journal::JournalConfig c, const std::strin
 net::ServerConfig server_config(net::ServerConfig c) {
   c.listen = "127.0.0.1";
   c.port = 0;
+  c.ippdme.on = true;
+  c.ippdme.port = 0;
   c.stream_position = false;  // its rate is a wall-clock timer; see tests/golden/README.md
   c.version = app::kVersion;
   return c;

@@ -52,6 +52,7 @@ net::ServerConfig sconfig() {
   net::ServerConfig c;
   c.listen = "127.0.0.1";
   c.port = 0;
+  c.ippdme.port = 0;  // any free port: tests run side by side
   c.stream_position = false;
   return c;
 }

@@ -73,6 +73,12 @@ class DaemonProcess {
     auto colon = s.rfind(':');
     if (s.rfind("messd: OK", 0) != 0 || colon == std::string::npos) throw std::runtime_error("unexpected: " + s);
     port_ = std::stoi(s.substr(colon + 1));
+    // "messd: I++ DME on 127.0.0.1:PORT" or "messd: I++ DME off"
+    if (fgets(line, sizeof line, out_)) {
+      const std::string ipp(line);
+      if (const auto c = ipp.rfind(':'); ipp.rfind("messd: I++ DME on", 0) == 0 && c != std::string::npos)
+        ipp_port_ = std::stoi(ipp.substr(c + 1));
+    }
   }
   ~DaemonProcess() {
     stop();
@@ -85,6 +91,7 @@ class DaemonProcess {
   DaemonProcess& operator=(const DaemonProcess&) = delete;
 
   int port() const { return port_; }
+  int ipp_port() const { return ipp_port_; }  // 0: the I++ DME server is off
   bool running() const { return pid_ > 0 && waitpid(pid_, nullptr, WNOHANG) == 0; }
   const std::string& journal_dir() const { return own_journal_; }  // empty when the test gave --journal
   // Stops with SIGTERM (SIGKILL: as a crash would); returns the exit status.
@@ -103,7 +110,7 @@ class DaemonProcess {
  private:
   pid_t pid_ = -1;
   FILE* out_ = nullptr;
-  int port_ = 0, status_ = -1;
+  int port_ = 0, ipp_port_ = 0, status_ = -1;
   std::string own_journal_;
 };
 

@@ -30,6 +30,10 @@ void Server::pump_events() {
   while (core_.events().pop(e)) {
     switch (e.kind) {
       case EventKind::Reply: {
+        if (e.client == IppServer::kClientId) {  // the I++ session's Home
+          if (ipp_) ipp_->core_reply(e);
+          break;
+        }
         auto it = sessions_.find(e.client);
         if (it == sessions_.end()) break;  // the client left before the answer (or 0: stop_machine)
         if (it->second->info().in_flight > 0) --it->second->info().in_flight;
@@ -44,6 +48,7 @@ void Server::pump_events() {
       case EventKind::MeasPt: {
         ++points_;
         send_hit(e);  // journal, then Hit, then the 1996 MeasPt
+        if (ipp_) ipp_->hit(e);
         if (config_.log_motion)
           spdlog::info("point {}: {:.4f} {:.4f} {:.4f} {} dir {:.4f} {:.4f} {:.4f}", points_, e.p.x(), e.p.y(), e.p.z(),
                        e.compensated ? "compensated" : "as is (ForcePt)", e.dir.x(), e.dir.y(), e.dir.z());
@@ -69,17 +74,20 @@ void Server::pump_events() {
         const std::string_view text = e.reason ? std::string_view(e.reason) : w.text;  // the loop's own why, when it says one
         broadcast(protocol::format_event("Warn", std::string(w.name) + " " + std::string(text)));
         spdlog::warn("{}: {} (at {:.3f} {:.3f} {:.3f})", w.name, text, e.p.x(), e.p.y(), e.p.z());
+        if (ipp_ && e.warning == core::Warning::HomingFailed) ipp_->home_failed();
         break;
       }
       case EventKind::Fault: {
         auto w = fault_wording(e.fault);
         broadcast(protocol::format_event("Fault", std::string(w.name) + " " + std::string(w.text)));
         spdlog::error("fault {}: {}", w.name, w.text);
+        if (ipp_) ipp_->home_failed();
         break;
       }
       case EventKind::Homed:
         broadcast(protocol::format_event("Homed", ""));
         spdlog::info("reference search done: machine homed");
+        if (ipp_) ipp_->homed();
         break;
       case EventKind::Done:
       case EventKind::Failed: on_segment_end(e); break;
@@ -97,6 +105,7 @@ void Server::pump_events() {
 
 void Server::report_position() {
   show_block(false);
+  move_reports();
   const auto& snap = core_.snapshot();
   const hal::Vec3 p = layout().cartesian(snap.position);
   std::string line = protocol::format_curr_cor({p.x(), p.y(), p.z()});

@@ -258,6 +258,12 @@ void Server::flush_check() {
 void Server::on_segment_end(const core::Event& e) {
   auto it = std::find_if(in_loop_.begin(), in_loop_.end(), [&](const auto& x) { return x.first == e.id; });
   if (it != in_loop_.end()) in_loop_.erase(it);
+  if (IppServer::is_own_id(e.id)) {  // the I++ session's: it answers for them
+    if (unsent_.empty() && in_loop_.empty() && planner_.pending() == 0 && planner_.ready() == 0) planning_ = false;
+    if (ipp_) ipp_->segment_end(e);
+    flush_check();
+    return;
+  }
   if (program_segment_end(e)) {  // a program's: Block and ProgEnd speak for it
     flush_check();
     return;
@@ -286,13 +292,15 @@ void Server::on_segment_end(const core::Event& e) {
 void Server::drop_planned(core::FailReason why) {
   const bool program = program_.running() || program_.tail;  // its ids are not broadcast
   if (!program)
-    for (auto id : unsent_) broadcast(failed_line(id, why));
+    for (auto id : unsent_)
+      if (!IppServer::is_own_id(id)) broadcast(failed_line(id, why));
   unsent_.clear();
   probe_open_.reset();
   fail_held(why);
   planner::Pose here{};
   planner_.set_position(here);  // discards what was not taken; the next queue starts anew
   planning_ = false;
+  if (ipp_) ipp_->dropped(why);
   // A limit, a fault or an unexpected touch dropped the loop's queue: the program failed
   // (a stop ends it as aborted, in stop_machine).
   if (program_.running() && why != core::FailReason::Stopped) {

@@ -33,20 +33,35 @@ Server::Server(asio::io_context& io, ServerConfig config, core::MotionCore& core
       accept_timer_(io),
       planner_(core::path_machine(core.config()), core::path_options(core.config())) {}
 
-void Server::start() {
+// Opens, binds and listens; the port bound. Throws std::runtime_error naming the address,
+// with `busy_hint` when the port is taken.
+std::uint16_t open_listener(tcp::acceptor& acceptor, const std::string& listen, std::uint16_t port, std::string_view what,
+                            std::string_view busy_hint) {
   boost::system::error_code ec;
-  auto address = asio::ip::make_address(config_.listen, ec);
-  if (ec) throw std::runtime_error("listen address '" + config_.listen + "' is not an IPv4 or IPv6 address");
-  tcp::endpoint ep(address, config_.port);
-  std::string where = config_.listen + ":" + std::to_string(config_.port);
-  acceptor_.open(ep.protocol(), ec);
-  if (!ec) acceptor_.set_option(tcp::acceptor::reuse_address(true), ec);
-  if (!ec) acceptor_.bind(ep, ec);
-  if (!ec) acceptor_.listen(asio::socket_base::max_listen_connections, ec);
+  auto address = asio::ip::make_address(listen, ec);
+  if (ec) throw std::runtime_error("listen address '" + listen + "' is not an IPv4 or IPv6 address");
+  tcp::endpoint ep(address, port);
+  const std::string where = listen + ":" + std::to_string(port);
+  acceptor.open(ep.protocol(), ec);
+  if (!ec) acceptor.set_option(tcp::acceptor::reuse_address(true), ec);
+  if (!ec) acceptor.bind(ep, ec);
+  if (!ec) acceptor.listen(asio::socket_base::max_listen_connections, ec);
   if (ec)
-    throw std::runtime_error("cannot listen on " + where + ": " + ec.message() +
-                             (ec == asio::error::address_in_use ? " - is another messd running? (--port chooses another)" : ""));
-  port_ = acceptor_.local_endpoint().port();
+    throw std::runtime_error("cannot listen" + std::string(what) + " on " + where + ": " + ec.message() +
+                             (ec == asio::error::address_in_use ? std::string(busy_hint) : std::string()));
+  return acceptor.local_endpoint().port();
+}
+
+void Server::start() {
+  port_ = open_listener(acceptor_, config_.listen, config_.port, "", " - is another messd running? (--port chooses another)");
+  if (config_.ippdme.on) {
+    if (layout().cartesian_axis(0) >= 0 && layout().cartesian_axis(1) >= 0 && layout().cartesian_axis(2) >= 0) {
+      ipp_ = std::make_unique<IppServer>(io_, *this, config_.ippdme);
+      ipp_->start(config_.listen);
+    } else {
+      spdlog::info("I++ DME: off, this machine has no linear X Y Z axes (axes {})", layout().names());
+    }
+  }
   running_ = true;
   const auto& snap = core_.snapshot();  // clients get the position on connect; report changes only
   const hal::Vec3 p = layout().cartesian(snap.position);
@@ -73,6 +88,7 @@ void Server::stop() {
   running_ = false;
   boost::system::error_code ec;
   acceptor_.close(ec);
+  if (ipp_) ipp_->stop();
   event_timer_.cancel();
   watch_timer_.cancel();
   if (wake_wait_) wake_wait_->close(ec);

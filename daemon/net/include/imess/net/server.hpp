@@ -17,6 +17,7 @@
 #include "imess/journal/journal.hpp"
 #include "imess/net/control.hpp"
 #include "imess/net/host_list.hpp"
+#include "imess/net/ipp_server.hpp"
 #include "imess/net/log_limiter.hpp"
 #include "imess/net/program_run.hpp"
 #include "imess/net/session.hpp"
@@ -61,7 +62,14 @@ struct ServerConfig {
   double period_us = 1000;          // the motion loop's period (Get Period)
   std::string backend = "unknown";  // the backend type (Get Backend): one word
   ProgramConfig programs;           // the programs folder and how program words map to this machine
+  IppConfig ippdme;                 // the I++ DME server (TCP 1294) and its tools
 };
+
+// Opens, binds and listens on listen:port (0: any free port); returns the port. Throws
+// std::runtime_error naming the address (with `busy_hint` when the port is taken); `what`
+// names the listener (" for I++ DME").
+std::uint16_t open_listener(boost::asio::ip::tcp::acceptor& acceptor, const std::string& listen, std::uint16_t port,
+                            std::string_view what, std::string_view busy_hint);
 
 // A queued command on the wire; after an unfinished Probe it waits in the server, unplanned
 // (its start is the Probe's end, known only after the hit).
@@ -79,6 +87,15 @@ class Server {
   void stop();
   std::uint16_t port() const { return port_; }
   std::size_t clients() const { return sessions_.size(); }
+  // The I++ DME listener's port (0: off: the configuration turned it off, or the machine has
+  // no linear X Y Z) and whether its one client is connected.
+  std::uint16_t ipp_port() const { return ipp_ ? ipp_->port() : 0; }
+  bool ipp_connected() const { return ipp_ && ipp_->connected(); }
+  // The I++ move reports (OnMoveReportE): the report timer calls it; the golden harness,
+  // whose position stream is off, every motion cycle in virtual time.
+  void move_reports() {
+    if (ipp_) ipp_->tick();
+  }
 
  private:
   // server.cpp
@@ -213,6 +230,9 @@ class Server {
   std::deque<QueuedCommand> held_;           // commands queued after it, unplanned
   bool flush_check_posted_ = false;
   ProgramRun program_;  // the one program loaded or running (programs.cpp)
+  // The I++ DME server: a second way in, driving this planner under this control (ipp_*.cpp).
+  friend class IppServer;
+  std::unique_ptr<IppServer> ipp_;
 };
 
 }  // namespace imess::net

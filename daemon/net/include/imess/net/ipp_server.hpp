@@ -1,0 +1,144 @@
+// IppServer: messd's I++ DME server (docs/ippdme.md, "Server") — one inspection-software
+// client on TCP 1294 driving the same motion core as the MESSD clients on 1066. It reads
+// lines with imess::ippdme, keeps the session, the two queues, the error state and the
+// daemons, and moves the machine through the Server's planner, control and stop (it is the
+// Server's friend: one io thread, one planner, one owner of the machine).
+#pragma once
+#include <boost/asio.hpp>
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "imess/core/core_types.hpp"
+#include "imess/ippdme/csy.hpp"
+#include "imess/ippdme/format.hpp"
+#include "imess/ippdme/line_framer.hpp"
+#include "imess/ippdme/parser.hpp"
+#include "imess/ippdme/tools.hpp"
+#include "imess/planner/axes.hpp"
+#include "imess/planner/segment.hpp"
+
+namespace imess::net {
+
+class Server;
+
+struct IppConfig {
+  bool on = true;                 // false: no I++ listener (ippdme_port 0)
+  std::uint16_t port = 1294;      // 0 with on: any free port (tests)
+  // Tools as configured; empty: one tool "RefTool" with the machine's tip radius. Ranges
+  // not given come from the machine (IppServer fills them).
+  struct Tool {
+    std::string name;
+    std::optional<double> radius;
+  };
+  std::vector<Tool> tools;
+  std::size_t max_queue_bytes = 1 << 20;  // output waiting for a client that does not read: dropped beyond
+};
+
+class IppServer {
+ public:
+  // The core's client number of the I++ session (its Home replies) and its control identity.
+  static constexpr std::uint32_t kClientId = 0xFFFFFF00u;
+  // Segment ids of the I++ session's moves: never a MESSD client's (docs/ippdme.md).
+  static constexpr std::uint32_t kIdBase = 0xF0000000u;
+  static bool is_own_id(std::uint32_t id) { return id >= kIdBase && id < kClientId; }
+
+  IppServer(boost::asio::io_context& io, Server& server, IppConfig config);
+  void start(const std::string& listen);  // throws std::runtime_error naming the address
+  void stop();
+  std::uint16_t port() const { return port_; }
+  bool connected() const { return conn_ != nullptr; }
+
+  // From the Server's event pump (io thread).
+  void segment_end(const core::Event& e);      // Done / Failed of an own id
+  void hit(const core::Event& e);              // every measured point, after the journal
+  void core_reply(const core::Event& e);       // the loop's answer to the session's Home
+  void homed();
+  void home_failed();                          // Warn HomingFailed, a fault while homing
+  void dropped(core::FailReason why);          // the Server dropped what was planned
+  void tick();                                 // the move report daemon (report timer / harness)
+  void key(const std::string& name);           // Key <name> from the jog panel: KeyPress
+
+ private:
+  struct Connection;
+  struct Pending {
+    ippdme::Tag tag;
+    ippdme::Command command;
+  };
+  enum class Step : unsigned char { None, GoTo, PtMeas, Retract, Home };
+  struct MoveDaemon {
+    ippdme::Tag tag;
+    std::optional<double> time, dis;
+    std::vector<ippdme::Item> items;
+    std::optional<std::chrono::nanoseconds> last_at;
+    ippdme::Point3 last{};
+  };
+
+  // ipp_server.cpp: connections, lines, queues, error state, session and control
+  void accept();
+  void read();
+  void write();
+  void send(std::string bytes);
+  void closed();
+  void on_line(const ippdme::FramedLine& line);
+  void pump();                                  // runs the normal queue's front while it can
+  void finish(const ippdme::Tag& tag);          // the `%`, the tag closed
+  void fail(const ippdme::Tag& tag, ippdme::ErrorCode code, std::string_view cause);  // `!` + `%`
+  void enter_error(ippdme::ErrorCode code, std::string_view cause);
+  void abort_queued();                          // every queued transaction: 0006 + `%`
+  bool claim_control(bool at_start, std::string& why);  // the session owns the machine
+  void release_control();
+  void end_session(bool dropped);
+  // ipp_commands.cpp: one command, answered at once (true) or started (false: a motion step)
+  bool execute(const Pending& p);
+  void execute_fast(const Pending& p);
+  void get_props(const ippdme::Tag& tag, const std::vector<std::string>& paths, std::string_view cause);
+  void set_props(const ippdme::Tag& tag, const std::vector<ippdme::PropertySetting>& settings, std::string_view cause);
+  bool items_supported(const std::vector<ippdme::Item>& items) const;
+  std::string position_payload(const std::vector<ippdme::Item>& items) const;
+  void change_tool(std::string_view name);
+  // ipp_motion.cpp: GoTo, PtMeas, Home on the Server's planner
+  bool start_goto(const Pending& p, const ippdme::GoTo& c);
+  bool start_ptmeas(const Pending& p, const ippdme::PtMeas& c);
+  bool start_home(const Pending& p);
+  bool plan_lines(std::vector<planner::Line> lines, std::string& why, bool& travel);
+  void step_failed(ippdme::ErrorCode code);
+  void step_done();
+  ippdme::Point3 tip_machine() const;          // where the tip centre stands, machine X Y Z
+  ippdme::Point3 tip_here() const;             // the same in the current coordinate system
+  planner::Pose pose_at(const ippdme::Point3& machine_xyz) const;
+  std::vector<ippdme::Value> hit_values(const core::Event& e) const;  // as OnPtMeasReport asks
+  std::uint32_t next_id();
+
+  boost::asio::io_context& io_;
+  Server& server_;
+  IppConfig config_;
+  boost::asio::ip::tcp::acceptor acceptor_;
+  std::uint16_t port_ = 0;
+  std::shared_ptr<Connection> conn_;
+  ippdme::TagTracker tags_;
+  std::deque<Pending> queue_;
+  bool running_ = false;       // the queue's front has started and not finished
+  bool in_session_ = false, error_state_ = false, user_enabled_ = false;
+  std::optional<std::pair<ippdme::ErrorCode, std::string>> last_error_;  // what put the session into the error state
+  std::vector<ippdme::Item> ptmeas_items_{ippdme::Item::X, ippdme::Item::Y, ippdme::Item::Z};
+  std::optional<MoveDaemon> daemon_;
+  ippdme::ToolBox tools_;
+  ippdme::CsyChain csy_;
+  // The motion step of the queue's front.
+  Step step_ = Step::None;
+  std::uint32_t wait_id_ = 0;              // its last segment: its Done completes the step
+  std::uint32_t first_id_ = 0;             // its first segment (ids first_id_..wait_id_ are its own)
+  std::uint32_t next_id_ = kIdBase;
+  ippdme::Point3 approach_m_{}, normal_m_{};  // PtMeas: the approach point and the surface normal, machine
+  bool hit_seen_ = false;
+  ippdme::Point3 hit_tip_m_{};                 // PtMeas: the ball's centre at the touch, machine
+  std::optional<planner::Pose> rest_;        // where the last step left the machine
+};
+
+}  // namespace imess::net

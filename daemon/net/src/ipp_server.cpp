@@ -1,0 +1,305 @@
+// The I++ DME server's connection and transaction rules: one client at a time, CR LF lines,
+// Ack on receipt, the normal queue run in order (one command at a time), the fast queue
+// answered at once, the error state and 0514, the session, and who controls the machine.
+// Rules and choices: docs/ippdme.md, "Server".
+#include <spdlog/spdlog.h>
+
+#include "imess/net/ipp_server.hpp"
+#include "imess/net/server.hpp"
+
+namespace imess::net {
+
+namespace asio = boost::asio;
+using asio::ip::tcp;
+using ippdme::ErrorCode;
+using ippdme::Tag;
+
+namespace {
+// Commands waiting in the normal queue before the server stops reading (its Ack then waits:
+// the spec's flow control).
+constexpr std::size_t kMaxQueued = 64;
+constexpr const char* kControllerName = "ippdme";
+}  // namespace
+
+struct IppServer::Connection {
+  explicit Connection(tcp::socket s) : socket(std::move(s)) {
+    boost::system::error_code ec;
+    const auto ep = socket.remote_endpoint(ec);
+    if (!ec) address = ep.address();
+    socket.set_option(tcp::no_delay(true), ec);
+  }
+  tcp::socket socket;
+  asio::ip::address address;
+  ippdme::LineFramer framer;
+  std::array<char, 4096> buffer{};
+  std::deque<std::string> out;
+  std::size_t out_bytes = 0;
+  bool writing = false, reading = false;
+};
+
+namespace {
+ippdme::ToolBox make_tools(const IppConfig& config, double tip_radius, const ippdme::Range (&ranges)[ippdme::kParamCount]) {
+  std::vector<ippdme::ToolSpec> specs;
+  auto one = [&](std::string name, double radius) {
+    ippdme::ToolSpec t;
+    t.name = std::move(name);
+    t.radius = radius;
+    for (int p = 0; p < ippdme::kParamCount; ++p) t.params[p] = ranges[p];
+    specs.push_back(std::move(t));
+  };
+  for (const auto& t : config.tools) one(t.name, t.radius.value_or(tip_radius));
+  if (specs.empty()) one("RefTool", tip_radius);
+  return ippdme::ToolBox(std::move(specs));
+}
+}  // namespace
+
+IppServer::IppServer(asio::io_context& io, Server& server, IppConfig config)
+    : io_(io), server_(server), config_(std::move(config)), acceptor_(io), tools_([&] {
+        // The ranges every tool's values keep (docs/ippdme.md, "Tools and properties"): speeds
+        // up to what every linear axis can do, the machine's one acceleration, the probing
+        // distances the MESSD parameters also bound.
+        const auto& m = server.planner_.machine();
+        const auto& p = server.core_.params();
+        double vmax = 1e9, amax = 1e9;
+        for (int c = 0; c < 3; ++c)
+          if (const int a = server.layout().cartesian_axis(c); a >= 0) {
+            vmax = std::min(vmax, m.axes[a].max_velocity);
+            amax = std::min(amax, m.axes[a].max_accel);
+          }
+        amax = std::min(amax, p.max_accel);
+        const double goto_def = std::min(p.goto_speed * p.speed_level, vmax);
+        const ippdme::Range ranges[ippdme::kParamCount] = {
+            {0.1, vmax, goto_def},                                        // GoToPar.Speed
+            {amax, amax, amax},                                           // GoToPar.Accel: the machine's
+            {0.1, std::max(0.1, vmax), std::min(p.probe_speed, vmax)},    // PtMeasPar.Speed
+            {amax, amax, amax},                                           // PtMeasPar.Accel
+            {0.1, 100, std::clamp(p.prehit_distance, 0.1, 100.0)},        // Approach
+            {0.1, 100, std::clamp(p.search_distance, 0.1, 100.0)},        // Search
+            {-1, 100, std::clamp(p.retract_distance, 0.0, 100.0)},        // Retract (< 0: back to the approach point)
+        };
+        return make_tools(config_, p.tip_radius, ranges);
+      }()) {}
+
+void IppServer::start(const std::string& listen) {
+  port_ = open_listener(acceptor_, listen, config_.port, " for I++ DME",
+                        " - is another messd running? (--ippdme-port chooses another, 0 turns it off)");
+  spdlog::info("I++ DME: listening on {}:{}", listen, port_);
+  accept();
+}
+
+void IppServer::stop() {
+  boost::system::error_code ec;
+  acceptor_.close(ec);
+  if (conn_) conn_->socket.close(ec);
+  conn_.reset();
+}
+
+void IppServer::accept() {
+  acceptor_.async_accept([this](boost::system::error_code ec, tcp::socket socket) {
+    if (ec == asio::error::operation_aborted || !acceptor_.is_open()) return;
+    if (!ec) {
+      boost::system::error_code e2;
+      const auto peer = socket.remote_endpoint(e2);
+      const bool may = !e2 && server_.config_.control.hosts.contains(peer.address());
+      if (conn_ || !may) {
+        // One session drives the machine; a second client, or a host that may not control
+        // it (control.hosts), is told so and closed.
+        auto s = std::make_shared<tcp::socket>(std::move(socket));
+        auto line = std::make_shared<std::string>(ippdme::format_error(ippdme::kServerTag, ErrorCode::ErrorProcessingMethod,
+                                                                       conn_ ? "OneSessionAtATime" : "HostNotAllowed"));
+        spdlog::info("I++ DME: refused a connection from {} ({})", e2 ? std::string("?") : peer.address().to_string(),
+                     conn_ ? "a session is connected" : "host not in control.hosts");
+        asio::async_write(*s, asio::buffer(*line), [s, line](boost::system::error_code, std::size_t) {
+          boost::system::error_code ignored;
+          s->shutdown(tcp::socket::shutdown_both, ignored);
+          s->close(ignored);
+        });
+      } else {
+        conn_ = std::make_shared<Connection>(std::move(socket));
+        tags_.clear();
+        spdlog::info("I++ DME: client {} connected", conn_->address.to_string());
+        read();
+      }
+    }
+    accept();
+  });
+}
+
+void IppServer::read() {
+  if (!conn_ || conn_->reading || queue_.size() >= kMaxQueued) return;
+  conn_->reading = true;
+  auto c = conn_;
+  c->socket.async_read_some(asio::buffer(c->buffer), [this, c](boost::system::error_code ec, std::size_t n) {
+    c->reading = false;
+    if (c != conn_) return;
+    if (ec) {
+      closed();
+      return;
+    }
+    c->framer.feed(std::string_view(c->buffer.data(), n), [&](const ippdme::FramedLine& line) {
+      if (c == conn_) on_line(line);
+    });
+    read();
+  });
+}
+
+void IppServer::send(std::string bytes) {
+  if (!conn_) return;
+  if (conn_->out_bytes + bytes.size() > config_.max_queue_bytes) {
+    spdlog::warn("I++ DME: the client does not read its answers ({} bytes waiting): dropped", conn_->out_bytes);
+    closed();
+    return;
+  }
+  conn_->out_bytes += bytes.size();
+  conn_->out.push_back(std::move(bytes));
+  write();
+}
+
+void IppServer::write() {
+  if (!conn_ || conn_->writing || conn_->out.empty()) return;
+  conn_->writing = true;
+  auto c = conn_;
+  asio::async_write(c->socket, asio::buffer(c->out.front()), [this, c](boost::system::error_code ec, std::size_t) {
+    c->writing = false;
+    if (c != conn_) return;
+    if (ec) {
+      closed();
+      return;
+    }
+    c->out_bytes -= c->out.front().size();
+    c->out.pop_front();
+    write();
+  });
+}
+
+void IppServer::closed() {
+  if (!conn_) return;
+  spdlog::info("I++ DME: client {} disconnected", conn_->address.to_string());
+  auto c = std::move(conn_);
+  conn_.reset();
+  end_session(true);
+  boost::system::error_code ec;
+  c->socket.close(ec);
+  queue_.clear();
+  running_ = false;
+  tags_.clear();
+}
+
+void IppServer::on_line(const ippdme::FramedLine& line) {
+  auto result = ippdme::parse_framed(line);
+  if (const auto* err = std::get_if<ippdme::LineError>(&result)) {
+    const Tag tag = ippdme::answer_tag(*err, tags_);
+    send(ippdme::format_error(*err, tags_));
+    if (!(tag == ippdme::kServerTag)) send(ippdme::format_done(tag));
+    if (ippdme::error_info(err->code).severity >= ippdme::Severity::Error) enter_error(err->code, err->cause);
+    return;
+  }
+  auto& req = std::get<ippdme::Request>(result);
+  const std::string_view name = ippdme::method_name(req.command);
+  if (!tags_.try_open(req.tag)) {  // reused while open (NIST: 0001 on E0000)
+    send(ippdme::format_error(ippdme::kServerTag, ErrorCode::IllegalTag, name));
+    enter_error(ErrorCode::IllegalTag, name);
+    return;
+  }
+  send(ippdme::format_ack(req.tag));
+  if (req.tag.kind == ippdme::TagKind::Event) {
+    execute_fast({req.tag, std::move(req.command)});
+    return;
+  }
+  queue_.push_back({req.tag, std::move(req.command)});
+  pump();
+}
+
+void IppServer::pump() {
+  while (!running_ && !queue_.empty() && conn_) {
+    running_ = true;
+    const Pending p = queue_.front();
+    if (!execute(p)) break;  // a motion step: step_done / step_failed go on
+    if (!queue_.empty() && queue_.front().tag == p.tag) queue_.pop_front();
+    running_ = false;
+  }
+  read();
+}
+
+void IppServer::finish(const Tag& tag) {
+  send(ippdme::format_done(tag));
+  tags_.close(tag);
+}
+
+void IppServer::fail(const Tag& tag, ErrorCode code, std::string_view cause) {
+  send(ippdme::format_error(tag, code, cause));
+  finish(tag);
+  if (ippdme::error_info(code).severity >= ippdme::Severity::Error && !error_state_) enter_error(code, cause);
+}
+
+void IppServer::enter_error(ErrorCode code, std::string_view cause) {
+  if (!error_state_) last_error_ = std::pair(code, std::string(cause));
+  error_state_ = true;
+  abort_queued();
+}
+
+// Every transaction waiting behind the running one: 0006 and its `%`, in the order sent.
+void IppServer::abort_queued() {
+  const std::size_t keep = running_ && !queue_.empty() ? 1 : 0;
+  std::deque<Pending> waiting;
+  for (std::size_t i = keep; i < queue_.size(); ++i) waiting.push_back(std::move(queue_[i]));
+  queue_.resize(keep);
+  for (const auto& p : waiting) {
+    send(ippdme::format_error(p.tag, ErrorCode::TransactionAborted, ippdme::method_name(p.command)));
+    finish(p.tag);
+  }
+}
+
+// The machine's owner is the session: kept, taken when free, or taken back from the operator
+// it was handed to (EnableUser; a jog of theirs is stopped first). Taken over from a MESSD
+// client only at StartSession and only while the machine stands (`at_start`). False (why
+// says) otherwise — e.g. an operator took it with Take force and has not released it.
+bool IppServer::claim_control(bool at_start, std::string& why) {
+  auto& control = server_.control_;
+  if (control.owns(kClientId)) return true;
+  const Controller me{kClientId, kControllerName, conn_ ? conn_->address.to_string() : std::string("?")};
+  if (!control.owner()) {
+    control.claim(me, true);
+    server_.announce_control();
+    return true;
+  }
+  const auto& snap = server_.core_.snapshot();
+  const bool standing = (snap.mode == core::Mode::Idle || snap.mode == core::Mode::Free) && !server_.planning_ &&
+                        server_.in_loop_.empty() && !server_.program_.running();
+  if (!user_enabled_ && !(at_start && standing)) {
+    why = "the machine is controlled by " + describe(*control.owner());
+    return false;
+  }
+  if (!standing) server_.stop_machine("I++ DME session takes control");
+  const Controller was = *control.owner();
+  control.take(me, true, true, true);
+  if (auto it = server_.sessions_.find(was.session); it != server_.sessions_.end())
+    server_.send(*it->second, control_taken_warning(me));
+  server_.announce_control();
+  return true;
+}
+
+void IppServer::release_control() {
+  if (!server_.control_.release(kClientId)) return;
+  server_.announce_control();
+}
+
+// EndSession or the connection gone: what the session moves stops, daemons end, the
+// machine's control is given back. Tools and coordinate systems stay for the next session.
+void IppServer::end_session(bool dropped) {
+  const bool owns = server_.control_.owns(kClientId);
+  const bool moving = step_ != Step::None;
+  step_ = Step::None;
+  if (owns && (moving || server_.planning_ || !server_.in_loop_.empty()))
+    server_.stop_machine(dropped ? "I++ DME client disconnected" : "EndSession");
+  if (daemon_) tags_.close(daemon_->tag);
+  daemon_.reset();
+  release_control();
+  in_session_ = false;
+  user_enabled_ = false;
+  error_state_ = false;
+  last_error_.reset();
+  rest_.reset();
+}
+
+}  // namespace imess::net

@@ -1,0 +1,90 @@
+// Tools and their properties (IPPDME.md §10): the tools a server offers, the active one
+// (`Tool`), the last found (`FoundTool`), and the GoToPar / PtMeasPar blocks whose values
+// each have Min, Max, Act and Def. Pure: the server feeds the machine's limits in.
+#pragma once
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "imess/ippdme/error_code.hpp"
+#include "imess/ippdme/syntax.hpp"
+
+namespace imess::ippdme {
+
+// One settable value: Act starts at Def and is kept within [Min, Max].
+struct Range {
+  double min = 0, max = 0, def = 0;
+};
+
+// The values of the two blocks, in the order EnumProp lists them.
+enum class Param : unsigned char { GoToSpeed, GoToAccel, PtMeasSpeed, PtMeasAccel, Approach, Search, Retract };
+inline constexpr int kParamCount = 7;
+
+struct ToolSpec {
+  std::string name;     // as EnumTools lists it
+  double radius = 0;    // mm, the ball's radius (ER, and the hit's compensation)
+  Range params[kParamCount]{};
+  bool measures = true;  // false: NoTool (moves, but PtMeas and PtMeasPar are refused)
+};
+
+// Reserved names (IPPDME.md §10): NoTool is always offered; UnDefTool is the state after a
+// failed change (and FoundTool before any FindTool); BaseTool is never offered.
+inline constexpr std::string_view kNoTool = "NoTool";
+inline constexpr std::string_view kUnDefTool = "UnDefTool";
+inline constexpr std::string_view kBaseTool = "BaseTool";
+
+// The answer of a property read or write: a value (GetProp's item), or an error number;
+// `clamped`: SetProp stored Min or Max instead (warning 0504).
+struct PropertyResult {
+  std::optional<Value> value;
+  std::optional<ErrorCode> error;
+  bool clamped = false;
+};
+
+// EnumProp's lines: a child's name and "Number", "String" or "Property".
+using PropertyEntry = std::pair<std::string, std::string>;
+
+class ToolBox {
+ public:
+  // `tools`: the configured tools (NoTool is added after them, with the first tool's ranges).
+  // The first tool is active at start; throws std::invalid_argument for an empty list, a
+  // reserved or repeated name, or a range with min > max or def outside it.
+  explicit ToolBox(std::vector<ToolSpec> tools);
+
+  // EnumTools: every tool a client may change to, in order.
+  std::vector<std::string> names() const;
+  bool exists(std::string_view name) const { return find(name) >= 0; }
+  // ChangeTool / SetTool: the named tool becomes active, its Act values reset to Def; false
+  // for an unknown name (the active tool becomes UnDefTool, as the spec says).
+  bool change(std::string_view name);
+  // FindTool: FoundTool names it; false (FoundTool stays as it was) for an unknown name.
+  bool find_tool(std::string_view name);
+
+  // The active tool; null while UnDefTool (after a failed change).
+  const ToolSpec* active() const { return active_ < 0 ? nullptr : &tools_[active_]; }
+  std::string_view active_name() const { return active_ < 0 ? kUnDefTool : std::string_view(tools_[active_].name); }
+  double act(Param p) const { return act_[static_cast<int>(p)]; }
+
+  // GetProp item `path` ("Tool.PtMeasPar.Speed", "Tool.GoToPar.Speed.Max", "Tool.Name",
+  // "FoundTool.Name"); the value is a call named by the path as asked.
+  PropertyResult get(std::string_view path) const;
+  // SetProp of `path` (only Act of the active tool's values is settable).
+  PropertyResult set(std::string_view path, double value);
+  // EnumProp (children) / EnumAllProp (every descendant, dotted) of a pointer or block.
+  std::optional<std::vector<PropertyEntry>> enumerate(std::string_view path, bool recursive, ErrorCode& error) const;
+
+ private:
+  int find(std::string_view name) const;
+  std::vector<ToolSpec> tools_;
+  int active_ = 0;     // index into tools_, -1: UnDefTool
+  int found_ = -1;     // FoundTool, -1: UnDefTool
+  double act_[kParamCount]{};
+};
+
+// The block and value name of a parameter ("PtMeasPar", "Speed").
+std::string_view block_name(Param p);
+std::string_view param_name(Param p);
+
+}  // namespace imess::ippdme

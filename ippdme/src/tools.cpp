@@ -1,0 +1,176 @@
+// Tools and properties: the path grammar of GetProp / SetProp / EnumProp over the active tool
+// and FoundTool (docs/ippdme.md, "Tools and properties").
+#include "imess/ippdme/tools.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace imess::ippdme {
+
+namespace {
+
+constexpr std::string_view kBlocks[] = {"GoToPar", "GoToPar", "PtMeasPar", "PtMeasPar", "PtMeasPar", "PtMeasPar", "PtMeasPar"};
+constexpr std::string_view kNames[] = {"Speed", "Accel", "Speed", "Accel", "Approach", "Search", "Retract"};
+constexpr std::string_view kLimits[] = {"Min", "Max", "Act", "Def"};
+
+std::vector<std::string_view> split(std::string_view path) {
+  std::vector<std::string_view> parts;
+  while (true) {
+    const auto dot = path.find('.');
+    parts.push_back(path.substr(0, dot));
+    if (dot == std::string_view::npos) return parts;
+    path.remove_prefix(dot + 1);
+  }
+}
+
+std::optional<Param> param_of(std::string_view block, std::string_view name) {
+  for (int i = 0; i < kParamCount; ++i)
+    if (kBlocks[i] == block && kNames[i] == name) return static_cast<Param>(i);
+  return std::nullopt;
+}
+
+bool is_block(std::string_view s) { return s == "GoToPar" || s == "PtMeasPar"; }
+
+PropertyResult error(ErrorCode code) { return {std::nullopt, code, false}; }
+
+}  // namespace
+
+std::string_view block_name(Param p) { return kBlocks[static_cast<int>(p)]; }
+std::string_view param_name(Param p) { return kNames[static_cast<int>(p)]; }
+
+ToolBox::ToolBox(std::vector<ToolSpec> tools) : tools_(std::move(tools)) {
+  if (tools_.empty()) throw std::invalid_argument("at least one tool is needed");
+  for (std::size_t i = 0; i < tools_.size(); ++i) {
+    const auto& t = tools_[i];
+    if (t.name.empty() || !is_name(t.name) || t.name.find('.') != std::string::npos)
+      throw std::invalid_argument("tool name '" + t.name + "': letters and digits, starting with a letter");
+    if (t.name == kNoTool || t.name == kUnDefTool || t.name == kBaseTool)
+      throw std::invalid_argument("tool name '" + t.name + "' is reserved (NoTool, UnDefTool, BaseTool)");
+    for (std::size_t j = 0; j < i; ++j)
+      if (tools_[j].name == t.name) throw std::invalid_argument("tool name '" + t.name + "' is given twice");
+    for (int p = 0; p < kParamCount; ++p) {
+      const Range& r = t.params[p];
+      if (!(r.min <= r.def && r.def <= r.max))
+        throw std::invalid_argument("tool '" + t.name + "': " + std::string(kBlocks[p]) + "." + std::string(kNames[p]) +
+                                    " needs Min <= Def <= Max");
+    }
+  }
+  ToolSpec none = tools_.front();
+  none.name = std::string(kNoTool);
+  none.radius = 0;
+  none.measures = false;
+  tools_.push_back(std::move(none));
+  change(tools_.front().name);
+}
+
+int ToolBox::find(std::string_view name) const {
+  for (std::size_t i = 0; i < tools_.size(); ++i)
+    if (tools_[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+std::vector<std::string> ToolBox::names() const {
+  std::vector<std::string> out;
+  for (const auto& t : tools_) out.push_back(t.name);
+  return out;
+}
+
+bool ToolBox::change(std::string_view name) {
+  active_ = find(name);
+  if (active_ < 0) return false;
+  for (int p = 0; p < kParamCount; ++p) act_[p] = tools_[active_].params[p].def;
+  return true;
+}
+
+bool ToolBox::find_tool(std::string_view name) {
+  const int i = find(name);
+  if (i < 0) return false;
+  found_ = i;
+  return true;
+}
+
+PropertyResult ToolBox::get(std::string_view path) const {
+  const auto parts = split(path);
+  const bool tool = parts[0] == "Tool";
+  if (!tool && parts[0] != "FoundTool") return error(ErrorCode::BadProperty);
+  const int index = tool ? active_ : found_;
+  if (index < 0) return error(ErrorCode::ToolNotDefined);  // UnDefTool has no properties
+  const ToolSpec& t = tools_[index];
+  if (parts.size() == 2 && parts[1] == "Name") return {Value::call(path, {Value::of_string(t.name)}), std::nullopt, false};
+  if (parts.size() < 3 || parts.size() > 4) return error(ErrorCode::BadProperty);
+  const auto p = param_of(parts[1], parts[2]);
+  if (!p) return error(ErrorCode::BadProperty);
+  if (!t.measures && parts[1] == "PtMeasPar") return error(ErrorCode::IllegalCommand);  // NoTool measures nothing (NIST: 0507)
+  const Range& r = t.params[static_cast<int>(*p)];
+  const double act = tool ? act_[static_cast<int>(*p)] : r.def;
+  double v = act;
+  if (parts.size() == 4) {
+    if (parts[3] == "Min") v = r.min;
+    else if (parts[3] == "Max") v = r.max;
+    else if (parts[3] == "Def") v = r.def;
+    else if (parts[3] != "Act") return error(ErrorCode::BadProperty);
+  }
+  return {Value::call(path, {Value::of_number(v)}), std::nullopt, false};
+}
+
+PropertyResult ToolBox::set(std::string_view path, double value) {
+  const auto parts = split(path);
+  if (parts[0] != "Tool") return error(ErrorCode::BadProperty);  // FoundTool's values are read only
+  if (active_ < 0) return error(ErrorCode::ToolNotDefined);
+  if (parts.size() < 3 || parts.size() > 4 || (parts.size() == 4 && parts[3] != "Act")) return error(ErrorCode::BadProperty);
+  const auto p = param_of(parts[1], parts[2]);
+  if (!p) return error(ErrorCode::BadProperty);
+  const ToolSpec& t = tools_[active_];
+  if (!t.measures && parts[1] == "PtMeasPar") return error(ErrorCode::IllegalCommand);
+  const Range& r = t.params[static_cast<int>(*p)];
+  const double kept = std::clamp(value, r.min, r.max);
+  act_[static_cast<int>(*p)] = kept;
+  return {std::nullopt, kept != value ? std::optional(ErrorCode::ArgumentOutOfRange) : std::nullopt, kept != value};
+}
+
+std::optional<std::vector<PropertyEntry>> ToolBox::enumerate(std::string_view path, bool recursive, ErrorCode& err) const {
+  const auto parts = split(path);
+  const bool tool = parts[0] == "Tool";
+  err = ErrorCode::BadProperty;
+  if ((!tool && parts[0] != "FoundTool") || parts.size() > 3) return std::nullopt;
+  const int index = tool ? active_ : found_;
+  if (index < 0) {
+    err = ErrorCode::ToolNotDefined;
+    return std::nullopt;
+  }
+  const ToolSpec& t = tools_[index];
+  std::vector<PropertyEntry> out;
+  // A value's children: Min, Max, Act, Def.
+  auto value_entries = [&](const std::string& prefix, std::string_view name) {
+    out.emplace_back(prefix + std::string(name), "Number");
+    if (recursive)
+      for (auto l : kLimits) out.emplace_back(prefix + std::string(name) + "." + std::string(l), "Number");
+  };
+  auto block_entries = [&](const std::string& prefix, std::string_view block) {
+    for (int p = 0; p < kParamCount; ++p)
+      if (kBlocks[p] == block) value_entries(prefix, kNames[p]);
+  };
+  if (parts.size() == 1) {
+    out.emplace_back("Name", "String");
+    for (std::string_view block : {std::string_view("GoToPar"), std::string_view("PtMeasPar")}) {
+      if (!t.measures && block == "PtMeasPar") continue;
+      out.emplace_back(std::string(block), "Property");
+      if (recursive) block_entries(std::string(block) + ".", block);
+    }
+    return out;
+  }
+  if (!is_block(parts[1])) return std::nullopt;
+  if (!t.measures && parts[1] == "PtMeasPar") {
+    err = ErrorCode::IllegalCommand;
+    return std::nullopt;
+  }
+  if (parts.size() == 2) {
+    block_entries("", parts[1]);
+    return out;
+  }
+  if (!param_of(parts[1], parts[2])) return std::nullopt;
+  for (auto l : kLimits) out.emplace_back(std::string(l), "Number");
+  return out;
+}
+
+}  // namespace imess::ippdme
