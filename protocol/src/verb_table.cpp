@@ -166,6 +166,9 @@ const std::array kVerbs{
              command_index<Abort>(), [](const Args&) -> Command { return Abort{}; }},
     VerbSpec{"Program", args(), "the loaded program: name, state (none loaded running paused ended), line, block",
              false, Access::Open, command_index<Program>(), [](const Args&) -> Command { return Program{}; }},
+    VerbSpec{"Key", args(word("name")),
+             "a key of the jog panel for the inspection software (I++ DME KeyPress: Done, Del, F1 ...), while it has enabled the user",
+             false, Access::Controlling, command_index<Key>(), [](const Args& a) -> Command { return Key{std::string(a.at[0].text)}; }},
 };
 
 }  // namespace

@@ -56,6 +56,7 @@ class TempDir {
 // One test client: a blocking-free loopback TCP socket and what it received so far.
 struct Client {
   int fd = -1;
+  bool ipp = false;     // on messd's I++ DME port: lines end in CR LF both ways
   std::string pending;  // bytes after the last LF
   bool closed = false;  // by messd (EOF seen) or by the script
   ~Client() {
@@ -95,11 +96,14 @@ class Harness {
     quiet();
   }
 
+  // `from`: empty, a loopback address to connect from, or "ipp": to the I++ DME port.
   void connect(int id, const std::string& from, std::vector<Entry>& out) {
     if (clients_.count(id) && !clients_[id]->closed) throw std::runtime_error("client " + std::to_string(id) + " is connected already");
     auto c = std::make_unique<Client>();
     c->fd = ::socket(AF_INET, SOCK_STREAM, 0);
-    if (!from.empty()) {
+    c->ipp = from == "ipp";
+    if (c->ipp && server_.ipp_port() == 0) throw std::runtime_error("this configuration has no I++ DME server");
+    if (!from.empty() && !c->ipp) {
       sockaddr_in a{};
       a.sin_family = AF_INET;
       if (inet_pton(AF_INET, from.c_str(), &a.sin_addr) != 1) throw std::runtime_error("not an IPv4 address: " + from);
@@ -107,18 +111,20 @@ class Harness {
     }
     sockaddr_in to{};
     to.sin_family = AF_INET;
-    to.sin_port = htons(server_.port());
+    to.sin_port = htons(c->ipp ? server_.ipp_port() : server_.port());
     to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     if (::connect(c->fd, reinterpret_cast<sockaddr*>(&to), sizeof to) != 0) throw std::runtime_error("connect failed");
     int one = 1;
     setsockopt(c->fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
     // messd answers every connection with a line (CurrCor, or the Err of a refusal): wait for
-    // it, so the accept has happened before the script goes on.
+    // it, so the accept has happened before the script goes on. The I++ server says nothing
+    // to the client it accepts (and an error line to one it refuses).
     const int fd = c->fd;
+    const bool ipp = c->ipp, was_connected = server_.ipp_connected();
     clients_[id] = std::move(c);
-    wait_until([fd] {
+    wait_until([&] {
       pollfd p{fd, POLLIN, 0};
-      return ::poll(&p, 1, 0) > 0;
+      return ::poll(&p, 1, 0) > 0 || (ipp && !was_connected && server_.ipp_connected());
     }, "messd to answer the connection of client " + std::to_string(id));
     settle();
     collect(out, false);
@@ -141,7 +147,7 @@ class Harness {
     std::vector<int> order;
     for (const auto& e : batch) {
       if (!bytes.count(e.client)) order.push_back(e.client);
-      bytes[e.client] += e.text + "\n";
+      bytes[e.client] += e.text + (client(e.client).ipp ? "\r\n" : "\n");
     }
     for (int id : order) {
       Client& c = client(id);
@@ -154,7 +160,7 @@ class Harness {
       }
     }
     settle();
-    rig_.cycle();
+    cycle();
     settle();
     collect(out, false);
   }
@@ -162,13 +168,20 @@ class Harness {
   void advance(long ms, std::vector<Entry>& out) {
     const auto end = rig_.clock().now() + std::chrono::milliseconds(ms);
     while (rig_.clock().now() < end) {
-      rig_.cycle();
+      cycle();
       quiet();  // settle() without its wait: the clients sent nothing since the last step
       collect(out, true);
     }
   }
 
   test::ConfigRig& rig() { return rig_; }
+
+  // One motion cycle, then the I++ move reports (a timer in messd; here every cycle, in
+  // virtual time).
+  void cycle() {
+    rig_.cycle();
+    server_.move_reports();
+  }
 
   void finish(std::vector<Entry>& out) {
     settle();
@@ -234,7 +247,12 @@ class Harness {
         break;
       }
       for (auto nl = c->pending.find('\n'); nl != std::string::npos; nl = c->pending.find('\n')) {
-        lines.push_back({EntryKind::Receive, id, c->pending.substr(0, nl)});
+        std::string line = c->pending.substr(0, nl);
+        if (c->ipp) {  // the CR of every line is checked here, not written
+          if (!line.empty() && line.back() == '\r') line.pop_back();
+          else line += " [no CR]";
+        }
+        lines.push_back({EntryKind::Receive, id, line});
         c->pending.erase(0, nl + 1);
       }
       if (c->closed) {

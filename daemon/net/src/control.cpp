@@ -84,6 +84,7 @@ std::string control_taken_warning(const Controller& by) {
 }
 
 std::string describe(const Controller& c) {
+  if (c.session == kIppSession) return c.name + " at " + c.host + " (the I++ DME session)";
   return c.name + " at " + c.host + " (client " + std::to_string(c.session) + ")";
 }
 

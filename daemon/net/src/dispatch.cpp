@@ -166,8 +166,20 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Run& c) { run_program(s, slot, c.detached); },
           [&](const protocol::Abort&) { abort_program(s, slot); },
           [&](const protocol::Program&) { program_status(s, slot); },
+          [&](const protocol::Key& c) { press_key(s, slot, c.name); },
       },
       cmd);
+}
+
+// Key <name>: the operator's key for the I++ DME session that enabled the user (it arrives
+// there as E0000 # KeyPress("name")); refused when no session listens for keys.
+void Server::press_key(Session& s, std::uint32_t slot, const std::string& name) {
+  if (!ipp_ || !ipp_->listening_for_keys()) {
+    reply(s, slot, format_err(ErrorCode::BadValue, "Key " + name + ": no I++ DME session has enabled the user; keys go to it only then"));
+    return;
+  }
+  ipp_->key(name);
+  reply(s, slot, format_ok("Key"));
 }
 
 // Hello [name]: the client's name (the control event shows the owner under it), then the

@@ -81,6 +81,7 @@ struct Resume {};
 // name or sent over the connection (the lines up to a line '.'), running it, aborting it.
 struct Programs {};
 struct Load { std::string name; };
+struct Key { std::string name; };                          // I++ DME KeyPress for the inspection software
 struct Upload { std::string name; };
 struct Run { bool detached = false; };
 struct Abort {};
@@ -94,6 +95,6 @@ inline constexpr int kWatchMaxMs = 60000;
 using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo, Home, Free,
                              Reset, Set, Get, Stats, HandMv, Quit, Replay, Take, Release, Watch, Version,
                              MoveTo, ArcTo, Dwell, Queue, Pause, Resume, Probe, JogAx, SetOut, Outputs,
-                             Programs, Load, Upload, Run, Abort, Program>;
+                             Programs, Load, Upload, Run, Abort, Program, Key>;
 
 }  // namespace imess::protocol

@@ -52,6 +52,9 @@ class Control {
   std::optional<Controller> owner_, previous_;
 };
 
+// The I++ DME session's number as a controller (never a MESSD client's: those count from 1).
+inline constexpr std::uint32_t kIppSession = 0xFFFFFF00u;
+
 inline constexpr std::size_t kMaxEventLine = 79;  // characters, without "\n" (1996: 80 with it)
 inline constexpr std::size_t kMaxControlName = 24;
 

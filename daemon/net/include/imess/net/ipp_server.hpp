@@ -16,6 +16,7 @@
 
 #include "imess/core/core_types.hpp"
 #include "imess/ippdme/csy.hpp"
+#include "imess/net/control.hpp"
 #include "imess/ippdme/format.hpp"
 #include "imess/ippdme/line_framer.hpp"
 #include "imess/ippdme/parser.hpp"
@@ -43,7 +44,7 @@ struct IppConfig {
 class IppServer {
  public:
   // The core's client number of the I++ session (its Home replies) and its control identity.
-  static constexpr std::uint32_t kClientId = 0xFFFFFF00u;
+  static constexpr std::uint32_t kClientId = kIppSession;
   // Segment ids of the I++ session's moves: never a MESSD client's (docs/ippdme.md).
   static constexpr std::uint32_t kIdBase = 0xF0000000u;
   static bool is_own_id(std::uint32_t id) { return id >= kIdBase && id < kClientId; }
@@ -63,6 +64,7 @@ class IppServer {
   void dropped(core::FailReason why);          // the Server dropped what was planned
   void tick();                                 // the move report daemon (report timer / harness)
   void key(const std::string& name);           // Key <name> from the jog panel: KeyPress
+  bool listening_for_keys() const { return conn_ && in_session_ && user_enabled_; }
 
  private:
   struct Connection;

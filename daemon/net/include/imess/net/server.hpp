@@ -135,6 +135,7 @@ class Server {
   void stop_request(Session& s, std::uint32_t slot);
   void hello(Session& s, std::uint32_t slot, const protocol::Hello& c);
   void help(Session& s, std::uint32_t slot);
+  void press_key(Session& s, std::uint32_t slot, const std::string& name);
   void get_param(Session& s, std::uint32_t slot, const protocol::Get& c);
   void set_param(Session& s, std::uint32_t slot, const protocol::Set& c);
   std::string status_line();
