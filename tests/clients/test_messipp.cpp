@@ -71,7 +71,7 @@ TEST_CASE("messipp tagger: each queue counts up on its own from 00001 and E0001"
   CHECK(t.next("Get(X())") == Tag{TagKind::Command, 5});
 }
 
-TEST_CASE("messipp tagger: a typed tag ahead of the count moves it on, one behind leaves it; open tags are skipped") {
+TEST_CASE("messipp tagger: a typed tag ahead of the count moves it on, one behind leaves it, open tags are skipped") {
   Tagger t;
   t.sent_typed(Tag{TagKind::Command, 10});
   CHECK(t.next("Get(X())") == Tag{TagKind::Command, 11});
@@ -290,7 +290,7 @@ TEST_CASE("messipp against a silent server: no Ack within --timeout is exit 1 na
   CHECK(server.received() == std::vector<std::string>{"00001 StartSession()"});
 }
 
-TEST_CASE("messipp: a refused line is printed instead of sent and the rest goes on; exit 1 says so") {
+TEST_CASE("messipp: a refused line is printed instead of sent and the rest goes on, exit 1 says so") {
   FakeDaemon server({0, {}, [](const std::string& line) -> std::vector<std::string> {
                        const std::string tag = line.substr(0, 5);
                        return {tag + " &", tag + " %"};
