@@ -74,8 +74,8 @@ std::string ipp_usage() {
          "\n"
          "Exit status: 0 when the input ended and every line sent was answered; 1 when messd\n"
          "cannot be reached, closes the connection first, an answer took longer than the\n"
-         "timeout, Ctrl-C came with answers missing, or a line was refused and not sent;\n"
-         "2 on bad arguments.\n";
+         "timeout, Ctrl-C came with answers missing, or (stdin not a terminal) a line was\n"
+         "refused and not sent; 2 on bad arguments.\n";
 }
 
 }  // namespace imess::messipp

@@ -181,9 +181,10 @@ class Session {
     return end(client::kExitFailure);
   }
 
-  // The input ended and everything sent is complete: ok, unless a line was held back.
+  // The input ended and everything sent is complete: ok, unless a piped line was held back (a
+  // script that did not run as written; a person at the terminal saw the refusal at once).
   int finished() {
-    if (refused_ == 0) return end(client::kExitOk);
+    if (refused_ == 0 || !io_.transcript) return end(client::kExitOk);
     print_line(io_.err, "", "messipp: " + std::to_string(refused_) + (refused_ == 1 ? " line was" : " lines were") +
                                 " refused and not sent");
     return end(client::kExitFailure);
