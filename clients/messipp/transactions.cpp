@@ -28,11 +28,13 @@ bool Transactions::received(std::string_view line) {
   // on E0000, so what comes on the tag belongs to the first.
   const auto it = std::find_if(open_.begin(), open_.end(), [&](const Open& o) { return o.tag == tag; });
   if (it == open_.end()) return false;
+  // Only the Ack lets the next line go: a line the server refuses at once gets `!` and `%`
+  // without one, and waiting for that `%` keeps the transcript in the order it happened.
   if (kind == '%')
     open_.erase(it);
-  else if (kind == '&' || kind == '#' || kind == '!')
+  else if (kind == '&')
     it->answered = true;
-  else
+  else if (kind != '#' && kind != '!')
     return false;
   return true;
 }

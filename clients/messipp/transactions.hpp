@@ -1,8 +1,9 @@
-// Transactions: what messipp still waits for from the server. Every line sent opens one; its
-// first answer is the Ack `&` (or an error `!` on its tag, or on E0000 when the server cannot
-// use the tag: a malformed tag, a tag still open, the wrong queue), its end the `%` (or that
-// E0000 error, which no `%` follows). A daemon such as OnMoveReportE ends here at its `%`; the
-// lines it goes on sending after that carry a tag no longer tracked. Pure.
+// Transactions: what messipp still waits for from the server. Every line sent opens one; it is
+// answered by its Ack `&`, and ends with its `%` — or with an error on E0000 when the server
+// cannot use the tag (a malformed tag, a tag still open, the wrong queue), which no `%`
+// follows. A line refused at once gets `!` and `%` on its tag without an Ack. A daemon such as
+// OnMoveReportE ends here at its `%`; the lines it goes on sending after that carry a tag no
+// longer tracked. Pure.
 #pragma once
 #include <deque>
 #include <string>
@@ -20,8 +21,8 @@ class Transactions {
   // timeout); false for anything else (E0000 events, a daemon's reports, lines of no tag).
   bool received(std::string_view line);
 
-  // The last line sent has its first answer: the spec lets a client send the next command only
-  // after the previous one's Ack (IPPDME.md §3).
+  // The last line sent has its Ack, or has ended: the spec lets a client send the next command
+  // only after the previous one's Ack (IPPDME.md §3).
   bool last_answered() const;
   // Every line sent has its `%`.
   bool all_complete() const { return open_.empty(); }

@@ -174,7 +174,7 @@ TEST_CASE("messipp typed lines: --raw sends what the parser would refuse, tagged
   CHECK_FALSE(l.tag);  // not a tag a client may use: no count moves
 }
 
-TEST_CASE("messipp transactions: the Ack answers a line, the % completes it, data and errors in between") {
+TEST_CASE("messipp transactions: the Ack answers a line, the % completes it, a refusal without Ack ends at its %") {
   Transactions tx;
   CHECK(tx.last_answered());
   CHECK(tx.all_complete());
@@ -185,12 +185,13 @@ TEST_CASE("messipp transactions: the Ack answers a line, the % completes it, dat
   CHECK(tx.last_answered());
   CHECK_FALSE(tx.all_complete());
   tx.sent("00002");
-  CHECK(tx.received("00002 ! Error(3, 0514, Get, \"Use ClearAllErrors to continue\")"));  // an error answers too
-  CHECK(tx.last_answered());
+  CHECK(tx.received("00002 ! Error(3, 0008, Get, \"Protocol error\")"));  // refused at once: no Ack, the % follows
+  CHECK_FALSE(tx.last_answered());
   CHECK(tx.received("00001 # X(1.0000)"));
   CHECK(tx.open_tags() == std::vector<std::string>{"00001", "00002"});
-  CHECK(tx.received("00001 %"));
   CHECK(tx.received("00002 %"));
+  CHECK(tx.last_answered());
+  CHECK(tx.received("00001 %"));
   CHECK(tx.all_complete());
   CHECK_FALSE(tx.is_open("00001"));
 }
