@@ -85,8 +85,9 @@ class Session {
  private:
   // The typed lines at the front, as far as the rules let them go: the previous line's Ack
   // first (IPPDME.md §3), and in a transcript a command-tag line only once everything before it
-  // is complete, so the answers stand under their command. Event-tag lines (AbortE) go at
-  // once, so a piped AbortE still stops a running GoTo.
+  // is complete, so the answers stand under their command. Event-tag lines need the Ack alone,
+  // so a piped AbortE still stops the GoTo before it. A refused line keeps its place in the
+  // order too: its message stands where the server's answer would have.
   void send_what_may_go() {
     const auto is_open = [this](ippdme::Tag t) { return tx_.is_open(ippdme::tag_text(t)); };
     while (!typed_.empty() && !quit_ && !failed_) {
@@ -114,7 +115,10 @@ class Session {
       }
       if (io_.transcript) print_line(io_.out, "> ", t.text);
       tx_.sent(std::string_view(t.text).substr(0, ippdme::kTagLength));
-      if (t.tag) t.typed_tag ? tagger_.sent_typed(*t.tag) : tagger_.sent(*t.tag);
+      if (t.tag && t.typed_tag)
+        tagger_.sent_typed(*t.tag);
+      else if (t.tag)
+        tagger_.sent(*t.tag);
       last_progress_ = Clock::now();
     }
   }
