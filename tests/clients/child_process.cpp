@@ -27,7 +27,7 @@ std::string temp_file(const char* tag) {
 
 }  // namespace
 
-ChildProcess::ChildProcess(std::vector<std::string> argv)
+ChildProcess::ChildProcess(std::vector<std::string> argv, const std::string& stdin_path)
     : out_path_(temp_file("out")), err_path_(temp_file("err")) {
   std::vector<char*> args;
   for (auto& a : argv) args.push_back(a.data());
@@ -35,7 +35,7 @@ ChildProcess::ChildProcess(std::vector<std::string> argv)
   pid_ = ::fork();
   if (pid_ < 0) throw std::runtime_error("fork failed");
   if (pid_ == 0) {
-    int in = ::open("/dev/null", O_RDONLY);
+    int in = ::open(stdin_path.c_str(), O_RDONLY);
     int out = ::open(out_path_.c_str(), O_WRONLY | O_TRUNC);
     int err = ::open(err_path_.c_str(), O_WRONLY | O_TRUNC);
     ::dup2(in, 0);
@@ -91,8 +91,8 @@ bool ChildProcess::wait_for_output(const std::string& text, std::chrono::millise
 std::string ChildProcess::out() const { return read_file(out_path_); }
 std::string ChildProcess::err() const { return read_file(err_path_); }
 
-RunResult run_program(std::vector<std::string> argv, std::chrono::milliseconds timeout) {
-  ChildProcess p(std::move(argv));
+RunResult run_program(std::vector<std::string> argv, std::chrono::milliseconds timeout, const std::string& stdin_path) {
+  ChildProcess p(std::move(argv), stdin_path);
   auto status = p.wait(timeout);
   if (!status) throw std::runtime_error("program did not finish in time; stderr: " + p.err());
   return {*status, p.out(), p.err()};

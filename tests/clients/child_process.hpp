@@ -13,7 +13,8 @@ using namespace std::chrono_literals;
 
 class ChildProcess {
  public:
-  explicit ChildProcess(std::vector<std::string> argv);
+  // stdin is `stdin_path` (a file of typed lines for messipp), /dev/null unless given.
+  explicit ChildProcess(std::vector<std::string> argv, const std::string& stdin_path = "/dev/null");
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
@@ -39,7 +40,8 @@ struct RunResult {
 };
 
 // Runs to completion (fails the calling test if it takes longer than the timeout).
-RunResult run_program(std::vector<std::string> argv, std::chrono::milliseconds timeout = 5s);
+RunResult run_program(std::vector<std::string> argv, std::chrono::milliseconds timeout = 5s,
+                      const std::string& stdin_path = "/dev/null");
 
 // The path of a built client executable (IMESS_BIN_DIR/name).
 std::string client_binary(const std::string& name);

@@ -90,6 +90,19 @@ TEST_CASE("Connection: lines in both directions, split lines joined, close detec
   CHECK_FALSE(c.send_line("StopMv"));
 }
 
+TEST_CASE("Connection: lines are cut at 200 characters unless a longer limit is asked for (I++ DME answers)") {
+  const std::string long_line = "00002 # " + std::string(300, 'x');
+  FakeDaemon daemon({0, {long_line}, {}});
+  std::vector<std::string> lines;
+  auto plain = Connection::open(Endpoint{"127.0.0.1", daemon.port()});
+  collect(plain, lines, 1);
+  auto ipp = Connection::open(Endpoint{"127.0.0.1", daemon.port()}, 1000ms, 65536);
+  collect(ipp, lines, 2);
+  REQUIRE(lines.size() == 2);
+  CHECK(lines[0] == long_line.substr(0, 200));
+  CHECK(lines[1] == long_line);
+}
+
 TEST_CASE("Reconnector: notices the loss, retries while messd is down, reconnects after a restart") {
   auto daemon = std::make_unique<FakeDaemon>();
   auto port = daemon->port();

@@ -26,6 +26,21 @@ TEST_CASE("parse_endpoint: IPv6 in brackets, and bare") {
   CHECK(parse_endpoint("::1") == Endpoint{"::1", 1066});
 }
 
+TEST_CASE("parse_endpoint: what the text leaves out comes from the client's defaults (messipp: 127.0.0.1:1294)") {
+  const Endpoint ipp{"127.0.0.1", 1294};
+  CHECK(parse_endpoint("cmm", ipp) == Endpoint{"cmm", 1294});
+  CHECK(parse_endpoint("cmm:1300", ipp) == Endpoint{"cmm", 1300});
+  CHECK(parse_endpoint(":1300", ipp) == Endpoint{"127.0.0.1", 1300});
+  CHECK(parse_endpoint("[::1]", ipp) == Endpoint{"::1", 1294});
+  CHECK(parse_endpoint("::1", ipp) == Endpoint{"::1", 1294});
+  CHECK_THROWS_WITH(parse_endpoint("cmm:x", ipp), Catch::Contains("localhost:1294") && !Catch::Contains("1066"));
+  Endpoint e = ipp;
+  bool seen = false;
+  imess::client::take_host_argument("cmm", e, seen);
+  CHECK(e == Endpoint{"cmm", 1294});
+  CHECK(seen);
+}
+
 TEST_CASE("Endpoint::to_string brackets IPv6 literals") {
   CHECK(Endpoint{"localhost", 1066}.to_string() == "localhost:1066");
   CHECK(Endpoint{"::1", 1066}.to_string() == "[::1]:1066");

@@ -20,7 +20,8 @@ TEST_CASE("clients: connection refused -> exit 1 and 'no partner on ... is messd
     const char* name;
     std::vector<std::string> before_host;  // arguments before HOST:PORT
   };
-  const std::vector<Case> cases = {{"messjog", {}}, {"messmon", {}}, {"messcap", {}}, {"messprog", {"run", program}}};
+  const std::vector<Case> cases = {{"messjog", {}}, {"messmon", {}}, {"messcap", {}}, {"messprog", {"run", program}},
+                                 {"messipp", {}}};
   for (const auto& c : cases) {
     INFO(c.name);
     std::vector<std::string> argv{client_binary(c.name)};
@@ -44,7 +45,8 @@ TEST_CASE("messcap: refused before the first point leaves no empty file behind")
 
 TEST_CASE("clients: --help prints usage and exits 0") {
   const std::vector<std::pair<const char*, const char*>> usages = {
-      {"messjog", "[HOST[:PORT]]"}, {"messmon", "[HOST[:PORT]]"}, {"messcap", "[HOST[:PORT]]"}, {"messprog", "check FILE"}};
+      {"messjog", "[HOST[:PORT]]"}, {"messmon", "[HOST[:PORT]]"}, {"messcap", "[HOST[:PORT]]"}, {"messprog", "check FILE"},
+      {"messipp", "[HOST[:PORT]]"}};
   for (const auto& [name, first] : usages) {
     INFO(name);
     auto r = run_program({client_binary(name), "--help"});
@@ -72,6 +74,9 @@ TEST_CASE("clients: bad arguments -> exit 2 naming the argument and what is acce
        "messprog: -o 'p.png': the plot is an SVG drawing; accepted: a file name ending in .svg"},
       {"messprog", {"run", "p.nc", "host:0"}, "messprog: bad address 'host:0': port '0' is not a number 1..65535"},
       {"messprog", {"run", "p.nc", "--bogus"}, "messprog: unknown option '--bogus' for run; accepted: --detached, --lang L"},
+      {"messipp", {"--bogus"}, "messipp: unknown option '--bogus'; accepted: --raw, --timeout S, --help"},
+      {"messipp", {"--timeout", "soon"}, "messipp: --timeout 'soon': accepted a number of seconds 0..86400"},
+      {"messipp", {"cmm:0"}, "messipp: bad address 'cmm:0': port '0' is not a number 1..65535; expected HOST[:PORT] with PORT 1..65535, e.g. localhost, localhost:1294"},
   };
   for (const auto& c : cases) {
     std::vector<std::string> argv{client_binary(c.name)};

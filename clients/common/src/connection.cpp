@@ -61,7 +61,7 @@ int connect_by(int fd, const addrinfo& addr, Clock::time_point deadline) {
 
 }  // namespace
 
-Connection Connection::open(const Endpoint& where, std::chrono::milliseconds timeout) {
+Connection Connection::open(const Endpoint& where, std::chrono::milliseconds timeout, std::size_t max_line_length) {
   addrinfo hints{};
   hints.ai_family = AF_UNSPEC;
   hints.ai_socktype = SOCK_STREAM;
@@ -84,7 +84,7 @@ Connection Connection::open(const Endpoint& where, std::chrono::milliseconds tim
     last_error = connect_by(fd, *a, deadline);
     if (last_error == 0) {
       set_keepalive(fd);
-      return Connection(fd, where);
+      return Connection(fd, where, max_line_length);
     }
     ::close(fd);
     if (last_error == ETIMEDOUT) break;  // the whole budget is spent

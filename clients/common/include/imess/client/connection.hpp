@@ -3,6 +3,7 @@
 // or a signal, and poll() on plain descriptors serves that directly without an io_context.
 #pragma once
 #include <chrono>
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -28,9 +29,12 @@ class Connection {
  public:
   // Connects to each address `where` resolves to, in order, within `timeout` in total.
   // Throws ConnectError. The socket has TCP keep-alive on, so a vanished host is noticed
-  // (about 11 s) even while the daemon has nothing to say.
+  // (about 11 s) even while the daemon has nothing to say. Received lines longer than
+  // `max_line_length` are cut there: messd's protocol lines are short, an I++ DME answer may
+  // be up to 65536 characters (messipp).
   static Connection open(const Endpoint& where,
-                         std::chrono::milliseconds timeout = kDefaultConnectTimeout);
+                         std::chrono::milliseconds timeout = kDefaultConnectTimeout,
+                         std::size_t max_line_length = protocol::kMaxLineLength);
 
   Connection(Connection&& other) noexcept;
   Connection& operator=(Connection&& other) noexcept;
@@ -60,7 +64,8 @@ class Connection {
   void finish(std::chrono::milliseconds timeout = std::chrono::milliseconds{500});
 
  private:
-  Connection(int fd, Endpoint where) : fd_(fd), endpoint_(std::move(where)) {}
+  Connection(int fd, Endpoint where, std::size_t max_line_length)
+      : fd_(fd), endpoint_(std::move(where)), framer_(max_line_length) {}
   void lost(std::string reason);
 
   int fd_ = -1;
