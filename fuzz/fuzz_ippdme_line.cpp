@@ -1,5 +1,6 @@
-// Fuzz target: I++ DME client bytes -> LineFramer -> parse_framed, as the server's session will
-// read them; every error is formatted, every request formatted and parsed back. The first byte
+// Fuzz target: I++ DME client bytes -> LineFramer -> parse_framed, as the server's session
+// reads them; every error is formatted, every request formatted and parsed back; the
+// property paths of GetProp / SetProp / EnumProp go through a ToolBox as the server's do. The first byte
 // chooses the read size, so lines are split across reads at every place.
 #include <cstddef>
 #include <cstdint>
@@ -9,6 +10,7 @@
 #include "imess/ippdme/format.hpp"
 #include "imess/ippdme/line_framer.hpp"
 #include "imess/ippdme/parser.hpp"
+#include "imess/ippdme/tools.hpp"
 
 using namespace imess::ippdme;
 
@@ -21,6 +23,36 @@ void check_line(std::string_view line) {  // one output line: bytes 32..126, the
   for (char c : line.substr(0, line.size() - 2))
     if (c < 32 || c > 126) std::abort();
 }
+
+ToolBox make_tools() {
+  ToolSpec t;
+  t.name = "RefTool";
+  t.radius = 2;
+  for (auto& r : t.params) r = {0.5, 100, 10};
+  return ToolBox({t});
+}
+
+// A property answer is a value or a declared error, never both or neither; Act stays in range.
+void check_property(const PropertyResult& r, ToolBox& tools) {
+  if (r.value && r.error) std::abort();
+  if (r.error && !find_error(number_of(*r.error))) std::abort();
+  if (r.value) check_line(format_data(kServerTag, std::vector<Value>{*r.value}));
+  for (int p = 0; p < kParamCount; ++p)
+    if (tools.active() && (tools.act(static_cast<Param>(p)) < 0.5 || tools.act(static_cast<Param>(p)) > 100)) std::abort();
+}
+
+void exercise_properties(const Command& cmd, ToolBox& tools) {
+  ErrorCode err{};
+  if (const auto* g = std::get_if<GetProp>(&cmd))
+    for (const auto& path : g->paths) check_property(tools.get(path), tools);
+  if (const auto* s = std::get_if<SetProp>(&cmd))
+    for (const auto& set : s->settings) check_property(tools.set(set.path, set.value), tools);
+  if (const auto* e = std::get_if<EnumProp>(&cmd))
+    if (auto entries = tools.enumerate(e->path, false, err))
+      for (const auto& [name, kind] : *entries) check_line(format_data(kServerTag, std::vector<Value>{Value::of_string(name), Value::of_string(kind)}));
+  if (const auto* c = std::get_if<ChangeTool>(&cmd)) tools.change(c->name);
+  if (const auto* f = std::get_if<FindTool>(&cmd)) tools.find_tool(f->name);
+}
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -29,6 +61,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::string_view bytes(reinterpret_cast<const char*>(data) + 1, size - 1);
   LineFramer framer(kFuzzLineLength);
   TagTracker open;
+  ToolBox tools = make_tools();
   for (std::size_t at = 0; at < bytes.size(); at += chunk) {
     framer.feed(bytes.substr(at, chunk), [&](const FramedLine& line) {
       if (line.text.size() > kFuzzLineLength) std::abort();
@@ -47,6 +80,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       LineResult back = parse_line(std::string_view(again).substr(0, again.size() - 2));
       auto* same = std::get_if<Request>(&back);
       if (!same || !(same->command == req.command) || !(same->tag == req.tag)) std::abort();
+      exercise_properties(req.command, tools);
     });
     if (framer.pending() > kFuzzLineLength) std::abort();
   }

@@ -132,7 +132,7 @@ TEST_CASE("the MRM arm: one MoveTo segment moves all five axes together, each wi
   }
 }
 
-TEST_CASE("the MRM arm: jog a rotary axis (C) and a linear one (Y); soft limits per axis once homed") {
+TEST_CASE("the MRM arm: jog a rotary axis (C) and a linear one (Y) — soft limits per axis once homed") {
   ConfigRig rig(kArm);
   Recorder r;
   core::Command home{core::CommandKind::Home};

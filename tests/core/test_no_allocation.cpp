@@ -82,7 +82,7 @@ TEST_CASE("no motion cycle allocates while running queued segments: follow, Done
   CHECK(rig.hw.follow_calls > 1500);
 }
 
-TEST_CASE("no motion cycle allocates in a Probe cycle: approach, search, hit, retract, Done; a miss; an early touch") {
+TEST_CASE("no motion cycle allocates in a Probe cycle: approach, search, hit, retract, Done — a miss — an early touch") {
   FollowerRig rig;
   rig.hw.record = false;
   const auto& p = rig.core().params();

@@ -165,7 +165,7 @@ TEST_CASE("probe power: the power-on edge at start and edges within the arming t
   CHECK(rig.core().snapshot().probe_armed);
 }
 
-TEST_CASE("probe power: switched off, its edge is ignored and a Probe fails ProbeOff before it moves on; on again, it hits") {
+TEST_CASE("probe power: switched off, its edge is ignored and a Probe fails ProbeOff before it moves on — on again, it hits") {
   FollowerRig rig(with_outputs());
   rig.hw.probe_power_output = kProbeOut;
   rig.run(0.2);

@@ -131,7 +131,7 @@ TEST_CASE("Probe: an edge on the fast approach is an unexpected hit: one Failed 
   CHECK(rig.position().x() < 130);
 }
 
-TEST_CASE("Probe: StopMv during the search fails it Stopped, once; no point, no Done") {
+TEST_CASE("Probe: StopMv during the search fails it Stopped, once — no point, no Done") {
   FollowerRig rig;
   queue_probe(rig, 5, {150, 100, 100});
   rig.feed(true);

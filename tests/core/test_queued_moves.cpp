@@ -339,7 +339,7 @@ TEST_CASE("follow() failing at call N mid-queue fails the running and the queued
   CHECK(rig.mode() == Mode::Idle);
 }
 
-TEST_CASE("GoTo, StartMv and Home while a queue runs are refused Busy; the queue goes on") {
+TEST_CASE("GoTo, StartMv and Home while a queue runs are refused Busy — the queue goes on") {
   FollowerRig rig;
   rig.append(rig.line(70, 200, 100, 100, 50));
   rig.feed(true);

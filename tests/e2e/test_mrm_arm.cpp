@@ -25,7 +25,7 @@ std::map<char, double> ax_pos(const std::string& line) {
 
 }  // namespace
 
-TEST_CASE("the MRM arm over TCP: one MoveTo moves X Y C U V together; AxPos shows all five") {
+TEST_CASE("the MRM arm over TCP: one MoveTo moves X Y C U V together — AxPos shows all five") {
   DaemonProcess messd({"--config", std::string(IMESS_SOURCE_DIR) + "/config/sim-mrm-arm.json"});
   LineClient c(messd.port());
   REQUIRE(c.until_prefix("CurrCor ") == std::string("CurrCor 200.000 150.000 0.000"));  // no Z: 0

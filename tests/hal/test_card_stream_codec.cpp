@@ -92,7 +92,7 @@ TEST_CASE("stream frames: every single-bit error is caught, and the decoder find
   }
 }
 
-TEST_CASE("stream frames: the status frame and the timed setpoint round trip; short or long frames are refused") {
+TEST_CASE("stream frames: the status frame and the timed setpoint round trip — short or long frames are refused") {
   card::StatusFrame s;
   s.clock = 0xFFFFFFF0u;
   s.ack = 200;

@@ -195,7 +195,7 @@ TEST_CASE("MoveTo, ArcTo and Dwell through the Server: Ok, State move, Done in o
   CHECK(on_arc > 100);
 }
 
-TEST_CASE("a MoveTo out of the travel is Err 206 naming the id and the axis; nothing moves") {
+TEST_CASE("a MoveTo out of the travel is Err 206 naming the id and the axis — nothing moves") {
   QueueHarness h;
   h.send("MoveTo 42 Y900");
   CHECK(h.has("Err 206 segment 42: axis Y leaves its travel at 900.000000"));
@@ -248,7 +248,7 @@ TEST_CASE("Pause holds the queue on its path, Queue says Held yes, Resume finish
   CHECK(h.run_until("Done 1", 10));
 }
 
-TEST_CASE("a GoTo while a queue runs is Err 202; MoveTo while jogging is Err 202") {
+TEST_CASE("a GoTo while a queue runs is Err 202 — MoveTo while jogging is Err 202") {
   QueueHarness h;
   h.send("MoveTo 1 X300 F50");
   h.run(0.2);
@@ -341,7 +341,7 @@ TEST_CASE("ArcTo in the YZ plane (J K) and in a tilted plane (N i j k): on the c
   CHECK(in_second > 100);
 }
 
-TEST_CASE("ArcTo refusals name what was wrong and what is accepted; nothing is queued") {
+TEST_CASE("ArcTo refusals name what was wrong and what is accepted — nothing is queued") {
   QueueHarness h;
   const std::pair<const char*, const char*> cases[] = {
       {"ArcTo 4 CW X110 I5 J5 K5",
@@ -442,7 +442,7 @@ bool run_wall_until(QueueHarness& h, double wall, const std::string& line, doubl
 }
 }  // namespace
 
-TEST_CASE("Probe through the Server: Hit with its id, Done; a MoveTo sent behind it starts where the Probe ended") {
+TEST_CASE("Probe through the Server: Hit with its id, Done — a MoveTo sent behind it starts where the Probe ended") {
   QueueHarness h;  // at (100, 100, 100); tip radius 2, RetractDist 0.5
   h.send("Probe 2 X150 F50\nMoveTo 3 Y120");
   CHECK(h.has("Ok Probe"));
@@ -460,7 +460,7 @@ TEST_CASE("Probe through the Server: Hit with its id, Done; a MoveTo sent behind
   CHECK(h.rig.position().isApprox(hal::Vec3(150.5, 120, 100), 1e-9));
 }
 
-TEST_CASE("Probe through the Server: a miss is Failed PartNotFound; what was sent behind it fails Stopped") {
+TEST_CASE("Probe through the Server: a miss is Failed PartNotFound — what was sent behind it fails Stopped") {
   QueueHarness h;
   h.send("Probe 2 X150 F50\nMoveTo 3 Y120\nDwell 4 0.1");
   REQUIRE(run_wall_until(h, 1e9, "Failed 4 Stopped a stop dropped the queue", 30));
@@ -473,7 +473,7 @@ TEST_CASE("Probe through the Server: a miss is Failed PartNotFound; what was sen
   CHECK(h.rig.position().isApprox(hal::Vec3(160, 100, 100), 1e-9));  // SearchDist beyond the target
 }
 
-TEST_CASE("Probe through the Server: refused when the search would leave the travel or has no direction; a held move is checked") {
+TEST_CASE("Probe through the Server: refused when the search would leave the travel or has no direction — a held move is checked") {
   QueueHarness h;
   h.send("Probe 6 X495");
   CHECK(h.has("Err 206 segment 6: axis X leaves its travel at 505.000000"));

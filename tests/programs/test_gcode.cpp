@@ -72,7 +72,7 @@ TEST_CASE("gcode: worked example — modal G1, G91, comments, N numbers, M2 ends
   CHECK(id == 5);
 }
 
-TEST_CASE("gcode: G0 alone and G1 without axis words do not move; motion mode persists") {
+TEST_CASE("gcode: G0 alone and G1 without axis words do not move — motion mode persists") {
   CHECK(run("G0\nG1 F60\nX1\nG0\nY2\n") == Lines{"3 LINE X1 Y0 Z0 F1", "5 LINE rapid X1 Y2 Z0 F100"});
 }
 
@@ -84,7 +84,7 @@ TEST_CASE("gcode: rapid feed from the options, else the fastest axis") {
   CHECK(run("G0 X1", o) == Lines{"1 LINE rapid X1 Y0 Z0 F42"});
 }
 
-TEST_CASE("gcode: G20 inches scale linear axes, offsets and feeds; rotary axes stay degrees") {
+TEST_CASE("gcode: G20 inches scale linear axes, offsets and feeds — rotary axes stay degrees") {
   GcodeOptions o;
   o.machine = make_machine("XYZA", -1000, 1000, 100, 1000);
   CHECK(run("G20 G1 X1 F10\nG91 Y-0.5\nA90 F600\nG21 X1 F60\n", o) ==
@@ -155,7 +155,7 @@ TEST_CASE("gcode: G18 (ZX, I K, normal Y) and G19 (YZ, J K, normal X) planes") {
   CHECK(arc_segment("G18 G3 Z10 X10 R10 Y4 F60").length == Approx(std::hypot(kPi * 10 / 2, 4)));
 }
 
-TEST_CASE("gcode: G38.2 / G38.3 probes; probed axes must be named in G90 before moving") {
+TEST_CASE("gcode: G38.2 / G38.3 probes — probed axes must be named in G90 before moving") {
   CHECK(run("G38.2 Z-10 F60\nG38.3 X5 Z-10 F120\nG0 Z5 X0\nG91 G1 Z1\n") ==
         Lines{"1 PROBE X0 Y0 Z-10 F1 error", "2 PROBE X5 Y0 Z-10 F2 silent", "3 LINE rapid X0 Y0 Z5 F100",
               "4 LINE X0 Y0 Z6 F2"});
@@ -189,7 +189,7 @@ TEST_CASE("gcode: spindle M3 M4 M5 and digital outputs M62-M65 on configured out
   CHECK(run("M4", o) == Lines{"1 OUT 3=1"});
 }
 
-TEST_CASE("gcode: M30 ends like M2; nothing after the end is read, not even errors") {
+TEST_CASE("gcode: M30 ends like M2 — nothing after the end is read, not even errors") {
   CHECK(run("G0 X1\nM30\nthis is not g-code") == Lines{"1 LINE rapid X1 Y0 Z0 F100", "2 END"});
 }
 

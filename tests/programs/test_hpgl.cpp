@@ -27,7 +27,7 @@ TEST_CASE("hpgl: worked plot — pen by Z, 40 units per mm, PA/PR, VS in cm/s, S
                            "5 LINE X20 Y19 Z0 F50", "6 LINE rapid X20 Y19 Z5 F100"});
 }
 
-TEST_CASE("hpgl: pen by a digital output; an unknown pen is lifted before the first move") {
+TEST_CASE("hpgl: pen by a digital output — an unknown pen is lifted before the first move") {
   HpglOptions o;
   o.pen = HpglOptions::Pen::Output;
   o.pen_output = 7;

@@ -26,7 +26,7 @@ TEST_CASE("mrm: the manual's example program, item by item") {
               "11 LINE X0 Y0 C180 A0 B0 F16.666667", "12 END"});
 }
 
-TEST_CASE("mrm: the manual's example returns X, Y and the tilts, gripper off; the A word's rotation ends at +180°") {
+TEST_CASE("mrm: the manual's example returns X, Y and the tilts, gripper off — the A word's rotation ends at +180°") {
   // BRIEF §5 says the program "returns to the start with the gripper off". Read as printed
   // (all moves incremental, A 0.1°), the sum of the X, Y and B moves is zero and the gripper
   // ends off, but N7 A1800 turns A's joint by 180° and nothing turns it back: the half turn

@@ -84,7 +84,7 @@ void check_at(const std::optional<Vec3>& latched, const Vec3& where) {
 const Vec3 kAbove(430, 330, 95), kPressed(430, 330, 81);
 }  // namespace
 
-TEST_CASE("card outputs: output 1 is the probe power; each power edge latches where the axes stand") {
+TEST_CASE("card outputs: output 1 is the probe power — each power edge latches where the axes stand") {
   const bool streamed = GENERATE(false, true);
   INFO((streamed ? "streamed" : "request/reply"));
   CardOutputRig rig(streamed, true);

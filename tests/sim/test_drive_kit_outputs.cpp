@@ -79,7 +79,7 @@ TEST_CASE("drive kit outputs, map A: outputs 1-7 are bits 9-15 of the outputs po
   CHECK_FALSE(b.set_output(8, true));
 }
 
-TEST_CASE("drive kit outputs: a safety input trip switches every output off; on is refused until Reset") {
+TEST_CASE("drive kit outputs: a safety input trip switches every output off — on is refused until Reset") {
   for (const char* map : {"mrm-b", "mrm-a"}) {
     DYNAMIC_SECTION(map) {
       const bool a = std::string(map) == "mrm-a";

@@ -88,7 +88,7 @@ TEST_CASE("stepper following: in-position only on axes the path holds at rest") 
   CHECK(run.state().all(hal::status::kInPosition));
 }
 
-TEST_CASE("stepper: stop() mid-path brakes within v^2/2a without losing a step; follow after stop and move after follow work") {
+TEST_CASE("stepper: stop() mid-path brakes within v^2/2a without losing a step — follow after stop and move after follow work") {
   StepperRig rig(stepper_follow_options());
   StepperFollowRun run(rig);
   const hal::Vec3 start = xyz(run.state().position);
@@ -214,7 +214,7 @@ TEST_CASE("drive kit follows a planned path with corners, an arc and a dwell, mo
   }
 }
 
-TEST_CASE("drive kit: stop() mid-path brakes within v^2/2a; follow after stop and move after follow work") {
+TEST_CASE("drive kit: stop() mid-path brakes within v^2/2a — follow after stop and move after follow work") {
   for (int mode : {1, 2}) {
     DYNAMIC_SECTION("mode " << mode) {
       auto o = drive_follow_options(mode);

@@ -90,7 +90,6 @@ bool IppServer::plan_lines(std::vector<planner::Line> lines, std::string& why, b
   }
   s.planner_.flush();
   s.feed_segments();
-  rest_ = lines.back().target;
   return true;
 }
 
@@ -180,7 +179,6 @@ bool IppServer::start_ptmeas(const Pending& p, const ippdme::PtMeas& c) {
     fail(p.tag, travel ? ErrorCode::MachineLimitEncountered : ErrorCode::ErrorProcessingMethod, name);
     return true;
   }
-  rest_.reset();  // known at the Done: where the probe cycle stopped
   step_ = Step::PtMeas;
   first_id_ = first;
   wait_id_ = probe;
@@ -211,6 +209,7 @@ bool IppServer::start_home(const Pending& p) {
 
 void IppServer::step_done() {
   step_ = Step::None;
+  rest_.reset();
   if (queue_.empty()) return;
   const Pending p = queue_.front();
   queue_.pop_front();
@@ -239,6 +238,7 @@ void IppServer::segment_end(const core::Event& e) {
   if (e.id != wait_id_) return;  // PtMeas: the move to the approach point
   if (step_ == Step::PtMeas) {
     rest_ = server_.pose_of(e.end);  // where the retract from the hit ended
+    if (server_.in_loop_.empty() && server_.unsent_.empty()) server_.planning_ = false;  // the retract starts there
     if (!hit_seen_) {
       step_failed(ErrorCode::NoTouch);
       return;

@@ -140,7 +140,9 @@ class IppServer {
   ippdme::Point3 approach_m_{}, normal_m_{};  // PtMeas: the approach point and the surface normal, machine
   bool hit_seen_ = false;
   ippdme::Point3 hit_tip_m_{};                 // PtMeas: the ball's centre at the touch, machine
-  std::optional<planner::Pose> rest_;        // where the last step left the machine
+  // PtMeas: where the probe cycle stopped (its Done), the start of the retract; between steps
+  // the machine's own position is the start (the operator may have moved it).
+  std::optional<planner::Pose> rest_;
 };
 
 }  // namespace imess::net

@@ -1,0 +1,113 @@
+// ToolBox: the tools and their properties as GetProp / SetProp / EnumProp address them
+// (IPPDME.md §10): Min/Max/Act/Def, clamping with 0504, reset on a tool change, FoundTool,
+// NoTool and UnDefTool, and the configured names refused.
+#include <catch2/catch.hpp>
+#include <stdexcept>
+
+#include "imess/ippdme/syntax.hpp"
+#include "imess/ippdme/tools.hpp"
+
+using namespace imess::ippdme;
+
+namespace {
+ToolSpec tool(std::string name, double radius, double speed_def) {
+  ToolSpec t;
+  t.name = std::move(name);
+  t.radius = radius;
+  for (auto& r : t.params) r = {1, 100, 10};
+  t.params[static_cast<int>(Param::PtMeasSpeed)] = {0.5, 20, speed_def};
+  return t;
+}
+std::string text(const PropertyResult& r) { return r.value ? format_value(*r.value) : "error " + std::to_string(number_of(*r.error)); }
+}  // namespace
+
+TEST_CASE("tools: GetProp reads Act (bare or .Act), Min, Max and Def of the active tool, the name as a string") {
+  ToolBox box({tool("RefTool", 2, 5), tool("Star1", 1.5, 3)});
+  CHECK(text(box.get("Tool.PtMeasPar.Speed")) == "Tool.PtMeasPar.Speed(5)");
+  CHECK(text(box.get("Tool.PtMeasPar.Speed.Act")) == "Tool.PtMeasPar.Speed.Act(5)");
+  CHECK(text(box.get("Tool.PtMeasPar.Speed.Min")) == "Tool.PtMeasPar.Speed.Min(0.5)");
+  CHECK(text(box.get("Tool.PtMeasPar.Speed.Max")) == "Tool.PtMeasPar.Speed.Max(20)");
+  CHECK(text(box.get("Tool.GoToPar.Accel.Def")) == "Tool.GoToPar.Accel.Def(10)");
+  CHECK(text(box.get("Tool.Name")) == "Tool.Name(\"RefTool\")");
+  CHECK(box.names() == std::vector<std::string>{"RefTool", "Star1", "NoTool"});
+}
+
+TEST_CASE("tools: SetProp keeps Act within Min and Max (0504 when clamped) and only Act is settable") {
+  ToolBox box({tool("RefTool", 2, 5)});
+  auto r = box.set("Tool.PtMeasPar.Speed", 7);
+  CHECK_FALSE(r.error);
+  CHECK(box.act(Param::PtMeasSpeed) == 7);
+  r = box.set("Tool.PtMeasPar.Speed.Act", 50);
+  CHECK(r.clamped);
+  CHECK(r.error == ErrorCode::ArgumentOutOfRange);
+  CHECK(box.act(Param::PtMeasSpeed) == 20);
+  r = box.set("Tool.PtMeasPar.Speed", -3);
+  CHECK(box.act(Param::PtMeasSpeed) == 0.5);
+  CHECK(box.set("Tool.PtMeasPar.Speed.Max", 30).error == ErrorCode::BadProperty);
+  CHECK(box.set("Tool.Name", 1).error == ErrorCode::BadProperty);
+  CHECK(box.set("FoundTool.PtMeasPar.Speed", 3).error == ErrorCode::BadProperty);
+  CHECK(box.set("Tool.PtMeasPar.Nothing", 3).error == ErrorCode::BadProperty);
+  CHECK(box.get("Tool.PtMeasPar").error == ErrorCode::BadProperty);  // a block is no value
+  CHECK(box.get("Probe.Name").error == ErrorCode::BadProperty);
+}
+
+TEST_CASE("tools: a tool change resets Act to the new tool's Def, an unknown name leaves UnDefTool") {
+  ToolBox box({tool("RefTool", 2, 5), tool("Star1", 1.5, 3)});
+  box.set("Tool.PtMeasPar.Speed", 9);
+  REQUIRE(box.change("Star1"));
+  CHECK(box.act(Param::PtMeasSpeed) == 3);
+  CHECK(box.active()->radius == 1.5);
+  REQUIRE(box.change("RefTool"));
+  CHECK(box.act(Param::PtMeasSpeed) == 5);
+  CHECK_FALSE(box.change("Nope"));
+  CHECK(box.active() == nullptr);
+  CHECK(box.active_name() == "UnDefTool");
+  CHECK(box.get("Tool.Name").error == ErrorCode::ToolNotDefined);
+  CHECK(box.set("Tool.GoToPar.Speed", 5).error == ErrorCode::ToolNotDefined);
+}
+
+TEST_CASE("tools: FoundTool names the last tool FindTool found and reads its Def values") {
+  ToolBox box({tool("RefTool", 2, 5), tool("Star1", 1.5, 3)});
+  CHECK(box.get("FoundTool.Name").error == ErrorCode::ToolNotDefined);  // none found yet: UnDefTool
+  REQUIRE(box.find_tool("Star1"));
+  CHECK(text(box.get("FoundTool.Name")) == "FoundTool.Name(\"Star1\")");
+  CHECK(text(box.get("FoundTool.PtMeasPar.Speed")) == "FoundTool.PtMeasPar.Speed(3)");
+  CHECK_FALSE(box.find_tool("Nope"));
+  CHECK(text(box.get("FoundTool.Name")) == "FoundTool.Name(\"Star1\")");  // unchanged
+}
+
+TEST_CASE("tools: NoTool moves but measures nothing: its PtMeasPar is refused with 0507 (as the NIST server)") {
+  ToolBox box({tool("RefTool", 2, 5)});
+  REQUIRE(box.change("NoTool"));
+  CHECK_FALSE(box.active()->measures);
+  CHECK(box.get("Tool.PtMeasPar.Speed").error == ErrorCode::IllegalCommand);
+  CHECK(box.set("Tool.PtMeasPar.Speed", 3).error == ErrorCode::IllegalCommand);
+  CHECK(text(box.get("Tool.GoToPar.Speed")) == "Tool.GoToPar.Speed(10)");
+  ErrorCode err{};
+  const auto entries = box.enumerate("Tool", false, err);
+  REQUIRE(entries);
+  CHECK(entries->size() == 2);  // Name and GoToPar
+}
+
+TEST_CASE("tools: EnumProp lists children, EnumAllProp every descendant with dotted names") {
+  ToolBox box({tool("RefTool", 2, 5)});
+  ErrorCode err{};
+  auto block = box.enumerate("Tool.GoToPar", false, err);
+  REQUIRE(block);
+  CHECK(*block == std::vector<PropertyEntry>{{"Speed", "Number"}, {"Accel", "Number"}});
+  auto all = box.enumerate("Tool", true, err);
+  REQUIRE(all);
+  CHECK(all->size() == 1 + 1 + 2 * 5 + 1 + 5 * 5);
+  CHECK((*all)[3] == PropertyEntry{"GoToPar.Speed.Min", "Number"});
+  CHECK_FALSE(box.enumerate("Tool.Speed", false, err));
+  CHECK(err == ErrorCode::BadProperty);
+}
+
+TEST_CASE("tools: reserved, repeated or malformed names and ranges with Def outside Min..Max are refused") {
+  CHECK_THROWS_AS(ToolBox({}), std::invalid_argument);
+  CHECK_THROWS_AS(ToolBox({tool("NoTool", 1, 5)}), std::invalid_argument);
+  CHECK_THROWS_AS(ToolBox({tool("UnDefTool", 1, 5)}), std::invalid_argument);
+  CHECK_THROWS_AS(ToolBox({tool("A", 1, 5), tool("A", 2, 5)}), std::invalid_argument);
+  CHECK_THROWS_AS(ToolBox({tool("1st", 1, 5)}), std::invalid_argument);
+  CHECK_THROWS_AS(ToolBox({tool("A", 1, 50)}), std::invalid_argument);
+}
