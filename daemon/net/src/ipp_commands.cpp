@@ -191,7 +191,7 @@ bool IppServer::execute(const Pending& p) {
           },
           [&](const ippdme::Home&) { return start_home(p); },
           [&](const ippdme::IsHomed&) {
-            flag("IsHomed", server_.core_.snapshot().homed);
+            flag("IsHomed", server_.core_.snapshot().referenced);  // the machine knows where it is
             return done();
           },
           [&](const ippdme::EnableUser&) {
@@ -226,7 +226,7 @@ bool IppServer::execute(const Pending& p) {
             return done();
           },
           [&](const ippdme::GetXtdErrStatus&) {
-            flag("IsHomed", server_.core_.snapshot().homed);
+            flag("IsHomed", server_.core_.snapshot().referenced);
             flag("IsUserEnabled", user_enabled_);
             if (error_state_ && last_error_) send(ippdme::format_error(tag, last_error_->first, last_error_->second));
             return done();

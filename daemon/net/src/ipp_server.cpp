@@ -191,14 +191,14 @@ void IppServer::on_line(const ippdme::FramedLine& line) {
     const Tag tag = ippdme::answer_tag(*err, tags_);
     send(ippdme::format_error(*err, tags_));
     if (!(tag == ippdme::kServerTag)) send(ippdme::format_done(tag));
-    if (ippdme::error_info(err->code).severity >= ippdme::Severity::Error) enter_error(err->code, err->cause);
+    if (in_session_ && ippdme::error_info(err->code).severity >= ippdme::Severity::Error) enter_error(err->code, err->cause);
     return;
   }
   auto& req = std::get<ippdme::Request>(result);
   const std::string_view name = ippdme::method_name(req.command);
   if (!tags_.try_open(req.tag)) {  // reused while open (NIST: 0001 on E0000)
     send(ippdme::format_error(ippdme::kServerTag, ErrorCode::IllegalTag, name));
-    enter_error(ErrorCode::IllegalTag, name);
+    if (in_session_) enter_error(ErrorCode::IllegalTag, name);
     return;
   }
   send(ippdme::format_ack(req.tag));
@@ -229,7 +229,8 @@ void IppServer::finish(const Tag& tag) {
 void IppServer::fail(const Tag& tag, ErrorCode code, std::string_view cause) {
   send(ippdme::format_error(tag, code, cause));
   finish(tag);
-  if (ippdme::error_info(code).severity >= ippdme::Severity::Error && !error_state_) enter_error(code, cause);
+  // Outside a session there is no error state to enter (StartSession would clear it).
+  if (ippdme::error_info(code).severity >= ippdme::Severity::Error && in_session_ && !error_state_) enter_error(code, cause);
 }
 
 void IppServer::enter_error(ErrorCode code, std::string_view cause) {
