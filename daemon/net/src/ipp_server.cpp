@@ -35,6 +35,7 @@ struct IppServer::Connection {
   std::deque<std::string> out;
   std::size_t out_bytes = 0;
   bool writing = false, reading = false;
+  bool broken = false;  // dropped: nothing more is sent; closed() runs from the io loop
 };
 
 namespace {
@@ -126,7 +127,7 @@ void IppServer::accept() {
 }
 
 void IppServer::read() {
-  if (!conn_ || conn_->reading || queue_.size() >= kMaxQueued) return;
+  if (!conn_ || conn_->broken || conn_->reading || queue_.size() >= kMaxQueued) return;
   conn_->reading = true;
   auto c = conn_;
   c->socket.async_read_some(asio::buffer(c->buffer), [this, c](boost::system::error_code ec, std::size_t n) {
@@ -137,17 +138,21 @@ void IppServer::read() {
       return;
     }
     c->framer.feed(std::string_view(c->buffer.data(), n), [&](const ippdme::FramedLine& line) {
-      if (c == conn_) on_line(line);
+      if (c == conn_ && !c->broken) on_line(line);
     });
     read();
   });
 }
 
 void IppServer::send(std::string bytes) {
-  if (!conn_) return;
+  if (!conn_ || conn_->broken) return;
   if (conn_->out_bytes + bytes.size() > config_.max_queue_bytes) {
+    // Closed from the io loop, not here: the command being answered is still on the stack.
     spdlog::warn("I++ DME: the client does not read its answers ({} bytes waiting): dropped", conn_->out_bytes);
-    closed();
+    conn_->broken = true;
+    asio::post(io_, [this, c = conn_] {
+      if (c == conn_) closed();
+    });
     return;
   }
   conn_->out_bytes += bytes.size();
