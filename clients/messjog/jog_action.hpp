@@ -13,6 +13,7 @@ enum class JogAction {
   TowardMark, AwayFromMark,                     // oblique move on the line mark <-> current
   Home,                                         // needs a second press to confirm
   TakeOver,                                     // Take force: needs a second press to confirm
+  KeyDone, KeyDel, KeyF1, KeyF2, KeyF3, KeyF4,  // Key <name>: for the I++ DME session that enabled the user
   Quit,
 };
 

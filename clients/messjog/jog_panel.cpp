@@ -86,6 +86,12 @@ std::vector<std::string> JogPanel::act(JogAction action, Clock::time_point now) 
   switch (action) {
     case JogAction::Stop: return stop();
     case JogAction::Measure: return send("ForcePt");
+    case JogAction::KeyDone: return send("Key Done");
+    case JogAction::KeyDel: return send("Key Del");
+    case JogAction::KeyF1: return send("Key F1");
+    case JogAction::KeyF2: return send("Key F2");
+    case JogAction::KeyF3: return send("Key F3");
+    case JogAction::KeyF4: return send("Key F4");
     case JogAction::TowardMark:
     case JogAction::AwayFromMark: return oblique(action);
     case JogAction::Home:

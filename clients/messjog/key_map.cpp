@@ -25,6 +25,12 @@ JogAction action_for_key(int key) {
     case 'p': case 'P': return JogAction::AwayFromMark;
     case 'h': case 'H': return JogAction::Home;
     case 't': case 'T': return JogAction::TakeOver;
+    case '\n': case '\r': case KEY_ENTER: return JogAction::KeyDone;
+    case KEY_BACKSPACE: case KEY_DC: case 127: return JogAction::KeyDel;
+    case KEY_F(1): return JogAction::KeyF1;
+    case KEY_F(2): return JogAction::KeyF2;
+    case KEY_F(3): return JogAction::KeyF3;
+    case KEY_F(4): return JogAction::KeyF4;
     case 'q': case 'Q': case 3 /* Ctrl-C in raw mode */: return JogAction::Quit;
     default: return JogAction::None;
   }
@@ -36,6 +42,7 @@ const std::vector<std::string_view>& key_help() {
       "1 2 3   speed 2 / 20 / 100 %          Space  stop (or press the same key again)",
       "m  measure here (ForcePt)    k  mark here    o  toward mark    p  away from mark",
       "h h  home (press twice)      t t  take control over (press twice)    q  quit",
+      "Enter Del F1-F4  keys for the inspection software (I++ DME) when it enabled you",
       "A jog runs until stopped or another direction key: terminals report no key release.",
   };
   return lines;

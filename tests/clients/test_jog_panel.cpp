@@ -84,6 +84,14 @@ TEST_CASE("JogPanel: m measures here") {
   CHECK(p.act(JogAction::Measure) == Lines{"ForcePt"});
 }
 
+TEST_CASE("JogPanel: Enter, Del and F1-F4 send the inspection software's keys") {
+  auto p = connected_panel();
+  CHECK(p.act(JogAction::KeyDone) == Lines{"Key Done"});
+  CHECK(p.act(JogAction::KeyDel) == Lines{"Key Del"});
+  CHECK(p.act(JogAction::KeyF1) == Lines{"Key F1"});
+  CHECK(p.act(JogAction::KeyF4) == Lines{"Key F4"});
+}
+
 TEST_CASE("JogPanel: oblique move toward and away from the mark (brief example)") {
   JogPanel p = connected_panel("CurrCor 0.000 0.000 0.000");
   CHECK(p.act(JogAction::Mark).empty());  // client side only
@@ -252,6 +260,8 @@ TEST_CASE("Key map: letters, digits and space") {
   CHECK(action_for_key('p') == JogAction::AwayFromMark);
   CHECK(action_for_key('h') == JogAction::Home);
   CHECK(action_for_key('t') == JogAction::TakeOver);
+  CHECK(action_for_key('\n') == JogAction::KeyDone);
+  CHECK(action_for_key(127) == JogAction::KeyDel);
   CHECK(action_for_key('q') == JogAction::Quit);
   CHECK(action_for_key(3) == JogAction::Quit);  // Ctrl-C in raw mode
   CHECK(action_for_key('x') == JogAction::None);
