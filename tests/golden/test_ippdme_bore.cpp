@@ -61,7 +61,7 @@ Measured measure_bore(double nominal_radius) {
   return m;
 }
 
-TEST_CASE("I++ DME: eight PtMeas with IJK on the 1996 cube's bore fit Ø30 within 1 µm; each point is the MESSD Hit") {
+TEST_CASE("I++ DME: eight PtMeas with IJK on the 1996 cube's bore fit Ø30 within 1 µm, each point is the MESSD Hit") {
   const Measured m = measure_bore(15.2);
   REQUIRE(m.points.size() == 8);
   REQUIRE(m.hits.size() == 8);
