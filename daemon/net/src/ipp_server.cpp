@@ -219,6 +219,13 @@ void IppServer::pump() {
   while (!running_ && !queue_.empty() && conn_) {
     running_ = true;
     const Pending p = queue_.front();
+    if (p.aborted) {
+      queue_.pop_front();
+      running_ = false;
+      send(ippdme::format_error(p.tag, ErrorCode::TransactionAborted, ippdme::method_name(p.command)));
+      finish(p.tag);
+      continue;
+    }
     if (!execute(p)) break;  // a motion step: step_done / step_failed go on
     if (!queue_.empty() && queue_.front().tag == p.tag) queue_.pop_front();
     running_ = false;
@@ -244,12 +251,17 @@ void IppServer::enter_error(ErrorCode code, std::string_view cause) {
   abort_queued();
 }
 
-// Every transaction waiting behind the running one: 0006 and its `%`, in the order sent.
+// Every transaction waiting behind the running one: 0006 and its `%`, in the order sent —
+// at once when nothing runs, else each when its turn comes, so no `%` overtakes the running
+// command's (completions in the order started, IPPDME.md §3).
 void IppServer::abort_queued() {
-  const std::size_t keep = running_ && !queue_.empty() ? 1 : 0;
+  const bool behind = running_ && !queue_.empty();
+  if (behind) {
+    for (std::size_t i = 1; i < queue_.size(); ++i) queue_[i].aborted = true;
+    return;
+  }
   std::deque<Pending> waiting;
-  for (std::size_t i = keep; i < queue_.size(); ++i) waiting.push_back(std::move(queue_[i]));
-  queue_.resize(keep);
+  waiting.swap(queue_);
   for (const auto& p : waiting) {
     send(ippdme::format_error(p.tag, ErrorCode::TransactionAborted, ippdme::method_name(p.command)));
     finish(p.tag);

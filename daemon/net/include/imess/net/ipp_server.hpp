@@ -71,6 +71,7 @@ class IppServer {
   struct Pending {
     ippdme::Tag tag;
     ippdme::Command command;
+    bool aborted = false;  // an error came while a move ran: 0006 when its turn comes, after that move's `%`
   };
   enum class Step : unsigned char { None, GoTo, PtMeas, Retract, Home };
   struct MoveDaemon {
