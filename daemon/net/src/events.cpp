@@ -62,6 +62,7 @@ void Server::pump_events() {
       case EventKind::State:
         broadcast(protocol::format_event("State", mode_name(e.mode)));
         if (config_.log_motion) spdlog::info("state {}", mode_name(e.mode));
+        if (ipp_) ipp_->retry();  // a move of the I++ session waiting for the machine to stand
         break;
       case EventKind::Limit: {
         std::string text = std::string(1, layout().letters[e.axis]) + (e.side < 0 ? " neg" : " pos");

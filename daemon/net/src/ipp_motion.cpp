@@ -67,10 +67,12 @@ planner::Pose IppServer::pose_at(const Point3& xyz) const {
 bool IppServer::plan_lines(std::vector<planner::Line> lines, std::string& why, bool& travel) {
   Server& s = server_;
   travel = false;
+  busy_ = false;
   if (!s.planning_) {
     const auto& snap = s.core_.snapshot();
     if ((snap.mode != core::Mode::Idle && snap.mode != core::Mode::Free) || !s.in_loop_.empty()) {
       why = std::string("the machine is busy (State ") + std::string(mode_name(snap.mode)) + ")";
+      busy_ = snap.mode != core::Mode::Fault;  // braking, retracting: the step waits for rest
       return false;
     }
     s.planner_.set_position(rest_ ? *rest_ : s.pose_of(snap.position));
@@ -113,6 +115,7 @@ bool IppServer::start_goto(const Pending& p, const ippdme::GoTo& c) {
   const planner::Line line{next_id(), pose_at(csy_.to_machine(t)), tools_.act(Param::GoToSpeed), planner::ProbePhase::None};
   bool travel = false;
   if (!plan_lines({line}, why, travel)) {
+    if (busy_) return wait_for_rest();
     spdlog::info("I++ DME: GoTo refused: {}", why);
     fail(p.tag, travel ? ErrorCode::MachineLimitEncountered : ErrorCode::ErrorProcessingMethod, name);
     return true;
@@ -175,6 +178,7 @@ bool IppServer::start_ptmeas(const Pending& p, const ippdme::PtMeas& c) {
   lines.push_back(cycle->search);
   bool travel = false;
   if (!plan_lines(std::move(lines), why, travel)) {
+    if (busy_) return wait_for_rest();
     spdlog::info("I++ DME: PtMeas refused: {}", why);
     fail(p.tag, travel ? ErrorCode::MachineLimitEncountered : ErrorCode::ErrorProcessingMethod, name);
     return true;
@@ -207,6 +211,23 @@ bool IppServer::start_home(const Pending& p) {
   return false;
 }
 
+// The machine still brakes (a stop, the operator's jog taken over, a retract): the command
+// waits at the queue's front and starts again when the machine stands (retry()).
+bool IppServer::wait_for_rest() {
+  step_ = Step::Wait;
+  return false;
+}
+
+void IppServer::retry() {
+  if (step_ != Step::Wait || queue_.empty()) return;
+  step_ = Step::None;
+  const Pending p = queue_.front();
+  if (!execute(p)) return;  // started (or waits again)
+  if (!queue_.empty() && queue_.front().tag == p.tag) queue_.pop_front();
+  running_ = false;
+  pump();
+}
+
 void IppServer::step_done() {
   step_ = Step::None;
   rest_.reset();
@@ -230,7 +251,7 @@ void IppServer::step_failed(ErrorCode code) {
 }
 
 void IppServer::segment_end(const core::Event& e) {
-  if (step_ == Step::None || step_ == Step::Home || e.id < first_id_ || e.id > wait_id_) return;  // a step ended before
+  if (step_ == Step::None || step_ == Step::Home || step_ == Step::Wait || e.id < first_id_ || e.id > wait_id_) return;  // a step ended before
   if (e.kind == core::EventKind::Failed) {
     step_failed(error_of(e.fail));
     return;
@@ -271,7 +292,7 @@ void IppServer::segment_end(const core::Event& e) {
 
 void IppServer::dropped(core::FailReason why) {
   rest_.reset();
-  if (step_ == Step::None || step_ == Step::Home) return;
+  if (step_ == Step::None || step_ == Step::Home || step_ == Step::Wait) return;
   for (const auto& [id, seconds] : server_.in_loop_)
     if (id >= first_id_ && id <= wait_id_) return;  // its own Failed will come
   step_failed(error_of(why));
@@ -334,6 +355,7 @@ void IppServer::key(const std::string& name) {
 }
 
 void IppServer::tick() {
+  retry();
   if (!daemon_ || !conn_) return;
   auto& d = *daemon_;
   const auto now = server_.core_.snapshot().time;

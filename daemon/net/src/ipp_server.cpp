@@ -15,9 +15,12 @@ using ippdme::ErrorCode;
 using ippdme::Tag;
 
 namespace {
-// Commands waiting in the normal queue before the server stops reading (its Ack then waits:
-// the spec's flow control).
+// Commands in the normal queue; beyond it a command's Ack waits until there is room (the
+// spec's flow control). The server reads on — an AbortE or the client's drop must be seen
+// while a move runs — and holds unacknowledged commands up to kMaxUnackedBytes (a client
+// that waits for each Ack, as the spec asks, never gets near it); beyond that it stops reading.
 constexpr std::size_t kMaxQueued = 64;
+constexpr std::size_t kMaxUnackedBytes = 1u << 20;
 constexpr const char* kControllerName = "ippdme";
 }  // namespace
 
@@ -127,7 +130,7 @@ void IppServer::accept() {
 }
 
 void IppServer::read() {
-  if (!conn_ || conn_->broken || conn_->reading || queue_.size() >= kMaxQueued) return;
+  if (!conn_ || conn_->broken || conn_->reading || unacked_bytes_ > kMaxUnackedBytes) return;
   conn_->reading = true;
   auto c = conn_;
   c->socket.async_read_some(asio::buffer(c->buffer), [this, c](boost::system::error_code ec, std::size_t n) {
@@ -137,7 +140,9 @@ void IppServer::read() {
       closed();
       return;
     }
-    c->framer.feed(std::string_view(c->buffer.data(), n), [&](const ippdme::FramedLine& line) {
+    // A copy: answering a line may start the next read into the same buffer.
+    const std::string bytes(c->buffer.data(), n);
+    c->framer.feed(bytes, [&](const ippdme::FramedLine& line) {
       if (c == conn_ && !c->broken) on_line(line);
     });
     read();
@@ -186,6 +191,8 @@ void IppServer::closed() {
   boost::system::error_code ec;
   c->socket.close(ec);
   queue_.clear();
+  unacked_.clear();
+  unacked_bytes_ = 0;
   running_ = false;
   tags_.clear();
 }
@@ -206,16 +213,35 @@ void IppServer::on_line(const ippdme::FramedLine& line) {
     if (in_session_) enter_error(ErrorCode::IllegalTag, name);
     return;
   }
-  send(ippdme::format_ack(req.tag));
   if (req.tag.kind == ippdme::TagKind::Event) {
+    send(ippdme::format_ack(req.tag));
     execute_fast({req.tag, std::move(req.command)});
     return;
   }
+  if (queue_.size() >= kMaxQueued || !unacked_.empty()) {  // no room: the Ack waits
+    unacked_bytes_ += line.text.size();
+    unacked_.push_back({req.tag, std::move(req.command), false, line.text.size()});
+    return;
+  }
+  send(ippdme::format_ack(req.tag));
   queue_.push_back({req.tag, std::move(req.command)});
   pump();
 }
 
+// Commands whose Ack waited for room: acknowledged and queued (all of them: `all`, before an
+// abort answers every queued command).
+void IppServer::admit_unacked(bool all) {
+  while (!unacked_.empty() && (all || queue_.size() < kMaxQueued)) {
+    Pending p = std::move(unacked_.front());
+    unacked_.pop_front();
+    unacked_bytes_ -= p.bytes;
+    send(ippdme::format_ack(p.tag));
+    queue_.push_back(std::move(p));
+  }
+}
+
 void IppServer::pump() {
+  admit_unacked(false);
   while (!running_ && !queue_.empty() && conn_) {
     running_ = true;
     const Pending p = queue_.front();
@@ -229,6 +255,7 @@ void IppServer::pump() {
     if (!execute(p)) break;  // a motion step: step_done / step_failed go on
     if (!queue_.empty() && queue_.front().tag == p.tag) queue_.pop_front();
     running_ = false;
+    admit_unacked(false);
   }
   read();
 }
@@ -255,6 +282,7 @@ void IppServer::enter_error(ErrorCode code, std::string_view cause) {
 // at once when nothing runs, else each when its turn comes, so no `%` overtakes the running
 // command's (completions in the order started, IPPDME.md §3).
 void IppServer::abort_queued() {
+  admit_unacked(true);
   const bool behind = running_ && !queue_.empty();
   if (behind) {
     for (std::size_t i = 1; i < queue_.size(); ++i) queue_[i].aborted = true;

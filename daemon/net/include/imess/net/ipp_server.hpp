@@ -62,7 +62,8 @@ class IppServer {
   void homed();
   void home_failed();                          // Warn HomingFailed, a fault while homing
   void dropped(core::FailReason why);          // the Server dropped what was planned
-  void tick();                                 // the move report daemon (report timer / harness)
+  void tick();                                 // the move report daemon, a waiting move (report timer / harness)
+  void retry();                                // a move that waited for the machine to stand (State events)
   void key(const std::string& name);           // Key <name> from the jog panel: KeyPress
   bool listening_for_keys() const { return conn_ && in_session_ && user_enabled_; }
 
@@ -72,8 +73,9 @@ class IppServer {
     ippdme::Tag tag;
     ippdme::Command command;
     bool aborted = false;  // an error came while a move ran: 0006 when its turn comes, after that move's `%`
+    std::size_t bytes = 0;  // its line's length while its Ack waits
   };
-  enum class Step : unsigned char { None, GoTo, PtMeas, Retract, Home };
+  enum class Step : unsigned char { None, Wait, GoTo, PtMeas, Retract, Home };
   struct MoveDaemon {
     ippdme::Tag tag;
     std::optional<double> time, dis;
@@ -93,7 +95,8 @@ class IppServer {
   void finish(const ippdme::Tag& tag);          // the `%`, the tag closed
   void fail(const ippdme::Tag& tag, ippdme::ErrorCode code, std::string_view cause);  // `!` + `%`
   void enter_error(ippdme::ErrorCode code, std::string_view cause);
-  void abort_queued();                          // every queued transaction: 0006 + `%`
+  void abort_queued();
+  void admit_unacked(bool all);                          // every queued transaction: 0006 + `%`
   bool claim_control(bool at_start, std::string& why);  // the session owns the machine
   void release_control();
   void end_session(bool dropped);
@@ -111,6 +114,7 @@ class IppServer {
   bool start_home(const Pending& p);
   bool plan_lines(std::vector<planner::Line> lines, std::string& why, bool& travel);
   void step_failed(ippdme::ErrorCode code);
+  bool wait_for_rest();
   void step_done();
   ippdme::Point3 tip_machine() const;          // where the tip centre stands, machine X Y Z
   ippdme::Point3 tip_here() const;             // the same in the current coordinate system
@@ -126,6 +130,8 @@ class IppServer {
   std::shared_ptr<Connection> conn_;
   ippdme::TagTracker tags_;
   std::deque<Pending> queue_;
+  std::deque<Pending> unacked_;  // received while queue_ was full: not acknowledged yet
+  std::size_t unacked_bytes_ = 0;
   bool running_ = false;       // the queue's front has started and not finished
   bool in_session_ = false, error_state_ = false, user_enabled_ = false;
   std::optional<std::pair<ippdme::ErrorCode, std::string>> last_error_;  // what put the session into the error state
@@ -140,6 +146,7 @@ class IppServer {
   std::uint32_t next_id_ = kIdBase;
   ippdme::Point3 approach_m_{}, normal_m_{};  // PtMeas: the approach point and the surface normal, machine
   bool hit_seen_ = false;
+  bool busy_ = false;                          // plan_lines: refused only because the machine still moves
   ippdme::Point3 hit_tip_m_{};                 // PtMeas: the ball's centre at the touch, machine
   // PtMeas: where the probe cycle stopped (its Done), the start of the retract; between steps
   // the machine's own position is the start (the operator may have moved it).
