@@ -39,6 +39,12 @@ inline std::string num(double v, int decimals = 3) {
   return buf;
 }
 
+inline std::string zero_padded(int n, int width) {  // 42, 5 -> "00042"
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%0*d", width, n);
+  return buf;
+}
+
 inline std::vector<std::string> words(const std::string& s) {
   std::istringstream in(s);
   std::vector<std::string> w;
