@@ -324,6 +324,16 @@ class Generator {
     probes_.push_back({kind, client, trigger_step, send(1, "Status"), tag});
   }
 
+  // More lines in one write than one read of the server takes (4 KiB): queries, as a client
+  // sends a batch of them; behind a move they fill the queue, and its flow control holds the
+  // rest unread (rule 1 allows late answers then).
+  void burst() {
+    if (!kBurstsBeyondOneRead) return;
+    send_ipp(ctag() + " Get(X(), Y(), Z())");
+    for (int i = r_.pick(60, 120); i > 0; --i)
+      join(ipp_, ctag() + (r_.chance(0.5) ? " Get(X(), Y(), Z())" : " GetProp(Tool.GoToPar.Speed(), Tool.PtMeasPar.Speed(), Tool.PtMeasPar.Approach())"));
+  }
+
   void move_daemon() {
     static const char* reports[] = {"Time(0.1), X(), Y(), Z()", "Time(0.05), Z()", "Dis(5), X(), Y(), Z()",
                                     "Time(1), Dis(2), Z(), X()", "X(), Y(), Z()", "Time(0.2), R()"};
@@ -402,6 +412,8 @@ class Generator {
       s_.entries.push_back({EntryKind::Connect, c, "ipp"});
       ++step_;
       s_.refused_clients.insert(c);
+    } else if (k < 925) {
+      burst();
     } else if (k < 940) {
       static const char* more[] = {"GetDMEVersion()", "IsHomed()", "GetMachineClass()", "EnumTools()", "GetErrorInfo(2500)",
                                    "OnPtMeasReport(X(), Y(), Z(), IJK(), ER(), Q())", "OnPtMeasReport(Z(), X())",
