@@ -309,11 +309,18 @@ class Checker {
            std::to_string(t.opened) + ") never got its %");
   }
 
-  // The server's flow control: with this many commands in its normal queue it reads no more
-  // lines (their answers wait) until one completes.
+  // The server's flow control: with this many commands in its normal queue their Acks may
+  // wait until one completes — the lines of the normal queue's; an event tag's line bypasses
+  // the queue (IPPDME.md §6) and is answered at once.
   static bool queue_full(const ClientState& st) {
-    return std::count_if(st.open.begin(), st.open.end(), [](const auto& o) { return o.second.tag.kind == ippdme::TagKind::Command; }) >=
-           kQueueLimit;
+    const auto queued = std::count_if(st.open.begin(), st.open.end(), [](const auto& o) { return o.second.tag.kind == ippdme::TagKind::Command; });
+    if (queued < kQueueLimit) return false;
+    for (const auto& [step, line] : st.awaiting) {
+      const auto verdict = parse_sent(line);
+      const auto* req = std::get_if<ippdme::Request>(&verdict);
+      if (!req || req->tag.kind != ippdme::TagKind::Command) return false;
+    }
+    return true;
   }
 
   void drop_checks(int client, int step, const ClientState& st) {

@@ -334,6 +334,14 @@ class Generator {
       join(ipp_, ctag() + (r_.chance(0.5) ? " Get(X(), Y(), Z())" : " GetProp(Tool.GoToPar.Speed(), Tool.PtMeasPar.Speed(), Tool.PtMeasPar.Approach())"));
   }
 
+  // A move and more commands behind it than the server queues (64): its flow control stops
+  // reading until the move ends. Short lines, one read: no burst.
+  void fill_queue() {
+    if (!kQueueBeyondItsLimit) return;
+    send_ipp(ctag() + " " + goto_line());
+    for (int i = r_.pick(64, 70); i > 0; --i) join(ipp_, ctag() + " Get(Z())");
+  }
+
   void move_daemon() {
     static const char* reports[] = {"Time(0.1), X(), Y(), Z()", "Time(0.05), Z()", "Dis(5), X(), Y(), Z()",
                                     "Time(1), Dis(2), Z(), X()", "X(), Y(), Z()", "Time(0.2), R()"};
@@ -412,8 +420,10 @@ class Generator {
       s_.entries.push_back({EntryKind::Connect, c, "ipp"});
       ++step_;
       s_.refused_clients.insert(c);
-    } else if (k < 925) {
+    } else if (k < 915) {
       burst();
+    } else if (k < 925) {
+      fill_queue();
     } else if (k < 940) {
       static const char* more[] = {"GetDMEVersion()", "IsHomed()", "GetMachineClass()", "EnumTools()", "GetErrorInfo(2500)",
                                    "OnPtMeasReport(X(), Y(), Z(), IJK(), ER(), Q())", "OnPtMeasReport(Z(), X())",

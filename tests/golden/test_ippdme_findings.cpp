@@ -86,5 +86,38 @@ TEST_CASE("I++ DME finding: more than 4 KiB of lines in one write are answered l
   CHECK(difference.empty());
 }
 
+// A GoTo and 68 Gets behind it in one write, one Get more: the normal queue holds 64
+// commands (kMaxQueued in ipp_server.cpp) and IppServer::read stops reading the connection.
+// IPPDME.md §6: an event tag's command bypasses the normal queue — but AbortE is not even read:
+// it is answered only when the GoTo has run to its end, 4 s later, and aborts nothing. The
+// same for a client that drops then: messd sees the connection close only when the queue
+// drains, so the machine goes on moving under a session nobody holds (and a new client is
+// refused as a second session). Kept out of the properties' sessions as kQueueBeyondItsLimit
+// (ippdme_properties.hpp).
+std::string full_queue_script(const std::string& then) {
+  std::string script = "@ config/sim-servo-card.json\n+2 ipp\n2> 00001 StartSession()\n2> 00002 GoTo(Z(300))\n";
+  for (int tag = 3; tag <= 70; ++tag) {
+    char line[64];
+    std::snprintf(line, sizeof line, "2>> %05d Get(Z())\n", tag);
+    script += line;
+  }
+  return script + "= 100 ms\n2> 00071 Get(Z())\n= 100 ms\n" + then;
+}
+
+TEST_CASE("I++ DME finding: AbortE behind a full queue stops the GoTo at once", "[!shouldfail]") {
+  const auto lines = session_lines(full_queue_script("2> E0001 AbortE()\n= 5000 ms\n"));
+  CHECK(index_of(lines, "00002 ! Error(2, 0006, GoTo, \"Transaction aborted (Use ClearAllErrors To Continue)\")") >= 0);
+}
+
+TEST_CASE("I++ DME finding: a client dropping behind a full queue stops the machine at once", "[!shouldfail]") {
+  const auto out = replay(parse_transcript(full_queue_script("-2\n= 1000 ms\n> Status\n"), "finding"), "finding");
+  std::string status;
+  for (const auto& e : out)
+    if (e.kind == EntryKind::Receive && e.client == 1 && e.text.rfind("Ok Status ", 0) == 0) status = e.text;
+  INFO(status);
+  CHECK(status.rfind("Ok Status State idle ", 0) == 0);
+  CHECK(status.find(" Control none") != std::string::npos);
+}
+
 }  // namespace
 }  // namespace imess::golden
