@@ -150,6 +150,7 @@ class Generator {
     connect_ipp();
     s_.final_client = ipp_;
     send_ipp(ctag() + " StartSession()");
+    send_ipp(ctag() + " SetCoordSystem(MachineCsy)");  // frames outlive sessions: read machine coordinates
     send_ipp(ctag() + " Get(X(), Y(), Z())");
     send_ipp(ctag() + " EndSession()");
     s_.final_status_step = send(1, "Status");
@@ -342,6 +343,27 @@ class Generator {
     for (int i = r_.pick(64, 70); i > 0; --i) join(ipp_, ctag() + " Get(Z())");
   }
 
+  // Coordinate systems and tools: a part frame moved and turned (theta beyond 180 now and
+  // then: 1007), GoTo and Get in it; tools that measure, do not (NoTool) or do not exist.
+  void frames_and_tools() {
+    const int k = r_.pick(0, 9);
+    if (k < 3) {
+      const double theta = r_.chance(0.5) ? 0 : r_.chance(0.9) ? r_.coord(0, 180) : 200;
+      send_ipp(ctag() + " SetCsyTransformation(" + (r_.chance(0.8) ? "PartCsy" : "MoveableMachineCsy") + ", " + num(r_.coord(-200, 200)) +
+               ", " + num(r_.coord(-200, 200)) + ", " + num(r_.coord(-100, 100)) + ", " + num(theta) + ", " + num(r_.coord(-360, 720)) +
+               ", " + num(r_.coord(-360, 720)) + ")");
+    } else if (k < 6) {
+      static const char* csy[] = {"MachineCsy", "MachineCsy", "PartCsy", "MoveableMachineCsy"};
+      send_ipp(ctag() + " SetCoordSystem(" + csy[r_.pick(0, 3)] + ")");
+    } else if (k < 7) {
+      send_ipp(ctag() + (r_.chance(0.5) ? " GetCoordSystem()" : " GetCsyTransformation(PartCsy)"));
+    } else {
+      static const char* tools[] = {"\"RefTool\"", "\"RefTool\"", "\"NoTool\"", "\"Nope\""};
+      static const char* verbs[] = {"ChangeTool", "ChangeTool", "SetTool", "FindTool", "GetChangeToolAction"};
+      send_ipp(ctag() + " " + verbs[r_.pick(0, 4)] + "(" + tools[r_.pick(0, 3)] + ")");
+    }
+  }
+
   void move_daemon() {
     static const char* reports[] = {"Time(0.1), X(), Y(), Z()", "Time(0.05), Z()", "Dis(5), X(), Y(), Z()",
                                     "Time(1), Dis(2), Z(), X()", "X(), Y(), Z()", "Time(0.2), R()"};
@@ -424,6 +446,8 @@ class Generator {
       burst();
     } else if (k < 925) {
       fill_queue();
+    } else if (k < 930) {
+      frames_and_tools();
     } else if (k < 940) {
       static const char* more[] = {"GetDMEVersion()", "IsHomed()", "GetMachineClass()", "EnumTools()", "GetErrorInfo(2500)",
                                    "OnPtMeasReport(X(), Y(), Z(), IJK(), ER(), Q())", "OnPtMeasReport(Z(), X())",
