@@ -119,5 +119,26 @@ TEST_CASE("I++ DME finding: a client dropping behind a full queue stops the mach
   CHECK(status.find(" Control none") != std::string::npos);
 }
 
+// A GoTo sent while the machine still brakes is refused with 0511 (severity 3: the error
+// state) instead of waiting for it to stand: IppServer::plan_lines wants an idle machine. It
+// hits two ordinary sequences. After EnableUser the operator jogs; the session's GoTo takes the
+// machine back (claim_control stops the jog, IPPDME.md §7: a moving command disables the user)
+// and is then refused because of that very stop — it can never succeed while the operator
+// moves. And AbortE, ClearAllErrors, GoTo in one go, as a client recovers, is refused while the
+// machine brakes from the AbortE.
+TEST_CASE("I++ DME finding: a GoTo taking the machine back from a jogging operator moves", "[!shouldfail]") {
+  const auto lines = session_lines(
+      "@ config/sim-servo-card.json\n+2 ipp\n2> 00001 StartSession()\n2> 00002 EnableUser()\n"
+      "> StartMv 0 0 20\n= 300 ms\n2> 00003 GoTo(Z(150))\n= 3000 ms\n");
+  CHECK(index_of(lines, "00003 ! Error(3, 0511, GoTo, \"Error processing method\")") < 0);
+}
+
+TEST_CASE("I++ DME finding: a GoTo right after AbortE and ClearAllErrors moves once the machine stands", "[!shouldfail]") {
+  const auto lines = session_lines(
+      "@ config/sim-servo-card.json\n+2 ipp\n2> 00001 StartSession()\n2> 00002 GoTo(Z(300))\n= 300 ms\n"
+      "2> E0001 AbortE()\n2>> 00003 ClearAllErrors()\n2>> 00004 GoTo(Z(100))\n= 3000 ms\n");
+  CHECK(index_of(lines, "00004 ! Error(3, 0511, GoTo, \"Error processing method\")") < 0);
+}
+
 }  // namespace
 }  // namespace imess::golden
