@@ -27,6 +27,7 @@ void Counts::add(const Counts& o) {
   aborted_ahead_of_move += o.aborted_ahead_of_move;
   slow_retracts += o.slow_retracts;
   arrivals_checked += o.arrivals_checked;
+  report_gaps_checked += o.report_gaps_checked;
   arrival_max_off = std::max(arrival_max_off, o.arrival_max_off);
   rest_max_ms = std::max(rest_max_ms, o.rest_max_ms);
   retract_max_ms = std::max(retract_max_ms, o.retract_max_ms);
@@ -39,7 +40,7 @@ std::string Counts::text() const {
   o << lines_sent << " I++ lines (" << accepted << " accepted, " << garbled << " garbled, " << tag_errors << " tag errors), "
     << completed << " completed, " << errors_seen << " errors; GoTo done " << goto_done << " / 2500 " << goto_limit
     << "; PtMeas points " << ptmeas_points << " / errors " << ptmeas_errors << "; AbortE in motion " << aborts_in_motion
-    << "; 0514 " << error_state_refusals << "; 0504 " << warnings_0504 << "; move reports " << move_reports << "; drops "
+    << "; 0514 " << error_state_refusals << "; 0504 " << warnings_0504 << "; move reports " << move_reports << " (" << report_gaps_checked << " gaps within their Time); drops "
     << drops << " (mid-move " << drops_mid_move << "); rest checked " << rest_checked << " (skipped " << rest_skipped
     << ", longest " << rest_max_ms << " ms to stand; still retracting " << slow_retracts << ", at rest within "
     << retract_max_ms << " ms); control given back " << control_given_back << "; Err 209 "
@@ -397,7 +398,7 @@ class Checker {
     if (kind == '&') return mismatch(st, l, "a second & on an open tag");
     if (t.daemon) {
       if (kind != '#') return mismatch(st, l, "after its %, a move daemon sends only # lines");
-      move_report(st, l, payload);
+      move_report(st, l, t, payload);
       return;
     }
     if (!t.first_seen) first_result(st, l, t, kind, err);
@@ -501,17 +502,25 @@ class Checker {
     } else if (holds<ippdme::PtMeas>(t.command)) {
       ++counts.ptmeas_points;
       if (t.data_lines > 1) mismatch(st, l, "a second point for one PtMeas");
-    } else if (holds<ippdme::OnMoveReportE>(t.command)) {  // its first report, before its %
-      move_report(st, l, payload);
+    } else if (holds<ippdme::OnMoveReportE>(t.command)) {  // a report before its %
+      move_report(st, l, t, payload);
     }
   }
 
-  void move_report(ClientState& st, const Line& l, const std::string& payload) {
+  // A move daemon's line: at most 10 a second, and with Time(s) one at least every s (at
+  // least 0.1 s) for as long as it runs — AbortE, ClearAllErrors and errors do not stop it.
+  void move_report(ClientState& st, const Line& l, const Transaction& daemon, const std::string& payload) {
     ++counts.move_reports;
     if (machine_frame_)
       for (const auto& [c, v] : coordinates(payload)) within_travel(c, v, at(l.step) + l.text);
-    if (st.last_report_t && l.t - *st.last_report_t < 99)
-      fail(at(l.step) + "move reports " + std::to_string(l.t - *st.last_report_t) + " ms apart: " + l.text);
+    if (st.last_report_t) {
+      const long gap = l.t - *st.last_report_t;
+      const auto time = std::get<ippdme::OnMoveReportE>(daemon.command).time;
+      if (gap < 99) fail(at(l.step) + "move reports " + std::to_string(gap) + " ms apart: " + l.text);
+      if (time && gap > std::lround(std::max(*time, 0.1) * 1000) + 5)
+        fail(at(l.step) + "a move daemon of Time(" + num(*time, 2) + ") silent for " + std::to_string(gap) + " ms: " + l.text);
+      else if (time) ++counts.report_gaps_checked;
+    }
     st.last_report_t = l.t;
   }
 

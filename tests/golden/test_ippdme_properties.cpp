@@ -3,11 +3,11 @@
 // seeds, random sessions of an inspection program on the I++ port — StartSession, GoTo inside
 // and outside the travel (partial axes too), PtMeas on the scene's surfaces and in the air
 // (with and without IJK), SetProp/GetProp (out-of-range values too), Get, ClearAllErrors,
-// AbortE at random moments, EnableUser/DisableUser, a move daemon, garbled lines (bad and
-// reused tags, bad syntax, bytes outside 32–126), EndSession, drops mid-move, a second client
-// refused — beside a MESSD jog panel (client 1) that asks Status, presses StopMv, tries to
-// move and takes over to Reset. Replayed against messd's own parts in virtual time (the
-// golden harness), then checked:
+// AbortE at random moments, EnableUser/DisableUser, a move daemon, a moved and turned part
+// frame, tools that measure or not, garbled lines (bad and reused tags, bad syntax, bytes
+// outside 32–126), EndSession, drops mid-move, a second client refused — beside a MESSD jog
+// panel (client 1) that asks Status, presses StopMv, tries to move and takes over to Reset.
+// Replayed against messd's own parts in virtual time (the golden harness), then checked:
 //
 //  1. the protocol (IPPDME.md §§1-8): every line sent is answered in the step it was sent as
 //     the library's parser and the open tags say — `tag &`, or a garbled line's `tag !` and
@@ -21,11 +21,12 @@
 //     StartSession inside one is 0008; 0514 only in the error state, and nothing but the
 //     exempt commands completes without an error in it; `ErrStatus` tells it; AbortE's `%`
 //     comes after every command transaction has closed; a second move daemon is 0515; a move
-//     daemon reports at most 10 lines a second and nothing after StopDaemon or EndSession; a
-//     PtMeas that completes without an error sent exactly one point;
-//  2. the machine never leaves its travel: every position seen (MESSD Status, I++ Get, the
-//     move reports, the motion core after the last step) lies within each axis' travel
-//     (± 0.05 mm: a servo settles up to 41 µm past a move's end at a travel's end);
+//     daemon reports at most 10 lines a second, with Time(s) at least every s whatever else
+//     happens (AbortE, errors), and nothing after StopDaemon or EndSession; a PtMeas that
+//     completes without an error sent exactly one point;
+//  2. the machine never leaves its travel: every position seen (MESSD Status, I++ Get and the
+//     move reports in the machine frame, the motion core after the last step) lies within each
+//     axis' travel (± 0.05 mm: a servo settles up to 41 µm past a move's end at a travel's end);
 //  3. after AbortE's `%`, EndSession's `%` and a drop, client 1's Status a second later finds
 //     the machine standing (idle, free, or a fault's open loops; still backing off a hit, it
 //     stands within RetractTime); after EndSession and a drop the session's control is given
@@ -41,12 +42,16 @@
 // main ones over its seeds (a rule never exercised proves nothing). IMESS_PROPERTY_SEEDS="7"
 // replaces the fixed seeds; a failing seed leaves its transcript, "# step N" before each step
 // as the messages count them, in the temp directory (the path is in the failure message).
+// What messd was found doing against IPPDME.md is in test_ippdme_findings.cpp, each with a
+// minimal script: rule 1 tolerates one deviation (kQueueAbortedAheadOfItsMove), and the
+// sessions leave out what would break the rules until it is fixed (kBurstsBeyondOneRead,
+// kQueueBeyondItsLimit in ippdme_properties.hpp).
 #include <catch2/catch.hpp>
 
 #include <chrono>
-#include <functional>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "config_rig.hpp"
 #include "golden_harness.hpp"
@@ -58,7 +63,7 @@ using namespace imess::golden;
 using namespace imess::golden::ippdme_properties;
 
 namespace {
-constexpr int kActions = 70;
+constexpr int kActions = 80;
 }  // namespace
 
 TEST_CASE("I++ DME properties: random sessions on every configuration with an I++ server") {
@@ -70,7 +75,7 @@ TEST_CASE("I++ DME properties: random sessions on every configuration with an I+
   for (const auto& config : configs) {
     const Machine m = machine_of(config);
     Counts per_config;
-    for (const std::uint64_t seed : property_seeds({1, 2, 3, 4, 5})) {
+    for (const std::uint64_t seed : property_seeds({1, 2, 3, 4, 5, 6})) {
       INFO(config << " seed " << seed << " (IMESS_PROPERTY_SEEDS=\"" << seed << "\" runs it alone)");
       const Script script = make_script(m, mixed_seed(seed, config), kActions);
       const auto path = std::filesystem::temp_directory_path() /
