@@ -72,7 +72,7 @@ struct Counts {
   int goto_done = 0, goto_limit = 0, ptmeas_points = 0, ptmeas_errors = 0, aborts_in_motion = 0;
   int error_state_refusals = 0, warnings_0504 = 0, move_reports = 0, drops = 0, drops_mid_move = 0;
   int rest_checked = 0, rest_skipped = 0, control_given_back = 0, refused_209 = 0, panel_moves_ok = 0;
-  int positions_checked = 0, refused_clients = 0, final_checks = 0, aborted_ahead_of_move = 0;
+  int positions_checked = 0, refused_clients = 0, final_checks = 0;
   int slow_retracts = 0, arrivals_checked = 0, report_gaps_checked = 0;
   double arrival_max_off = 0;
   long rest_max_ms = 0, retract_max_ms = 0, virtual_ms = 0;

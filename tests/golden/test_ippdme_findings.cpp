@@ -1,7 +1,7 @@
 // What the I++ DME properties (test_ippdme_properties.cpp) found messd doing against
-// IPPDME.md, each alone in a minimal script on the default simulated CMM. A case tagged
-// [!shouldfail] passes while messd still does it and fails once it is fixed: then drop the
-// tag, and the property's tolerance named in the case.
+// IPPDME.md and docs/ippdme.md, each alone in a minimal script on the default simulated CMM.
+// A case tagged [!shouldfail] passes while messd still does it and fails once it is fixed:
+// then drop the tag (the case stays, against a relapse), and the switch named in the case.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -35,13 +35,11 @@ long index_of(const std::vector<std::string>& lines, const std::string& line) {
   return it == lines.end() ? -1 : static_cast<long>(it - lines.begin());
 }
 
-// IPPDME.md §3: completions come back in the order the commands were started; §4: on an
-// error of severity 2 or more the server aborts all pending transactions. A garbled line
-// while a GoTo runs (so do a reused tag, or a fast command's error) aborts only what waits
-// behind the GoTo: its Get gets 0006 and `%` first, the GoTo goes on in the error state and
-// completes 4 s later without an error. Tolerated by the properties as
-// kQueueAbortedAheadOfItsMove (ippdme_property_rules.cpp).
-TEST_CASE("I++ DME finding: an error while a GoTo runs completes the queue behind it first", "[!shouldfail]") {
+// IPPDME.md §3: completions come back in the order the commands were started. A garbled line
+// while a GoTo runs (so do a reused tag, or a fast command's error) puts the session into the
+// error state; the Get queued behind the GoTo got its 0006 and `%` before the GoTo's `%`. Fixed
+// (the queue is answered in its turn after the move's `%`): kept as a regression case.
+TEST_CASE("I++ DME finding: an error while a GoTo runs answers the queue behind it after the GoTo") {
   const auto lines = session_lines(
       "@ config/sim-servo-card.json\n"
       "+2 ipp\n"

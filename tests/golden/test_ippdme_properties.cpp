@@ -43,9 +43,8 @@
 // replaces the fixed seeds; a failing seed leaves its transcript, "# step N" before each step
 // as the messages count them, in the temp directory (the path is in the failure message).
 // What messd was found doing against IPPDME.md is in test_ippdme_findings.cpp, each with a
-// minimal script: rule 1 tolerates one deviation (kQueueAbortedAheadOfItsMove), and the
-// sessions leave out what would break the rules until it is fixed (kBurstsBeyondOneRead,
-// kQueueBeyondItsLimit in ippdme_properties.hpp).
+// minimal script; the sessions leave out what would break the rules until it is fixed
+// (kBurstsBeyondOneRead, kQueueBeyondItsLimit in ippdme_properties.hpp).
 #include <catch2/catch.hpp>
 
 #include <chrono>
