@@ -46,12 +46,12 @@
 #include <limits>
 #include <map>
 #include <optional>
-#include <random>
 #include <set>
 #include <sstream>
 
 #include "config_rig.hpp"
 #include "golden_harness.hpp"
+#include "property_support.hpp"
 
 using namespace imess;
 using namespace imess::golden;
@@ -70,40 +70,6 @@ struct MachineInfo {
   double origin_x = 0, origin_y = 0, pen_up_z = 5;
   bool xyz() const { return letters == "XYZ"; }
 };
-
-std::vector<std::string> words(const std::string& s) {
-  std::istringstream in(s);
-  std::vector<std::string> w;
-  for (std::string x; in >> x;) w.push_back(x);
-  return w;
-}
-
-bool starts(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
-
-struct StatusReply {
-  std::string state;
-  std::vector<double> pos;
-};
-
-std::optional<StatusReply> parse_status(const std::string& line) {
-  const auto w = words(line);
-  if (w.size() < 5 || w[0] != "Ok" || w[1] != "Status" || w[2] != "State" || w[4] != "Pos") return std::nullopt;
-  StatusReply r{w[3], {}};
-  for (std::size_t i = 5; i < w.size(); ++i) {
-    char* end = nullptr;
-    const double v = std::strtod(w[i].c_str(), &end);
-    if (end == w[i].c_str() || *end) break;
-    r.pos.push_back(v);
-  }
-  return r;
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 MachineInfo machine_info(const std::string& config) {
   MachineInfo m;
@@ -142,29 +108,6 @@ std::vector<std::string> program_configs() {
   }
   std::sort(out.begin(), out.end());
   return out;
-}
-
-// ---------------------------------------------------------------- random numbers
-
-// mt19937_64's output is fixed by the standard (its distributions are not): the same seed
-// gives the same script with every standard library.
-class Random {
- public:
-  explicit Random(std::uint64_t seed) : rng_(seed) {}
-  int pick(int lo, int hi) { return lo + static_cast<int>(rng_() % static_cast<std::uint64_t>(hi - lo + 1)); }
-  double real(double lo, double hi) { return lo + (hi - lo) * static_cast<double>(rng_() >> 11) * 0x1.0p-53; }
-  bool chance(double p) { return real(0, 1) < p; }
-  // A value rounded to 3 decimals, as written in a program or a command.
-  double coord(double lo, double hi) { return std::round(real(lo, hi) * 1000) / 1000; }
-
- private:
-  std::mt19937_64 rng_;
-};
-
-std::string num(double v, int decimals = 3) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
 }
 
 // ---------------------------------------------------------------- programs
@@ -1160,36 +1103,6 @@ class Checker {
   std::vector<Stop> stops_;
 };
 
-// The transcript with "# step N" before each step (the numbers the failure messages use).
-std::string numbered(const std::vector<Entry>& out) {
-  std::vector<Entry> n;
-  int step = -1;
-  for (const auto& e : out) {
-    if (e.kind != EntryKind::Comment && !observed(e) && !(e.kind == EntryKind::Send && e.joined))
-      n.push_back({EntryKind::Comment, 1, "# step " + std::to_string(++step)});
-    n.push_back(e);
-  }
-  return format_transcript(n);
-}
-
-std::vector<std::uint64_t> seeds() {
-  if (const char* env = std::getenv("IMESS_PROPERTY_SEEDS")) {
-    std::vector<std::uint64_t> out;
-    std::istringstream in(env);
-    for (std::uint64_t s; in >> s;) out.push_back(s);
-    if (!out.empty()) return out;
-  }
-  return {1, 2, 3, 4, 5, 6};
-}
-
-// The generator's seed: the test's seed and the configuration (the machines of the same
-// axes get different sessions for the same seed).
-std::uint64_t mixed_seed(std::uint64_t seed, const std::string& config) {
-  std::uint64_t h = 1469598103934665603ull;  // FNV-1a
-  for (unsigned char ch : config) h = (h ^ ch) * 1099511628211ull;
-  return seed * 0x9E3779B97F4A7C15ull ^ h;
-}
-
 constexpr int kActions = 70;
 
 }  // namespace
@@ -1203,7 +1116,7 @@ TEST_CASE("program runner properties: random sessions on every configuration tha
   for (const auto& config : configs) {
     const MachineInfo m = machine_info(config);
     Counts per_config;
-    for (const std::uint64_t seed : seeds()) {
+    for (const std::uint64_t seed : property_seeds({1, 2, 3, 4, 5, 6})) {
       INFO(config << " seed " << seed << " (IMESS_PROPERTY_SEEDS=\"" << seed << "\" runs it alone)");
       Generator gen(m, mixed_seed(seed, config));
       const Script script = gen.make(kActions);
