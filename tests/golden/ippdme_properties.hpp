@@ -17,14 +17,13 @@ namespace imess::golden::ippdme_properties {
 
 constexpr long kRestWithinMs = 1000;  // a rest probe's wait: braking from full speed and a retract take well under this
 
-// Whether sessions send bursts of lines beyond one read of the server (4 KiB in one write).
-// messd splices and repeats lines then (test_ippdme_findings.cpp, the second finding): off
-// until that is fixed, as every session with one would fail rule 1.
-constexpr bool kBurstsBeyondOneRead = false;
-// Whether sessions queue more commands than messd takes (64) behind a move. messd then stops
-// reading the connection: an AbortE, and the client's drop, go unseen until the move ends
-// (test_ippdme_findings.cpp, the third finding): off until that is fixed, as rules 1 and 3 fail.
-constexpr bool kQueueBeyondItsLimit = false;
+// Whether sessions send bursts of lines beyond one read of the server (4 KiB in one write);
+// messd once spliced and repeated lines then (test_ippdme_findings.cpp, the second finding).
+constexpr bool kBurstsBeyondOneRead = true;
+// Whether sessions queue more commands than messd takes (64) behind a move; messd once
+// stopped reading the connection then, so an AbortE or a drop went unseen until the move
+// ended (test_ippdme_findings.cpp, the third finding). Their Acks wait now.
+constexpr bool kQueueBeyondItsLimit = true;
 
 // What the script and the rules need of a configuration's machine.
 struct Machine {

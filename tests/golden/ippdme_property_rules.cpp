@@ -275,7 +275,7 @@ class Checker {
     for (std::size_t i = 0; i < lines.size() && !st.broken; ++i) {
       const Line& l = lines[i];
       if (l.step != step) {  // a new step: every line of the last one was answered in it
-        if (!st.awaiting.empty() && !queue_full(st)) {
+        if (!st.awaiting.empty() && !all_wait_for_room(st)) {
           fail(at(step) + "client " + std::to_string(client) + ": '" + escape_line(st.awaiting.front().second) + "' got no answer in its step");
           st.awaiting.clear();
         }
@@ -288,7 +288,7 @@ class Checker {
       }
       received(client, st, l);
     }
-    if (!st.awaiting.empty() && !st.broken && !queue_full(st))
+    if (!st.awaiting.empty() && !st.broken && !all_wait_for_room(st))
       fail(at(step) + "client " + std::to_string(client) + ": '" + escape_line(st.awaiting.front().second) + "' got no answer in its step");
     if (st.broken) return;
     if (closing != s_.closed_at.end() && !script_.clean_clients.count(client)) {
@@ -301,17 +301,25 @@ class Checker {
            std::to_string(t.opened) + ") never got its %");
   }
 
-  // The server's flow control: with this many commands in its normal queue their Acks may
-  // wait until one completes — the lines of the normal queue's; an event tag's line bypasses
-  // the queue (IPPDME.md §6) and is answered at once.
+  // The server's flow control: with this many commands in its normal queue the Acks of the
+  // normal queue's lines wait until one completes; a line answered at once — an event tag's
+  // (IPPDME.md §6), a garbled one, a reused tag — overtakes them.
   static bool queue_full(const ClientState& st) {
     const auto queued = std::count_if(st.open.begin(), st.open.end(), [](const auto& o) { return o.second.tag.kind == ippdme::TagKind::Command; });
-    if (queued < kQueueLimit) return false;
-    for (const auto& [step, line] : st.awaiting) {
-      const auto verdict = parse_sent(line);
-      const auto* req = std::get_if<ippdme::Request>(&verdict);
-      if (!req || req->tag.kind != ippdme::TagKind::Command) return false;
-    }
+    return queued >= kQueueLimit;
+  }
+  // Whether a sent line waits for room in the normal queue: a valid command-tag request
+  // whose tag is not open.
+  static bool waits_for_room(const ClientState& st, const std::string& line) {
+    const auto verdict = parse_sent(line);
+    const auto* req = std::get_if<ippdme::Request>(&verdict);
+    return req && req->tag.kind == ippdme::TagKind::Command && !st.tracker.is_open(req->tag);
+  }
+  // Whether every line still unanswered waits for room (then silence is the flow control).
+  static bool all_wait_for_room(const ClientState& st) {
+    if (!queue_full(st)) return false;
+    for (const auto& [step, line] : st.awaiting)
+      if (!waits_for_room(st, line)) return false;
     return true;
   }
 
@@ -412,8 +420,14 @@ class Checker {
   // The first line a sent line got: what the parser and the open tags say it must be.
   void first_answer(ClientState& st, const Line& l, const std::string& tag, char kind, const std::optional<ErrorLine>& err) {
     if (st.awaiting.empty()) return mismatch(st, l, "an answer to no line sent");
-    const std::string sent = st.awaiting.front().second;
-    st.awaiting.pop_front();
+    // While the normal queue is full, the first line that does not wait for room answers first.
+    std::size_t pick = 0;
+    if (queue_full(st))
+      while (pick + 1 < st.awaiting.size() && waits_for_room(st, st.awaiting[pick].second) &&
+             tag != st.awaiting[pick].second.substr(0, 5))
+        ++pick;
+    const std::string sent = st.awaiting[pick].second;
+    st.awaiting.erase(st.awaiting.begin() + static_cast<long>(pick));
     const auto verdict = parse_sent(sent);
     std::string want_tag;
     int want_code = -1;

@@ -1,7 +1,6 @@
 // What the I++ DME properties (test_ippdme_properties.cpp) found messd doing against
 // IPPDME.md and docs/ippdme.md, each alone in a minimal script on the default simulated CMM.
-// A case tagged [!shouldfail] passes while messd still does it and fails once it is fixed:
-// then drop the tag (the case stays, against a relapse), and the switch named in the case.
+// All are fixed; each case stays against a relapse.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -63,7 +62,7 @@ TEST_CASE("I++ DME finding: an error while a GoTo runs answers the queue behind 
 // async_read_some into that same buffer (asio reads at once when data waits), overwriting the
 // bytes still being framed. Kept out of the properties' sessions as kBurstsBeyondOneRead
 // (ippdme_properties.hpp).
-TEST_CASE("I++ DME finding: more than 4 KiB of lines in one write are answered line by line", "[!shouldfail]") {
+TEST_CASE("I++ DME finding: more than 4 KiB of lines in one write are answered line by line") {
   std::string script = "@ config/sim-servo-card.json\n+2 ipp\n2> 00001 StartSession()\n";
   for (int tag = 2; tag <= 201; ++tag) {
     char line[64];
@@ -102,12 +101,12 @@ std::string full_queue_script(const std::string& then) {
   return script + "= 100 ms\n2> 00071 Get(Z())\n= 100 ms\n" + then;
 }
 
-TEST_CASE("I++ DME finding: AbortE behind a full queue stops the GoTo at once", "[!shouldfail]") {
+TEST_CASE("I++ DME finding: AbortE behind a full queue stops the GoTo at once") {
   const auto lines = session_lines(full_queue_script("2> E0001 AbortE()\n= 5000 ms\n"));
   CHECK(index_of(lines, "00002 ! Error(2, 0006, GoTo, \"Transaction aborted (Use ClearAllErrors To Continue)\")") >= 0);
 }
 
-TEST_CASE("I++ DME finding: a client dropping behind a full queue stops the machine at once", "[!shouldfail]") {
+TEST_CASE("I++ DME finding: a client dropping behind a full queue stops the machine at once") {
   const auto out = replay(parse_transcript(full_queue_script("-2\n= 1000 ms\n> Status\n"), "finding"), "finding");
   std::string status;
   for (const auto& e : out)
@@ -124,14 +123,14 @@ TEST_CASE("I++ DME finding: a client dropping behind a full queue stops the mach
 // and is then refused because of that very stop — it can never succeed while the operator
 // moves. And AbortE, ClearAllErrors, GoTo in one go, as a client recovers, is refused while the
 // machine brakes from the AbortE.
-TEST_CASE("I++ DME finding: a GoTo taking the machine back from a jogging operator moves", "[!shouldfail]") {
+TEST_CASE("I++ DME finding: a GoTo taking the machine back from a jogging operator moves") {
   const auto lines = session_lines(
       "@ config/sim-servo-card.json\n+2 ipp\n2> 00001 StartSession()\n2> 00002 EnableUser()\n"
       "> StartMv 0 0 20\n= 300 ms\n2> 00003 GoTo(Z(150))\n= 3000 ms\n");
   CHECK(index_of(lines, "00003 ! Error(3, 0511, GoTo, \"Error processing method\")") < 0);
 }
 
-TEST_CASE("I++ DME finding: a GoTo right after AbortE and ClearAllErrors moves once the machine stands", "[!shouldfail]") {
+TEST_CASE("I++ DME finding: a GoTo right after AbortE and ClearAllErrors moves once the machine stands") {
   const auto lines = session_lines(
       "@ config/sim-servo-card.json\n+2 ipp\n2> 00001 StartSession()\n2> 00002 GoTo(Z(300))\n= 300 ms\n"
       "2> E0001 AbortE()\n2>> 00003 ClearAllErrors()\n2>> 00004 GoTo(Z(100))\n= 3000 ms\n");
