@@ -5,6 +5,7 @@
 
 #include "imess/net/params.hpp"
 #include "imess/net/server.hpp"
+#include "overloaded.hpp"
 #include "imess/net/wording.hpp"
 #include "imess/protocol/messages.hpp"
 #include "imess/protocol/numbers.hpp"
@@ -17,13 +18,6 @@ using protocol::format_err;
 using protocol::format_ok;
 
 namespace {
-template <class... F>
-struct Overloaded : F... {
-  using F::operator()...;
-};
-template <class... F>
-Overloaded(F...) -> Overloaded<F...>;
-
 std::string fixed(double v, int decimals = 3) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, v);

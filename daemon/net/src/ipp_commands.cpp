@@ -7,6 +7,7 @@
 
 #include "imess/net/ipp_server.hpp"
 #include "imess/net/server.hpp"
+#include "overloaded.hpp"
 
 namespace imess::net {
 
@@ -16,13 +17,6 @@ using ippdme::Tag;
 using ippdme::Value;
 
 namespace {
-template <class... F>
-struct Overloaded : F... {
-  using F::operator()...;
-};
-template <class... F>
-Overloaded(F...) -> Overloaded<F...>;
-
 constexpr int kCoordinateDecimals = 4;  // mm, as X(150.0000)
 
 double degrees_mod_360(double a) {

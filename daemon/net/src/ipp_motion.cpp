@@ -95,6 +95,19 @@ bool IppServer::plan_lines(std::vector<planner::Line> lines, std::string& why, b
   return true;
 }
 
+// A move needs the machine: the session takes control back (the user is no longer enabled);
+// false (answered 0511) when someone else holds it.
+bool IppServer::take_machine(const Pending& p) {
+  std::string why;
+  if (!claim_control(false, why)) {
+    spdlog::warn("I++ DME: {}: {}", ippdme::method_name(p.command), why);
+    fail(p.tag, ErrorCode::ErrorProcessingMethod, ippdme::method_name(p.command));
+    return false;
+  }
+  user_enabled_ = false;
+  return true;
+}
+
 bool IppServer::start_goto(const Pending& p, const ippdme::GoTo& c) {
   const std::string_view name = ippdme::method_name(p.command);
   std::string why;
@@ -102,12 +115,7 @@ bool IppServer::start_goto(const Pending& p, const ippdme::GoTo& c) {
     fail(p.tag, ErrorCode::ArgumentNotSupported, name);  // no probe head with angles here
     return true;
   }
-  if (!claim_control(false, why)) {
-    spdlog::warn("I++ DME: GoTo: {}", why);
-    fail(p.tag, ErrorCode::ErrorProcessingMethod, name);
-    return true;
-  }
-  user_enabled_ = false;
+  if (!take_machine(p)) return true;
   Point3 t = tip_here();
   if (c.target.x) t[0] = *c.target.x;
   if (c.target.y) t[1] = *c.target.y;
@@ -136,12 +144,7 @@ bool IppServer::start_ptmeas(const Pending& p, const ippdme::PtMeas& c) {
     fail(p.tag, ErrorCode::ArgumentNotSupported, name);
     return true;
   }
-  if (!claim_control(false, why)) {
-    spdlog::warn("I++ DME: PtMeas: {}", why);
-    fail(p.tag, ErrorCode::ErrorProcessingMethod, name);
-    return true;
-  }
-  user_enabled_ = false;
+  if (!take_machine(p)) return true;
   const Point3 here = tip_here();
   Point3 nominal = here;
   if (c.nominal.x) nominal[0] = *c.nominal.x;
@@ -192,13 +195,7 @@ bool IppServer::start_ptmeas(const Pending& p, const ippdme::PtMeas& c) {
 
 bool IppServer::start_home(const Pending& p) {
   const std::string_view name = ippdme::method_name(p.command);
-  std::string why;
-  if (!claim_control(false, why)) {
-    spdlog::warn("I++ DME: Home: {}", why);
-    fail(p.tag, ErrorCode::ErrorProcessingMethod, name);
-    return true;
-  }
-  user_enabled_ = false;
+  if (!take_machine(p)) return true;
   core::Command c{core::CommandKind::Home};
   c.client = kClientId;
   if (!server_.core_.submit(c)) {

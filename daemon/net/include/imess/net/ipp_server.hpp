@@ -109,6 +109,7 @@ class IppServer {
   std::string position_payload(const std::vector<ippdme::Item>& items) const;
   void change_tool(std::string_view name);
   // ipp_motion.cpp: GoTo, PtMeas, Home on the Server's planner
+  bool take_machine(const Pending& p);
   bool start_goto(const Pending& p, const ippdme::GoTo& c);
   bool start_ptmeas(const Pending& p, const ippdme::PtMeas& c);
   bool start_home(const Pending& p);
