@@ -49,7 +49,7 @@ Point3 CsyLink::to_child(const Point3& p) const {
 
 Point3 CsyLink::to_parent(const Point3& c) const { return vector_to_parent({c[0] - t_.x0, c[1] - t_.y0, c[2] - t_.z0}); }
 
-CsyLink& CsyChain::link(CsyTarget target) {
+const CsyLink& CsyChain::link(CsyTarget target) const {
   switch (target) {
     case CsyTarget::PartCsy: return part_;
     case CsyTarget::MoveableMachineCsy: return moveable_;

@@ -320,8 +320,7 @@ void IppServer::execute_fast(const Pending& p) {
     server_.stop_machine("AbortE");
     rest_.reset();
     if (was) {
-      send(ippdme::format_error(was->tag, ErrorCode::TransactionAborted, ippdme::method_name(was->command)));
-      finish(was->tag);
+      answer_aborted(*was);
       queue_.pop_front();
       running_ = false;
     }

@@ -64,16 +64,14 @@ planner::Pose IppServer::pose_at(const Point3& xyz) const {
 
 // The lines planned from where the last step left the machine, all or none (a dry run
 // first), flushed to end at rest and fed to the loop.
-bool IppServer::plan_lines(std::vector<planner::Line> lines, std::string& why, bool& travel) {
+IppServer::Planned IppServer::plan_lines(std::vector<planner::Line> lines, std::string& why) {
   Server& s = server_;
-  travel = false;
-  busy_ = false;
   if (!s.planning_) {
     const auto& snap = s.core_.snapshot();
     if ((snap.mode != core::Mode::Idle && snap.mode != core::Mode::Free) || !s.in_loop_.empty()) {
       why = std::string("the machine is busy (State ") + std::string(mode_name(snap.mode)) + ")";
-      busy_ = snap.mode != core::Mode::Fault;  // braking, retracting: the step waits for rest
-      return false;
+      // Braking, retracting: the step waits for rest; a fault does not pass by itself.
+      return snap.mode == core::Mode::Fault ? Planned::Refused : Planned::Busy;
     }
     s.planner_.set_position(rest_ ? *rest_ : s.pose_of(snap.position));
   }
@@ -82,8 +80,7 @@ bool IppServer::plan_lines(std::vector<planner::Line> lines, std::string& why, b
   for (const auto& l : lines)
     if (auto r = dry.append(l); !r.ok()) {
       why = planner::describe(r, s.planner_.machine());
-      travel = r.error == planner::PlanError::OutOfTravel;
-      return false;
+      return r.error == planner::PlanError::OutOfTravel ? Planned::OutOfTravel : Planned::Refused;
     }
   s.planning_ = true;
   for (const auto& l : lines) {
@@ -92,7 +89,11 @@ bool IppServer::plan_lines(std::vector<planner::Line> lines, std::string& why, b
   }
   s.planner_.flush();
   s.feed_segments();
-  return true;
+  return Planned::Yes;
+}
+
+ErrorCode IppServer::refusal_error(Planned p) {
+  return p == Planned::OutOfTravel ? ErrorCode::MachineLimitEncountered : ErrorCode::ErrorProcessingMethod;
 }
 
 // A move needs the machine: the session takes control back (the user is no longer enabled);
@@ -121,11 +122,10 @@ bool IppServer::start_goto(const Pending& p, const ippdme::GoTo& c) {
   if (c.target.y) t[1] = *c.target.y;
   if (c.target.z) t[2] = *c.target.z;
   const planner::Line line{next_id(), pose_at(csy_.to_machine(t)), tools_.act(Param::GoToSpeed), planner::ProbePhase::None};
-  bool travel = false;
-  if (!plan_lines({line}, why, travel)) {
-    if (busy_) return wait_for_rest();
+  if (const auto planned = plan_lines({line}, why); planned != Planned::Yes) {
+    if (planned == Planned::Busy) return wait_for_rest();
     spdlog::info("I++ DME: GoTo refused: {}", why);
-    fail(p.tag, travel ? ErrorCode::MachineLimitEncountered : ErrorCode::ErrorProcessingMethod, name);
+    fail(p.tag, refusal_error(planned), name);
     return true;
   }
   step_ = Step::GoTo;
@@ -179,11 +179,10 @@ bool IppServer::start_ptmeas(const Pending& p, const ippdme::PtMeas& c) {
   }
   if (cycle->approach) lines.push_back(*cycle->approach);
   lines.push_back(cycle->search);
-  bool travel = false;
-  if (!plan_lines(std::move(lines), why, travel)) {
-    if (busy_) return wait_for_rest();
+  if (const auto planned = plan_lines(std::move(lines), why); planned != Planned::Yes) {
+    if (planned == Planned::Busy) return wait_for_rest();
     spdlog::info("I++ DME: PtMeas refused: {}", why);
-    fail(p.tag, travel ? ErrorCode::MachineLimitEncountered : ErrorCode::ErrorProcessingMethod, name);
+    fail(p.tag, refusal_error(planned), name);
     return true;
   }
   step_ = Step::PtMeas;
@@ -218,32 +217,22 @@ bool IppServer::wait_for_rest() {
 void IppServer::retry() {
   if (step_ != Step::Wait || queue_.empty()) return;
   step_ = Step::None;
-  const Pending p = queue_.front();
-  if (!execute(p)) return;  // started (or waits again)
-  if (!queue_.empty() && queue_.front().tag == p.tag) queue_.pop_front();
-  running_ = false;
-  pump();
+  if (run_front()) pump();  // else started (or waits again)
 }
 
-void IppServer::step_done() {
+void IppServer::step_done() { end_step(std::nullopt); }
+void IppServer::step_failed(ErrorCode code) { end_step(code); }
+
+// The motion step of the queue's front ended: its `%` (after its error), the next command.
+void IppServer::end_step(std::optional<ErrorCode> error) {
   step_ = Step::None;
   rest_.reset();
   if (queue_.empty()) return;
   const Pending p = queue_.front();
   queue_.pop_front();
   running_ = false;
-  finish(p.tag);
-  pump();
-}
-
-void IppServer::step_failed(ErrorCode code) {
-  step_ = Step::None;
-  rest_.reset();
-  if (queue_.empty()) return;
-  const Pending p = queue_.front();
-  queue_.pop_front();
-  running_ = false;
-  fail(p.tag, code, ippdme::method_name(p.command));
+  if (error) fail(p.tag, *error, ippdme::method_name(p.command));
+  else finish(p.tag);
   pump();
 }
 
@@ -274,10 +263,9 @@ void IppServer::segment_end(const core::Event& e) {
     }
     const planner::Line back{next_id(), pose_at(*target), tools_.act(Param::GoToSpeed), planner::ProbePhase::None};
     std::string why;
-    bool travel = false;
-    if (!plan_lines({back}, why, travel)) {
+    if (const auto planned = plan_lines({back}, why); planned != Planned::Yes) {
       spdlog::info("I++ DME: PtMeas retract refused: {}", why);
-      step_failed(travel ? ErrorCode::MachineLimitEncountered : ErrorCode::ErrorProcessingMethod);
+      step_failed(refusal_error(planned));
       return;
     }
     step_ = Step::Retract;

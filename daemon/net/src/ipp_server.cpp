@@ -244,20 +244,32 @@ void IppServer::pump() {
   admit_unacked(false);
   while (!running_ && !queue_.empty() && conn_) {
     running_ = true;
-    const Pending p = queue_.front();
-    if (p.aborted) {
+    if (queue_.front().aborted) {
+      const Pending p = queue_.front();
       queue_.pop_front();
       running_ = false;
-      send(ippdme::format_error(p.tag, ErrorCode::TransactionAborted, ippdme::method_name(p.command)));
-      finish(p.tag);
+      answer_aborted(p);
       continue;
     }
-    if (!execute(p)) break;  // a motion step: step_done / step_failed go on
-    if (!queue_.empty() && queue_.front().tag == p.tag) queue_.pop_front();
-    running_ = false;
+    if (!run_front()) break;  // a motion step: step_done / step_failed go on
     admit_unacked(false);
   }
   read();
+}
+
+// Runs the queue's front; true when it was answered (it has left the queue), false when it
+// started a motion step (or waits for the machine to stand).
+bool IppServer::run_front() {
+  const Pending p = queue_.front();
+  if (!execute(p)) return false;
+  if (!queue_.empty() && queue_.front().tag == p.tag) queue_.pop_front();
+  running_ = false;
+  return true;
+}
+
+void IppServer::answer_aborted(const Pending& p) {
+  send(ippdme::format_error(p.tag, ErrorCode::TransactionAborted, ippdme::method_name(p.command)));
+  finish(p.tag);
 }
 
 void IppServer::finish(const Tag& tag) {
@@ -290,10 +302,7 @@ void IppServer::abort_queued() {
   }
   std::deque<Pending> waiting;
   waiting.swap(queue_);
-  for (const auto& p : waiting) {
-    send(ippdme::format_error(p.tag, ErrorCode::TransactionAborted, ippdme::method_name(p.command)));
-    finish(p.tag);
-  }
+  for (const auto& p : waiting) answer_aborted(p);
 }
 
 // The machine's owner is the session: kept, taken when free, or taken back from the operator

@@ -4,6 +4,7 @@
 // psi about z, then theta about the new x, then phi about the new z. Pure.
 #pragma once
 #include <array>
+#include <utility>
 
 #include "imess/ippdme/commands.hpp"
 
@@ -32,7 +33,7 @@ class CsyLink {
 class CsyChain {
  public:
   void set(CsyTarget target, const CsyTransformation& t) { link(target) = CsyLink(t); }
-  const CsyTransformation& get(CsyTarget target) const { return const_cast<CsyChain*>(this)->link(target).transformation(); }
+  const CsyTransformation& get(CsyTarget target) const { return link(target).transformation(); }
   void select(CoordSystem c) { current_ = c; }
   CoordSystem current() const { return current_; }
 
@@ -43,7 +44,8 @@ class CsyChain {
   Point3 vector_to_machine(const Point3& v) const;
 
  private:
-  CsyLink& link(CsyTarget target);
+  const CsyLink& link(CsyTarget target) const;
+  CsyLink& link(CsyTarget target) { return const_cast<CsyLink&>(std::as_const(*this).link(target)); }
   int depth() const;  // links between machine and the current system: 0 .. 3
   CsyLink multiple_arm_, moveable_, part_, jog_display_, jog_move_, sensor_;
   CoordSystem current_ = CoordSystem::MachineCsy;

@@ -96,6 +96,8 @@ class IppServer {
   void fail(const ippdme::Tag& tag, ippdme::ErrorCode code, std::string_view cause);  // `!` + `%`
   void enter_error(ippdme::ErrorCode code, std::string_view cause);
   void abort_queued();
+  bool run_front();                             // the queue's front: answered (true) or a motion step started
+  void answer_aborted(const Pending& p);        // 0006 and its `%`
   void admit_unacked(bool all);                          // every queued transaction: 0006 + `%`
   bool claim_control(bool at_start, std::string& why);  // the session owns the machine
   void release_control();
@@ -113,7 +115,10 @@ class IppServer {
   bool start_goto(const Pending& p, const ippdme::GoTo& c);
   bool start_ptmeas(const Pending& p, const ippdme::PtMeas& c);
   bool start_home(const Pending& p);
-  bool plan_lines(std::vector<planner::Line> lines, std::string& why, bool& travel);
+  enum class Planned : unsigned char { Yes, Busy, OutOfTravel, Refused };  // Busy: the machine still moves
+  Planned plan_lines(std::vector<planner::Line> lines, std::string& why);
+  static ippdme::ErrorCode refusal_error(Planned p);  // OutOfTravel 2500, else 0511
+  void end_step(std::optional<ippdme::ErrorCode> error);
   void step_failed(ippdme::ErrorCode code);
   bool wait_for_rest();
   void step_done();
@@ -147,7 +152,6 @@ class IppServer {
   std::uint32_t next_id_ = kIdBase;
   ippdme::Point3 approach_m_{}, normal_m_{};  // PtMeas: the approach point and the surface normal, machine
   bool hit_seen_ = false;
-  bool busy_ = false;                          // plan_lines: refused only because the machine still moves
   ippdme::Point3 hit_tip_m_{};                 // PtMeas: the ball's centre at the touch, machine
   // PtMeas: where the probe cycle stopped (its Done), the start of the retract; between steps
   // the machine's own position is the start (the operator may have moved it).
