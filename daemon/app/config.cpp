@@ -349,6 +349,10 @@ void load_config_text(const std::string& text, const std::string& path, DaemonCo
   if (auto axes = top.object("axes")) read_axes_section(*axes, cfg);
   if (auto b = top.object("backend")) read_backend_section(*b, cfg);
   if (auto jn = top.object("journal")) read_journal_section(*jn, cfg);
+  if (auto f = top.object("frames")) {  // the part frames' store
+    cfg.server.frames_file = f->text("file", cfg.server.frames_file);
+    f->finish();
+  }
   if (auto o = top.object("outputs")) read_outputs_section(*o, cfg);
   if (auto p = top.object("programs")) read_programs_section(*p, path, cfg);
   if (auto i = top.object("ippdme")) read_ippdme_section(*i, cfg);
@@ -409,16 +413,22 @@ std::vector<std::string> load_messdrc_text(const std::string& text, const std::s
       warnings.push_back(at + "unknown setting '" + shown + "' ignored (known: SpeedLevel, TipReversed, TipRadius)");
     }
   }
+  if (!seen.count("TipRadius")) {  // the 1996 manual: a messdrc without TipRadius means no compensation
+    cfg.core.params.tip_radius = 0.0;
+    cfg.notes.push_back("messdrc: no TipRadius line, so TipRadius 0.000 (no radius compensation)");
+  }
   return warnings;
 }
 
-std::string default_journal_dir() {
+std::string default_state_file(const std::string& name, const std::string& fallback) {
   if (const char* state = std::getenv("STATE_DIRECTORY"); state && *state) {
     std::string first(state);
-    return first.substr(0, first.find(':')) + "/journal";  // systemd lists several as a:b
+    return first.substr(0, first.find(':')) + "/" + name;  // systemd lists several as a:b
   }
-  return "messd-journal";
+  return fallback;
 }
+
+std::string default_journal_dir() { return default_state_file("journal", "messd-journal"); }
 
 void finish_config(DaemonConfig& cfg) {
   const auto& layout = cfg.core.layout;

@@ -45,6 +45,8 @@ std::vector<std::string> load_messdrc_text(const std::string& text, const std::s
 // The journal's directory when neither --journal nor the configuration names one:
 // $STATE_DIRECTORY/journal (systemd's StateDirectory=), else ./messd-journal.
 std::string default_journal_dir();
+// $STATE_DIRECTORY/<name> under systemd, else `fallback` (relative to the working directory).
+std::string default_state_file(const std::string& name, const std::string& fallback);
 
 // Derives what follows from other settings (sim axes from the travel, probe polarity, the
 // server's read-only Period and Backend).

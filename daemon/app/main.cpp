@@ -48,6 +48,8 @@ app::DaemonConfig configure(const app::CliOptions& cli) {
   if (cli.journal) cfg.journal.dir = *cli.journal;
   if (cli.programs) cfg.server.programs.folder = std::filesystem::absolute(*cli.programs).lexically_normal().string();
   if (cfg.journal.dir.empty()) cfg.journal.dir = app::default_journal_dir();
+  if (cli.frames) cfg.server.frames_file = *cli.frames;
+  if (cfg.server.frames_file.empty()) cfg.server.frames_file = app::default_state_file("frames.json", "messd-frames.json");
   if (cli.home) cfg.home_on_start = true;
   if (cli.no_realtime) cfg.realtime = false;
   cfg.server.log_traffic = cli.debug_comm;

@@ -27,6 +27,27 @@ CsyLink::CsyLink(const CsyTransformation& t) : t_(t) {
     }
 }
 
+CsyTransformation csy_transformation(const double (&r)[3][3], const Point3& o) {
+  const double deg = 180 / std::numbers::pi;
+  auto mod360 = [](double a) {
+    const double m = std::fmod(a, 360.0);
+    return m < 0 ? m + 360.0 : (m >= 360.0 ? 0.0 : m);
+  };
+  CsyTransformation t{o[0], o[1], o[2], 0, 0, 0};
+  // R = Rz(phi)·Rx(theta)·Rz(psi): R[2] = (st·sp, -st·cp, ct), column 2 = (sf·st, cf·st, ct).
+  const double st = std::hypot(r[2][0], r[2][1]);
+  t.theta = std::atan2(st, r[2][2]) * deg;
+  if (st > 1e-12) {
+    t.psi = mod360(std::atan2(r[2][0], -r[2][1]) * deg);
+    t.phi = mod360(std::atan2(r[0][2], r[1][2]) * deg);
+  } else if (r[2][2] > 0) {  // theta 0: a turn about z by psi + phi
+    t.phi = mod360(std::atan2(r[0][1], r[0][0]) * deg);
+  } else {                   // theta 180: Rz(phi)·diag(1, -1, -1)
+    t.phi = mod360(std::atan2(-r[0][1], r[0][0]) * deg);
+  }
+  return t;
+}
+
 Point3 CsyLink::vector_to_child(const Point3& v) const {
   Point3 out{};
   for (int i = 0; i < 3; ++i) out[i] = r_[i][0] * v[0] + r_[i][1] * v[1] + r_[i][2] * v[2];

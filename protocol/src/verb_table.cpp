@@ -23,6 +23,18 @@ std::optional<double> optional_number(const Args& a, std::size_t i) {
 constexpr ArgSpec move_id() {
   return whole(number("id", 0, 4294967295.0, "a move id is a whole number from {min} to {max}, got '{got}'"));
 }
+// SetFrame's O, X and Z vectors, each three AxisWords of its letter in order.
+Command set_frame(const Args& a) {
+  SetFrame f{std::string(a.at[0].text), {}, {}, {}};
+  int count[3] = {0, 0, 0};
+  for (const auto& w : a.axis_words) {
+    const int v = w.letter == 'O' ? 0 : w.letter == 'X' ? 1 : 2;
+    auto& slot = v == 0 ? f.origin : v == 1 ? f.x_axis : f.z_axis;
+    if (!slot) slot = Vector3{};
+    (*slot)[static_cast<std::size_t>(count[v]++)] = w.value;
+  }
+  return f;
+}
 std::uint32_t id_of(const Args& a) { return static_cast<std::uint32_t>(a.number(0)); }
 PathWords path_words(const Args& a) {
   PathWords w;
@@ -169,6 +181,35 @@ const std::array kVerbs{
     VerbSpec{"Key", args(word("name")),
              "a key of the jog panel for the inspection software (I++ DME KeyPress: Done, Del, F1 ...), while it has enabled the user",
              false, Access::Controlling, command_index<Key>(), [](const Args& a) -> Command { return Key{std::string(a.at[0].text)}; }},
+    VerbSpec{"Frames", args(), "the part frames on the controller: the active one and every name", false, Access::Open,
+             command_index<Frames>(), [](const Args&) -> Command { return Frames{}; }},
+    VerbSpec{"Frame", args(optional(word("name"))), "one part frame (default: the active one): origin and axes in machine coordinates",
+             false, Access::Open, command_index<Frame>(), [](const Args& a) -> Command { return Frame{std::string(a.at[0].text)}; }},
+    VerbSpec{"PartPos", args(optional(word("name"))), "the current position in a part frame (default: the active one)",
+             false, Access::Open, command_index<PartPos>(),
+             [](const Args& a) -> Command { return PartPos{std::string(a.at[0].text)}; }},
+    VerbSpec{"UseFrame", args(word("name")), "make a stored part frame (or machine) the active one; hits are then also sent as PartPt",
+             false, Access::Controlling, command_index<UseFrame>(),
+             [](const Args& a) -> Command { return UseFrame{std::string(a.at[0].text)}; }},
+    VerbSpec{"SetFrame",
+             args(word("name"), optional(with_vectors(axis_words("O x y z X i j k Z i j k", "OXZ",
+                                                                 "SetFrame takes O (origin), X and Z (axis directions), each a letter "
+                                                                 "followed by three numbers and at most once, got '{got}'; usage: {usage}"),
+                                                      "OXZ"))),
+             "store a part frame and make it active: origin O (default: here), axes X and Z (default: the machine's)", false,
+             Access::Controlling, command_index<SetFrame>(), [](const Args& a) -> Command { return set_frame(a); }},
+    VerbSpec{"Align",
+             args(word("name"), choice("method", "321 holes", "Align takes the method 321 (plane line point) or holes (plane hole hole), got '{got}'; usage: {usage}"),
+                  word("plane-hits"), word("hits"), word("hits")),
+             "build a part frame from journaled hits (numbers like 1-3 or 4,5): 321 plane line point, or holes plane hole hole",
+             false, Access::Controlling, command_index<Align>(),
+             [](const Args& a) -> Command {
+               return Align{std::string(a.at[0].text), a.at[1].choice == 1,
+                            {std::string(a.at[2].text), std::string(a.at[3].text), std::string(a.at[4].text)}};
+             }},
+    VerbSpec{"DelFrame", args(word("name")), "delete a stored part frame (the active one: machine becomes active)", false,
+             Access::Controlling, command_index<DelFrame>(),
+             [](const Args& a) -> Command { return DelFrame{std::string(a.at[0].text)}; }},
 };
 
 }  // namespace

@@ -125,3 +125,21 @@ TEST_CASE("messdrc text: values, underflow, repeats, empty files and bad values"
   CHECK(contains(rc_error(""), "rc: is empty"));
   CHECK(contains(rc_error("TipReversed yes\n"), "rc:1: TipReversed takes true or false"));
 }
+
+TEST_CASE("messdrc text: no TipRadius line means radius 0.0, as the 1996 manual says") {
+  DaemonConfig cfg;
+  REQUIRE(cfg.core.params.tip_radius > 0);  // the built-in simulated machine's 2 mm ball
+  load_messdrc_text("SpeedLevel 0.5\n", "rc", cfg);
+  CHECK(cfg.core.params.tip_radius == 0.0);
+  CHECK(contains(cfg.notes.back(), "no TipRadius line, so TipRadius 0.000"));
+  DaemonConfig with;
+  load_messdrc_text("TipRadius 1.5\n", "rc", with);
+  CHECK(with.core.params.tip_radius == 1.5);
+}
+
+TEST_CASE("config: frames.file names the part frames' store, unknown keys in frames are refused") {
+  DaemonConfig cfg;
+  load_config_text(R"({"frames": {"file": "/var/lib/messd/frames.json"}})", "c.json", cfg);
+  CHECK(cfg.server.frames_file == "/var/lib/messd/frames.json");
+  CHECK(contains(json_error(R"({"frames": {"path": "x"}})"), "unknown key 'frames.path'"));
+}

@@ -64,3 +64,33 @@ TEST_CASE("csy: the Jog and Sensor systems are kept and read back, and move noth
     check_near(c.from_machine({4, 5, 6}), {4, 5, 6});
   }
 }
+
+TEST_CASE("csy_transformation undoes a link's rotation: any angles, and theta 0 and 180 (seeded)") {
+  std::mt19937 rng(1294);
+  std::uniform_real_distribution<double> angle(0, 360), tilt(0, 180), offset(-500, 500);
+  auto check = [](const CsyTransformation& t) {
+    const CsyLink link(t);
+    double r[3][3];
+    for (int j = 0; j < 3; ++j) {
+      Point3 e{0, 0, 0};
+      e[static_cast<std::size_t>(j)] = 1;
+      const auto col = link.vector_to_child(e);
+      for (int i = 0; i < 3; ++i) r[i][j] = col[static_cast<std::size_t>(i)];
+    }
+    const auto back = csy_transformation(r, {t.x0, t.y0, t.z0});
+    CHECK(back.theta >= 0);
+    CHECK(back.theta <= 180);
+    CHECK(back.psi >= 0);
+    CHECK(back.psi < 360);
+    CHECK(back.phi >= 0);
+    CHECK(back.phi < 360);
+    const CsyLink again(back);  // the same mapping, whatever angles express it
+    for (const Point3 p : {Point3{1, 2, 3}, Point3{-40, 7, 0.5}, Point3{0, 0, 0}}) {
+      const auto a = link.to_child(p), b = again.to_child(p);
+      for (std::size_t i = 0; i < 3; ++i) CHECK(std::abs(a[i] - b[i]) < 1e-9);
+    }
+  };
+  for (int n = 0; n < 300; ++n) check({offset(rng), offset(rng), offset(rng), tilt(rng), angle(rng), angle(rng)});
+  for (double theta : {0.0, 180.0, 1e-9, 179.9999999})
+    for (int n = 0; n < 20; ++n) check({offset(rng), offset(rng), offset(rng), theta, angle(rng), angle(rng)});
+}

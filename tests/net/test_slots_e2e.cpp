@@ -88,8 +88,15 @@ TEST_CASE("a client that stops reading is dropped after control.write_stall_s") 
   DaemonProcess messd({"--config", config.path()});
   LineClient checker(messd.port());
   LineClient stuck(messd.port(), "", 4096);  // small receive buffer, never reads
+  // Replies filling the socket buffers, yet well under the 1 MiB queue cap: about 600 KB.
+  std::size_t one_help = 0;
+  checker.send("Help");
+  checker.until([&](const std::string& l) {
+    one_help += l.size() + 1;
+    return l.rfind("Ok Help", 0) == 0;
+  });
   std::string helps;
-  for (int i = 0; i < 300; ++i) helps += "Help\n";  // ~400 KB of replies: well under the 1 MiB queue cap
+  for (std::size_t bytes = 0; bytes < 600000; bytes += one_help) helps += "Help\n";
   stuck.send_raw(helps);
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   auto before = checker.request("Status");

@@ -48,7 +48,9 @@ std::string sample_line(const VerbSpec& v) {
       case ArgKind::Word: line += " TipRadius"; break;
       case ArgKind::Choice: line += " " + std::string(a.words.substr(0, a.words.find(' '))); break;
       case ArgKind::Sequence: line += " 17"; break;
-      case ArgKind::AxisWords: line += " " + std::string(1, a.words[0]) + "10"; break;
+      case ArgKind::AxisWords:  // a vector letter stands alone before its three numbers
+        line += " " + std::string(1, a.words[0]) + (a.vectors.find(a.words[0]) != std::string_view::npos ? " 1 0 0" : "10");
+        break;
     }
   }
   return line;

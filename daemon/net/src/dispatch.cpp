@@ -161,6 +161,13 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Abort&) { abort_program(s, slot); },
           [&](const protocol::Program&) { program_status(s, slot); },
           [&](const protocol::Key& c) { press_key(s, slot, c.name); },
+          [&](const protocol::Frames&) { list_frames(s, slot); },
+          [&](const protocol::Frame& c) { show_frame(s, slot, c.name); },
+          [&](const protocol::PartPos& c) { part_pos(s, slot, c.name); },
+          [&](const protocol::UseFrame& c) { use_frame(s, slot, c.name); },
+          [&](const protocol::SetFrame& c) { set_frame(s, slot, c); },
+          [&](const protocol::Align& c) { align(s, slot, c); },
+          [&](const protocol::DelFrame& c) { del_frame(s, slot, c.name); },
       },
       cmd);
 }

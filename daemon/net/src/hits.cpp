@@ -20,6 +20,7 @@ void Server::send_hit(const core::Event& e) {
   }
   broadcast(line);
   broadcast(protocol::format_meas_pt(hit.p));
+  send_part_point(hit);
 }
 
 }  // namespace imess::net

@@ -287,6 +287,7 @@ bool IppServer::execute(const Pending& p) {
             t.psi = degrees_mod_360(t.psi);
             t.phi = degrees_mod_360(t.phi);
             csy_.set(c.csy, t);
+            if (c.csy == ippdme::CsyTarget::PartCsy) store_part_csy();
             return done();
           },
           [&](const ippdme::GetCsyTransformation& c) {

@@ -88,6 +88,7 @@ void IppServer::start(const std::string& listen) {
   port_ = open_listener(acceptor_, listen, config_.port, " for I++ DME",
                         " - is another messd running? (--ippdme-port chooses another, 0 turns it off)");
   spdlog::info("I++ DME: listening on {}:{}", listen, port_);
+  part_frame_changed();  // PartCsy starts as the controller's active frame
   accept();
 }
 

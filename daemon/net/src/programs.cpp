@@ -4,7 +4,10 @@
 // the Block / ProgPause / ProgEnd events. Rules in docs/programs.md ("Running programs").
 #include <spdlog/spdlog.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
+#include <numbers>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -95,6 +98,25 @@ programs::Setup program_setup(const ProgramConfig& pc, const core::CoreConfig& c
   return s;
 }
 
+bool work_offsets_from_frames(const PartFrames& frames, const hal::AxisLayout& layout, programs::GcodeOptions& g,
+                              std::string& error) {
+  for (int i = 0; i < 6; ++i) {
+    const std::string name = "G5" + std::to_string(4 + i);
+    const auto* f = frames.find(name);
+    if (!f) continue;
+    const double turned = Eigen::AngleAxisd(f->rotation()).angle();
+    if (turned > 1e-9) {
+      error = "line 1:1: not configured: found the part frame " + name + " turned by " + std::to_string(turned * 180 / std::numbers::pi) +
+              " degrees, accepted frames G54 to G59 that only shift the machine's axes (SetFrame " + name + " O x y z)";
+      return false;
+    }
+    for (int c = 0; c < 3; ++c)
+      if (const int a = layout.cartesian_axis(c); a >= 0) g.work_offsets[static_cast<std::size_t>(i)][static_cast<std::size_t>(a)] = f->translation()[c];
+    if (frames.active() == name) g.work_offset = i;
+  }
+  return true;
+}
+
 bool resolve_program_outputs(std::vector<programs::Item>& items, const ProgramConfig& pc, const core::CoreConfig& core,
                              std::string& error) {
   for (auto& item : items) {
@@ -126,7 +148,8 @@ bool resolve_program_outputs(std::vector<programs::Item>& items, const ProgramCo
 // Translates and checks the program from `start`; the items of the run in `items`.
 bool Server::check_program_text(const LoadedProgram& p, const planner::Pose& start, std::vector<programs::Item>& items,
                                 programs::Check& check, std::string& error) const {
-  const programs::Setup setup = program_setup(config_.programs, core_.config(), planner_.machine(), start);
+  programs::Setup setup = program_setup(config_.programs, core_.config(), planner_.machine(), start);
+  if (!work_offsets_from_frames(frames_, layout(), setup.gcode, error)) return false;
   programs::Translation t;
   try {
     t = programs::translate(p.lang, p.text, setup);

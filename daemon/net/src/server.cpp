@@ -53,6 +53,7 @@ std::uint16_t open_listener(tcp::acceptor& acceptor, const std::string& listen, 
 }
 
 void Server::start() {
+  frames_ = PartFrames(config_.frames_file);  // a store that does not load is a start-up error naming it
   port_ = open_listener(acceptor_, config_.listen, config_.port, "", " - is another messd running? (--port chooses another)");
   if (config_.ippdme.on) {
     if (layout().cartesian_axis(0) >= 0 && layout().cartesian_axis(1) >= 0 && layout().cartesian_axis(2) >= 0) {

@@ -28,6 +28,11 @@ class CsyLink {
   double r_[3][3]{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 };
 
+// The transformation whose link maps parent to child as q -> R·q + o (R row-major, a rotation):
+// the inverse of CsyLink's construction. theta comes out in 0..180, psi and phi in [0, 360);
+// where theta is 0 or 180 only psi + phi (or phi - psi) is determined, and psi is given as 0.
+CsyTransformation csy_transformation(const double (&r)[3][3], const Point3& o);
+
 // The links of the chain and the one the client works in (SetCoordSystem). The Jog and
 // Sensor systems are kept and read back only: they move nothing on this machine.
 class CsyChain {

@@ -86,6 +86,23 @@ struct Upload { std::string name; };
 struct Run { bool detached = false; };
 struct Abort {};
 struct Program {};
+// Part frames (docs/protocol.md, "Part frames"): named frames mapping part coordinates to the
+// machine's, stored on the controller; the active one tags every hit with PartPt.
+struct Frames {};                                           // the active frame and all names
+struct Frame { std::string name; };                         // one frame (empty: the active one)
+struct PartPos { std::string name; };                       // the position in a frame (empty: active)
+struct UseFrame { std::string name; };
+using Vector3 = std::array<double, 3>;
+struct SetFrame {                                           // nothing given: origin here, machine axes
+  std::string name;
+  std::optional<Vector3> origin, x_axis, z_axis;            // O x y z, X i j k, Z i j k
+};
+struct Align {                                              // from journaled hits: "1-3", "4,5", "6"
+  std::string name;
+  bool holes = false;                                       // false: 3-2-1 plane line point; true: plane hole hole
+  std::array<std::string, 3> hits;
+};
+struct DelFrame { std::string name; };
 inline constexpr double kMaxDwellSeconds = 3600;
 inline constexpr int kMaxArcTurns = 1000;  // ArcTo P: 1 (the arc alone) ... this
 
@@ -95,6 +112,7 @@ inline constexpr int kWatchMaxMs = 60000;
 using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo, Home, Free,
                              Reset, Set, Get, Stats, HandMv, Quit, Replay, Take, Release, Watch, Version,
                              MoveTo, ArcTo, Dwell, Queue, Pause, Resume, Probe, JogAx, SetOut, Outputs,
-                             Programs, Load, Upload, Run, Abort, Program, Key>;
+                             Programs, Load, Upload, Run, Abort, Program, Key, Frames, Frame, PartPos, UseFrame,
+                             SetFrame, Align, DelFrame>;
 
 }  // namespace imess::protocol

@@ -66,6 +66,8 @@ class IppServer {
   void retry();                                // a move that waited for the machine to stand (State events)
   void key(const std::string& name);           // Key <name> from the jog panel: KeyPress
   bool listening_for_keys() const { return conn_ && in_session_ && user_enabled_; }
+  // The controller's active part frame changed (UseFrame, SetFrame, Align ...): PartCsy follows.
+  void part_frame_changed();
 
  private:
   struct Connection;
@@ -145,6 +147,8 @@ class IppServer {
   std::optional<MoveDaemon> daemon_;
   ippdme::ToolBox tools_;
   ippdme::CsyChain csy_;
+  void store_part_csy();  // PartCsy as the session set it becomes the controller's frame "PartCsy"
+  bool own_part_csy_ = false;  // this session's SetCsyTransformation(PartCsy) is being stored
   // The motion step of the queue's front.
   Step step_ = Step::None;
   std::uint32_t wait_id_ = 0;              // its last segment: its Done completes the step

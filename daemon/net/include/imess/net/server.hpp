@@ -19,6 +19,7 @@
 #include "imess/net/host_list.hpp"
 #include "imess/net/ipp_server.hpp"
 #include "imess/net/log_limiter.hpp"
+#include "imess/net/part_frames.hpp"
 #include "imess/net/program_run.hpp"
 #include "imess/net/session.hpp"
 #include "imess/planner/planner.hpp"
@@ -63,6 +64,7 @@ struct ServerConfig {
   std::string backend = "unknown";  // the backend type (Get Backend): one word
   ProgramConfig programs;           // the programs folder and how program words map to this machine
   IppConfig ippdme;                 // the I++ DME server (TCP 1294) and its tools
+  std::string frames_file;          // the part frames' store (JSON); empty: kept for this run only
 };
 
 // Opens, binds and listens on listen:port (0: any free port); returns the port. Throws
@@ -142,6 +144,22 @@ class Server {
   std::string stats_line();
   // hits.cpp, replay.cpp
   void send_hit(const core::Event& e);
+  // frames.cpp: part frames on the wire
+  bool frames_usable(Session& s, std::uint32_t slot, std::string_view verb);
+  const metrology::Frame* frame_named(Session& s, std::uint32_t slot, std::string_view verb, std::string& name);
+  void list_frames(Session& s, std::uint32_t slot);
+  void show_frame(Session& s, std::uint32_t slot, std::string name);
+  void part_pos(Session& s, std::uint32_t slot, std::string name);
+  void use_frame(Session& s, std::uint32_t slot, std::string name);
+  void set_frame(Session& s, std::uint32_t slot, const protocol::SetFrame& c);
+  void align(Session& s, std::uint32_t slot, const protocol::Align& c);
+  void del_frame(Session& s, std::uint32_t slot, const std::string& name);
+  void store_frame(Session& s, std::uint32_t slot, std::string_view verb, const std::string& name,
+                   const metrology::Frame& frame, std::string_view extra);
+  // Stores and activates (without an answer or event); returns why the file was not written.
+  std::string keep_frame(const std::string& name, const metrology::Frame& frame);
+  void frame_changed();  // the Frame event, and the I++ DME session's PartCsy
+  void send_part_point(const protocol::HitMsg& hit);
   void on_replay(Session& s, std::uint32_t slot, std::uint64_t from);
   // queue.cpp: queued moves — the planner on the io thread, the segment ring's producer
   void queue_command(Session& s, std::uint32_t slot, const QueuedCommand& c);
@@ -231,6 +249,7 @@ class Server {
   std::deque<QueuedCommand> held_;           // commands queued after it, unplanned
   bool flush_check_posted_ = false;
   ProgramRun program_;  // the one program loaded or running (programs.cpp)
+  PartFrames frames_;   // the part frames and the active one (frames.cpp)
   // The I++ DME server: a second way in, driving this planner under this control (ipp_*.cpp).
   friend class IppServer;
   std::unique_ptr<IppServer> ipp_;

@@ -1,0 +1,293 @@
+// Part frames on the wire: Frames, Frame, PartPos, UseFrame, SetFrame, Align, DelFrame, and
+// the PartPt that follows every hit while a part frame is active (docs/protocol.md, "Part
+// frames"). The store is PartFrames; alignments fit journaled hits with the metrology library.
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "imess/metrology/alignment.hpp"
+#include "imess/metrology/fit.hpp"
+#include "imess/metrology/probe_compensation.hpp"
+#include "imess/net/server.hpp"
+#include "imess/protocol/hit_set.hpp"
+#include "imess/protocol/numbers.hpp"
+
+namespace imess::net {
+namespace {
+
+using protocol::ErrorCode;
+using protocol::format_err;
+using protocol::format_ok;
+using Vec = Eigen::Vector3d;
+
+void append_vector(std::string& out, std::string_view label, const Vec& v, int decimals) {
+  out += ' ';
+  out += label;
+  for (int c = 0; c < 3; ++c) {
+    out += ' ';
+    protocol::append_fixed(out, v[c], decimals);
+  }
+}
+
+// "Origin x y z XAxis i j k YAxis i j k ZAxis i j k": the frame's origin and axes in machine
+// coordinates (the columns of its rotation).
+std::string frame_text(const metrology::Frame& f) {
+  std::string out;
+  append_vector(out, "Origin", f.translation(), 4);
+  append_vector(out, "XAxis", f.rotation().col(0), 9);
+  append_vector(out, "YAxis", f.rotation().col(1), 9);
+  append_vector(out, "ZAxis", f.rotation().col(2), 9);
+  return out.substr(1);
+}
+
+// The journaled hits of one set: surface points, approach directions, tip radii.
+struct HitGroup {
+  std::vector<Vec> surface, centre, approach;
+  double radius = 0;
+};
+
+}  // namespace
+
+bool Server::frames_usable(Session& s, std::uint32_t slot, std::string_view verb) {
+  if (layout().cartesian_axis(0) >= 0 && layout().cartesian_axis(1) >= 0 && layout().cartesian_axis(2) >= 0) return true;
+  reply(s, slot, format_err(ErrorCode::BadValue, std::string(verb) + ": part frames need linear X Y Z axes; this machine has " + layout().names()));
+  return false;
+}
+
+// The frame of `name` (empty: the active one), or an Err 105 naming the frames there are.
+const metrology::Frame* Server::frame_named(Session& s, std::uint32_t slot, std::string_view verb, std::string& name) {
+  if (name.empty()) name = frames_.active();
+  if (const auto* f = frames_.find(name)) return f;
+  std::string names;
+  for (const auto& n : frames_.names()) names += ' ' + n;
+  reply(s, slot, format_err(ErrorCode::BadValue, std::string(verb) + ": no frame '" + name + "'; the frames are" + names));
+  return nullptr;
+}
+
+void Server::list_frames(Session& s, std::uint32_t slot) {
+  std::string data = "Active " + frames_.active() + " Names";
+  for (const auto& n : frames_.names()) data += ' ' + n;
+  reply(s, slot, format_ok("Frames", data));
+}
+
+void Server::show_frame(Session& s, std::uint32_t slot, std::string name) {
+  if (const auto* f = frame_named(s, slot, "Frame", name)) reply(s, slot, format_ok("Frame", name + ' ' + frame_text(*f)));
+}
+
+void Server::part_pos(Session& s, std::uint32_t slot, std::string name) {
+  if (!frames_usable(s, slot, "PartPos")) return;
+  const auto* f = frame_named(s, slot, "PartPos", name);
+  if (!f) return;
+  const Vec p = f->point_from_parent(layout().cartesian(core_.snapshot().position));
+  std::string data = name;
+  for (int c = 0; c < 3; ++c) {
+    data += ' ';
+    protocol::append_mm(data, p[c]);
+  }
+  reply(s, slot, format_ok("PartPos", data));
+}
+
+void Server::use_frame(Session& s, std::uint32_t slot, std::string name) {
+  if (!frames_usable(s, slot, "UseFrame") || !frame_named(s, slot, "UseFrame", name)) return;
+  frames_.use(name);
+  reply(s, slot, format_ok("UseFrame", name));
+  frame_changed();
+}
+
+// Stores `frame` under `name`, makes it active, answers `verb` with the frame and announces it.
+void Server::store_frame(Session& s, std::uint32_t slot, std::string_view verb, const std::string& name,
+                         const metrology::Frame& frame, std::string_view extra) {
+  const std::string save_error = keep_frame(name, frame);
+  std::string data = name + ' ' + frame_text(frame);
+  if (!extra.empty()) data += ' ' + std::string(extra);
+  if (!save_error.empty()) data += " Stored no";
+  reply(s, slot, format_ok(verb, data));
+  frame_changed();
+}
+
+std::string Server::keep_frame(const std::string& name, const metrology::Frame& frame) {
+  const std::string save_error = frames_.put(name, frame);
+  if (!save_error.empty())
+    log_limited(spdlog::level::err, "frames", "part frame " + name + " kept for this run only: " + save_error);
+  return save_error;
+}
+
+void Server::set_frame(Session& s, std::uint32_t slot, const protocol::SetFrame& c) {
+  if (!frames_usable(s, slot, "SetFrame")) return;
+  if (auto why = PartFrames::refuse_name(c.name); !why.empty()) {
+    reply(s, slot, format_err(ErrorCode::BadValue, "SetFrame " + c.name.substr(0, 40) + ": accepted " + why));
+    return;
+  }
+  const Vec origin = c.origin ? Vec((*c.origin)[0], (*c.origin)[1], (*c.origin)[2])
+                              : Vec(layout().cartesian(core_.snapshot().position));
+  if (c.x_axis.has_value() != c.z_axis.has_value()) {
+    reply(s, slot, format_err(ErrorCode::BadValue, "SetFrame " + c.name + ": give both X and Z (the axes' directions) or neither (the machine's axes)"));
+    return;
+  }
+  Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
+  if (c.x_axis) {
+    Vec x((*c.x_axis)[0], (*c.x_axis)[1], (*c.x_axis)[2]), z((*c.z_axis)[0], (*c.z_axis)[1], (*c.z_axis)[2]);
+    if (!(x.norm() > 1e-9) || !(z.norm() > 1e-9)) {
+      reply(s, slot, format_err(ErrorCode::BadValue, "SetFrame " + c.name + ": the X and Z directions must not be zero"));
+      return;
+    }
+    x.normalize();
+    z.normalize();
+    if (std::abs(x.dot(z)) > 1e-3) {
+      reply(s, slot, format_err(ErrorCode::BadValue, "SetFrame " + c.name + ": X and Z must be perpendicular (within 1e-3 rad), their cosine is " + std::to_string(x.dot(z))));
+      return;
+    }
+    r.col(0) = x;
+    r.col(1) = z.cross(x).normalized();
+    r.col(2) = z;
+  }
+  try {
+    store_frame(s, slot, "SetFrame", c.name, metrology::Frame::orthonormalised(r, origin), {});
+  } catch (const metrology::FrameError& e) {
+    reply(s, slot, format_err(ErrorCode::BadValue, "SetFrame " + c.name + ": " + e.what()));
+  }
+}
+
+// Align name 321|holes plane line|hole point|hole: fits the journaled hits and builds the frame.
+void Server::align(Session& s, std::uint32_t slot, const protocol::Align& c) {
+  if (!frames_usable(s, slot, "Align")) return;
+  const std::string head = "Align " + c.name.substr(0, 40) + ": ";
+  if (auto why = PartFrames::refuse_name(c.name); !why.empty()) {
+    reply(s, slot, format_err(ErrorCode::BadValue, head + "accepted " + why));
+    return;
+  }
+  static constexpr const char* kRoles321[3] = {"plane", "line", "point"};
+  static constexpr const char* kRolesHoles[3] = {"plane", "first hole", "second hole"};
+  static constexpr std::size_t kMinimum321[3] = {3, 2, 1};
+  static constexpr std::size_t kMinimumHoles[3] = {3, 3, 3};
+  HitGroup groups[3];
+  for (int g = 0; g < 3; ++g) {
+    const char* role = c.holes ? kRolesHoles[g] : kRoles321[g];
+    std::string why;
+    const auto seqs = protocol::parse_hit_set(c.hits[static_cast<std::size_t>(g)], why);
+    if (seqs.empty()) {
+      reply(s, slot, format_err(ErrorCode::BadValue, head + role + ": " + why));
+      return;
+    }
+    const std::size_t minimum = c.holes ? kMinimumHoles[g] : kMinimum321[g];
+    if (seqs.size() < minimum) {
+      reply(s, slot, format_err(ErrorCode::BadValue, head + "the " + role + " needs at least " + std::to_string(minimum) + " hits, got " + std::to_string(seqs.size())));
+      return;
+    }
+    auto& grp = groups[g];
+    for (std::size_t i = 0; i < seqs.size(); ++i) {
+      std::optional<protocol::HitMsg> hit;
+      try {
+        const auto got = journal_.read(seqs[i], 1);
+        if (!got.lines.empty()) {
+          auto m = protocol::parse_message(std::string_view(got.lines[0]).substr(0, got.lines[0].size() - 1));
+          if (auto* h = std::get_if<protocol::HitMsg>(&m); h && h->seq == seqs[i]) hit = *h;
+        }
+      } catch (const journal::JournalError& e) {
+        log_limited(spdlog::level::err, "journal", e.what());
+      }
+      if (!hit) {
+        reply(s, slot, format_err(ErrorCode::BadValue, head + "hit " + std::to_string(seqs[i]) + " of the " + role +
+                                                          " is not in the journal (hits " + std::to_string(journal_.oldest()) + " to " +
+                                                          std::to_string(journal_.newest()) + " are)"));
+        return;
+      }
+      const Vec p(hit->p.x, hit->p.y, hit->p.z), d(hit->dir.x, hit->dir.y, hit->dir.z);
+      if (i == 0) grp.radius = hit->radius;
+      if (std::abs(hit->radius - grp.radius) > 1e-9) {
+        reply(s, slot, format_err(ErrorCode::BadValue, head + "the hits of the " + role + " were taken with different tip radii; measure them again with one"));
+        return;
+      }
+      grp.surface.push_back(p);
+      grp.approach.push_back(d);
+      grp.centre.push_back(p - hit->radius * d);
+    }
+  }
+  // The plane: fitted to the ball centres, moved by the tip radius, its normal out of the material.
+  const auto plane = metrology::fit_plane_probed(groups[0].centre, groups[0].approach, groups[0].radius);
+  if (!plane.ok()) {
+    reply(s, slot, format_err(ErrorCode::BadValue, head + "the plane: " + plane.error().message));
+    return;
+  }
+  std::string extra;
+  auto form = [&](std::string_view label, double value) {
+    extra += (extra.empty() ? "" : " ") + std::string(label) + ' ';
+    protocol::append_fixed(extra, value, 4);
+  };
+  form("PlaneForm", plane->stats.form());
+  try {
+    metrology::Frame frame;
+    if (!c.holes) {
+      // The line: the surface points of its hits (compensated along their approach); X points
+      // from its first hit toward its last, as the operator probed them.
+      const auto line = metrology::fit_line3d(groups[1].surface);
+      if (!line.ok()) {
+        reply(s, slot, format_err(ErrorCode::BadValue, head + "the line: " + line.error().message));
+        return;
+      }
+      metrology::Line3 l = *line;
+      if (l.direction.dot(groups[1].surface.back() - groups[1].surface.front()) < 0) l.direction = -l.direction;
+      Vec origin = Vec::Zero();
+      for (const auto& p : groups[2].surface) origin += p;
+      origin /= static_cast<double>(groups[2].surface.size());
+      frame = metrology::align_321(*plane, l, origin);
+      form("LineForm", l.stats.form());
+    } else {
+      Vec centres[2];
+      for (int h = 0; h < 2; ++h) {
+        const auto& grp = groups[1 + h];
+        const auto hole = metrology::fit_circle3d_probed(grp.centre, grp.approach, grp.radius);
+        if (!hole.ok()) {
+          reply(s, slot, format_err(ErrorCode::BadValue, head + (h == 0 ? "the first hole: " : "the second hole: ") + hole.error().message));
+          return;
+        }
+        centres[h] = hole->center;
+        form(h == 0 ? "Hole1Dia" : "Hole2Dia", hole->diameter);
+      }
+      frame = metrology::align_plane_two_holes(*plane, centres[0], centres[1]);
+    }
+    store_frame(s, slot, "Align", c.name, frame, extra);
+  } catch (const std::exception& e) {  // AlignmentError, FrameError
+    reply(s, slot, format_err(ErrorCode::BadValue, head + e.what()));
+  }
+}
+
+void Server::del_frame(Session& s, std::uint32_t slot, const std::string& name) {
+  const bool was_active = frames_.active() == name;
+  std::string save_error;
+  if (!frames_.remove(name, save_error)) {
+    std::string names;
+    for (const auto& n : frames_.names()) names += ' ' + n;
+    reply(s, slot, format_err(ErrorCode::BadValue, "DelFrame: no stored frame '" + name.substr(0, 40) + "'; the stored frames are" + names.substr(8)));
+    return;
+  }
+  if (!save_error.empty()) log_limited(spdlog::level::err, "frames", "deleting part frame " + name + ": " + save_error);
+  reply(s, slot, format_ok("DelFrame", name));
+  if (was_active) frame_changed();
+}
+
+void Server::frame_changed() {
+  broadcast(protocol::format_event("Frame", frames_.active()));
+  if (ipp_) ipp_->part_frame_changed();
+}
+
+// After a hit's Hit and MeasPt: the same point in the active part frame.
+void Server::send_part_point(const protocol::HitMsg& hit) {
+  if (frames_.active() == kMachineFrame) return;
+  const auto& f = frames_.active_frame();
+  const Vec p = f.point_from_parent(Vec(hit.p.x, hit.p.y, hit.p.z));
+  const Vec d = f.direction_from_parent(Vec(hit.dir.x, hit.dir.y, hit.dir.z));
+  std::string line = "PartPt " + std::to_string(hit.seq) + ' ' + frames_.active();
+  for (int c = 0; c < 3; ++c) {
+    line += ' ';
+    protocol::append_fixed(line, p[c], 4);
+  }
+  for (int c = 0; c < 3; ++c) {
+    line += ' ';
+    protocol::append_fixed(line, d[c], 6);
+  }
+  line += '\n';
+  broadcast(line);
+}
+
+}  // namespace imess::net
