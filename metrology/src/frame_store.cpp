@@ -64,7 +64,11 @@ void FrameStore::set(const std::string& name, const Eigen::Matrix4d& raw) {
 
 const Frame& FrameStore::get(const std::string& name) const {
   const auto it = frames_.find(name);
-  if (it == frames_.end()) throw FrameError("no frame named '" + name + "'");
+  if (it == frames_.end()) {
+    std::string held;
+    for (const auto& [n, f] : frames_) held += (held.empty() ? "" : ", ") + n;
+    throw FrameError("no frame named '" + name + "'; the store holds: " + (held.empty() ? "no frames" : held));
+  }
   return it->second.frame;
 }
 

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include "imess/exchange/export_format.hpp"
@@ -165,6 +166,113 @@ TEST_CASE("DMIS: points as POINT features, and with a fit F, MEAS with every poi
   CHECK_THAT(text, Catch::Contains("F(CIR1)=FEAT/CIRCLE,OUTER,CART,0.000000,0.000000,5.000000,0.000000000,0.000000000,"
                                    "1.000000000,20.000000\nMEAS/CIRCLE,F(CIR1),3\nPTMEAS/CART,10.000,0.000,5.000\n") &&
                        Catch::Contains("ENDMES\nFA(CIR1)=FEAT/CIRCLE,OUTER,CART,0.000000,0.000000,5.000000"));
+}
+
+namespace {
+
+// The numbers after "F(<label>)=FEAT/<word>," (and a leading INNER/OUTER/BND, CART dropped).
+std::vector<double> dmis_feature_numbers(const std::string& text, const std::string& word) {
+  std::smatch m;
+  REQUIRE(std::regex_search(text, m, std::regex("\nF\\([A-Z0-9]+\\)=FEAT/" + word + ",([^\n]*)\n")));
+  std::vector<double> out;
+  std::istringstream in(m[1].str());
+  for (std::string f; std::getline(in, f, ',');)
+    if (f != "INNER" && f != "OUTER" && f != "BND" && f != "CART") out.push_back(std::stod(f));
+  return out;
+}
+
+// Two orthonormal vectors perpendicular to the unit vector n.
+std::pair<Vector3d, Vector3d> across(const Vector3d& n) {
+  Vector3d u = n.unitOrthogonal();
+  return {u, n.cross(u)};
+}
+
+double sign_free_angle(const Vector3d& a, const Vector3d& b) {
+  return std::min((a.normalized() - b.normalized()).norm(), (a.normalized() + b.normalized()).norm());
+}
+
+}  // namespace
+
+TEST_CASE("DMIS: every fitted feature carries its own vector, checked on tilted features") {
+  const Vector3d n = Vector3d(0.3, -0.5, 0.81).normalized();  // no coordinate axis, no sign symmetry
+  const auto [u, v] = across(n);
+  const Vector3d c(12.5, -40.25, 7.75);
+  auto dmi = [](FitKind kind, const std::vector<Vector3d>& pts) {
+    ExportData d;
+    d.points = pts;
+    auto fit = fit_points(kind, pts);
+    REQUIRE(fit.ok());
+    d.fit = *fit;
+    return std::pair{write(".dmi", d), *fit};
+  };
+  auto vec_at = [](const std::vector<double>& f, std::size_t i) { return Vector3d(f.at(i), f.at(i + 1), f.at(i + 2)); };
+  std::vector<Vector3d> pts;
+
+  SECTION("plane: its normal") {
+    for (double a : {-20.0, 0.0, 15.0})
+      for (double b : {-10.0, 5.0, 30.0}) pts.push_back(c + a * u + b * v);
+    auto [text, fit] = dmi(FitKind::Plane, pts);
+    auto f = dmis_feature_numbers(text, "PLANE");
+    REQUIRE(f.size() == 6);
+    CHECK((vec_at(f, 3) - *fit.normal).norm() < 1e-8);  // as fitted, sign included (9 decimals)
+    CHECK(sign_free_angle(vec_at(f, 3), n) < 1e-8);
+  }
+  SECTION("circle: its normal") {
+    for (int deg = 0; deg < 360; deg += 45)
+      pts.push_back(c + 15.0 * (std::cos(deg * M_PI / 180) * u + std::sin(deg * M_PI / 180) * v));
+    auto [text, fit] = dmi(FitKind::Circle, pts);
+    auto f = dmis_feature_numbers(text, "CIRCLE");
+    REQUIRE(f.size() == 7);
+    CHECK((vec_at(f, 0) - c).norm() < 1e-6);
+    CHECK((vec_at(f, 3) - *fit.normal).norm() < 1e-8);
+    CHECK(sign_free_angle(vec_at(f, 3), n) < 1e-8);
+    CHECK(f[6] == Approx(30.0).margin(1e-6));
+  }
+  SECTION("cylinder: its axis") {
+    for (double h : {-10.0, 0.0, 25.0})
+      for (int deg = 0; deg < 360; deg += 60)
+        pts.push_back(c + h * n + 8.0 * (std::cos(deg * M_PI / 180) * u + std::sin(deg * M_PI / 180) * v));
+    auto [text, fit] = dmi(FitKind::Cylinder, pts);
+    auto f = dmis_feature_numbers(text, "CYLNDR");
+    REQUIRE(f.size() == 7);
+    CHECK((vec_at(f, 3) - *fit.axis).norm() < 1e-8);
+    CHECK(sign_free_angle(vec_at(f, 3), n) < 1e-8);
+    CHECK(f[6] == Approx(16.0).margin(1e-6));
+  }
+  SECTION("cone: its axis, toward the wider end") {
+    for (double h : {5.0, 10.0, 20.0})  // apex c, half angle 20 degrees, widening along +n
+      for (int deg = 0; deg < 360; deg += 60)
+        pts.push_back(c + h * n + h * std::tan(20 * M_PI / 180) *
+                                      (std::cos(deg * M_PI / 180) * u + std::sin(deg * M_PI / 180) * v));
+    auto [text, fit] = dmi(FitKind::Cone, pts);
+    auto f = dmis_feature_numbers(text, "CONE");
+    REQUIRE(f.size() == 7);
+    CHECK((vec_at(f, 0) - c).norm() < 1e-6);
+    CHECK((vec_at(f, 3) - n).norm() < 1e-8);  // the sign is fixed: toward increasing radius
+    CHECK(f[6] == Approx(40.0).margin(1e-6));
+  }
+  SECTION("line: end points along its direction, the vector normal to it") {
+    for (double t : {-30.0, -5.0, 10.0, 42.0}) pts.push_back(c + t * u);
+    auto [text, fit] = dmi(FitKind::Line, pts);
+    auto f = dmis_feature_numbers(text, "LINE");
+    REQUIRE(f.size() == 9);
+    const Vector3d along = vec_at(f, 3) - vec_at(f, 0);
+    CHECK(along.norm() == Approx(72.0).margin(1e-5));
+    CHECK(sign_free_angle(along, u) < 1e-7);
+    CHECK((along.normalized() - *fit.direction).norm() < 1e-7);  // first end point to second
+    CHECK(std::abs(vec_at(f, 6).dot(u)) < 1e-8);
+    CHECK(vec_at(f, 6).norm() == Approx(1.0).margin(1e-8));
+  }
+}
+
+TEST_CASE("DMIS: bare points keep the placeholder vector 0,0,1 and the file says so") {
+  auto d = sample(2);
+  auto text = write(".dmi", d);
+  CHECK_THAT(text, Catch::Contains("F(PT1)=FEAT/POINT,CART,-123.456,0.000,987.654,0,0,1\n") &&
+                       Catch::Contains("$$ point vectors 0,0,1 are placeholders"));
+  d.fit = *fit_points(FitKind::Plane, std::vector<Vector3d>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  d.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  CHECK_THAT(write(".dmi", d), !Catch::Contains("placeholders") && !Catch::Contains("FEAT/POINT"));
 }
 
 TEST_CASE("PLY and JSON: counts in the header, coordinates rounded to the decimals") {

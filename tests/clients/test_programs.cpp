@@ -46,7 +46,7 @@ TEST_CASE("messcap: refused before the first point leaves no empty file behind")
 TEST_CASE("clients: --help prints usage and exits 0") {
   const std::vector<std::pair<const char*, const char*>> usages = {
       {"messjog", "[HOST[:PORT]]"}, {"messmon", "[HOST[:PORT]]"}, {"messcap", "[HOST[:PORT]]"}, {"messprog", "check FILE"},
-      {"messipp", "[HOST[:PORT]]"}};
+      {"messipp", "[HOST[:PORT]]"}, {"messoffs", "TABLE"}};
   for (const auto& [name, first] : usages) {
     INFO(name);
     auto r = run_program({client_binary(name), "--help"});
@@ -77,6 +77,7 @@ TEST_CASE("clients: bad arguments -> exit 2 naming the argument and what is acce
       {"messipp", {"--bogus"}, "messipp: unknown option '--bogus'; accepted: --raw, --timeout S, --help"},
       {"messipp", {"--timeout", "soon"}, "messipp: --timeout 'soon': accepted a number of seconds 0..86400"},
       {"messipp", {"cmm:0"}, "messipp: bad address 'cmm:0': port '0' is not a number 1..65535; expected HOST[:PORT] with PORT 1..65535, e.g. localhost, localhost:1294"},
+      {"messoffs", {"t.json", "--clamping", "first"}, "messoffs: --clamping 'first': expected a whole number 1..999"},
   };
   for (const auto& c : cases) {
     std::vector<std::string> argv{client_binary(c.name)};

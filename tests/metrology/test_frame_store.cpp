@@ -58,7 +58,8 @@ TEST_CASE("frame store keeps raw and orthonormalised matrices and round-trips ex
   CHECK_FALSE(std::filesystem::exists(dir / "frames.json.tmp"));
   std::filesystem::remove_all(dir);
 
-  CHECK_THROWS_WITH(store.get("nope"), Catch::Contains("no frame named 'nope'"));
+  CHECK_THROWS_WITH(store.get("nope"), Catch::Contains("no frame named 'nope'") &&
+                                          Catch::Contains("the store holds: " + store.names().front()));
   CHECK(store.erase("table"));
   CHECK_FALSE(store.erase("table"));
 }

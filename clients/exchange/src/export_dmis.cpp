@@ -1,5 +1,6 @@
 // .dmi: DMIS (ANSI/DMSC, 05.2 syntax). Without a fit: one POINT feature per point — nominal
-// F(PTn), a MEAS block with its PTMEAS, ENDMES. With a fit: the fitted feature — nominal F(...)
+// F(PTn), a MEAS block with its PTMEAS, ENDMES. With a fit: the fitted feature with its own
+// vector (plane/circle normal, cylinder/cone axis, the normal of a line's plane) — nominal F(...)
 // (the fitted values: there is no CAD nominal), MEAS/<kind> with every point, ENDMES, actual FA(...).
 #include <cmath>
 #include <limits>
@@ -76,6 +77,8 @@ std::string dmis(const ExportData& d) {
          local_timestamp() + "\n";
   out += "UNITS/MM,ANGDEC\n";
   if (!d.fit) {
+    // DMIS wants a vector with every FEAT/POINT; a bare point has none (see docs/metrology.md §13).
+    if (!d.points.empty()) out += "$$ point vectors 0,0,1 are placeholders: the points carry no surface normal\n";
     for (std::size_t i = 0; i < d.points.size(); ++i) {
       const std::string label = "PT" + std::to_string(i + 1);
       const std::string where = xyz(d.points[i], d.decimals);

@@ -24,7 +24,7 @@ class FrameStore {
   // Orthonormalises `raw` (Frame::orthonormalised) and stores it; replaces an existing name.
   // Throws FrameError naming the frame when the name is empty or the matrix is unusable.
   void set(const std::string& name, const Eigen::Matrix4d& raw);
-  // Throws FrameError when there is no frame of that name.
+  // Throws FrameError when there is no frame of that name (the message lists the names held).
   const Frame& get(const std::string& name) const;
   const NamedFrame* find(const std::string& name) const;
   bool erase(const std::string& name);
