@@ -67,6 +67,34 @@ Fit<FittedFeature> failed(const std::string& name, const Fit<T>& f) {
   return feature_error(name, f.error().code, f.error().message);
 }
 
+// A feature's points: as measured, and for hits the ball centres and approaches.
+struct Sample {
+  std::vector<Vector3d> points, centres, approach;
+  bool probed = false;
+  double r = 0.0;
+  const std::vector<Vector3d>& fitted() const { return probed ? centres : points; }
+};
+
+// A round feature fitted to the ball centres and offset by the tip radius (compensate()); `inner`
+// becomes the side the approaches show (it stays the nominal's for plain points or r = 0).
+template <class F, class Size>
+Fit<F> round_fit(const Sample& s, Fit<F> centre_fit, Size size, bool& inner) {
+  if (!centre_fit || !s.probed) return centre_fit;
+  auto comp = compensate(*centre_fit, s.centres, s.approach, s.r);
+  if (comp && s.r > 0) inner = size(*comp) > size(*centre_fit);
+  return comp;
+}
+
+// Surface points: each ball centre moved by the radius toward the material along the fitted
+// feature's outward unit normal there (normal_at(centre)); plain points as they are.
+template <class Normal>
+std::vector<Vector3d> surface_points(const Sample& s, bool inner, Normal normal_at) {
+  if (!s.probed) return s.points;
+  std::vector<Vector3d> out;
+  for (const auto& c : s.centres) out.push_back(to_surface(c, normal_at(c), s.r, inner));
+  return out;
+}
+
 }  // namespace
 
 Fit<FittedFeature> fit_feature(const std::string& name, const Geometry& nominal, const std::vector<FitInput>& inputs) {
@@ -83,14 +111,18 @@ Fit<FittedFeature> fit_feature(const std::string& name, const Geometry& nominal,
                            "point " + std::to_string(i + 1) + " was taken with tip radius " + std::to_string(inputs[i].radius) +
                                ", point 1 with " + std::to_string(r) + "; one feature needs one tip");
   }
-  std::vector<Vector3d> points, centres, approach;
+  Sample sample;
+  sample.probed = probed;
+  sample.r = r;
   for (const auto& in : inputs) {
-    points.push_back(in.point);
+    sample.points.push_back(in.point);
     if (probed) {
-      centres.push_back(in.point - in.radius * *in.approach);
-      approach.push_back(*in.approach);
+      sample.centres.push_back(in.point - in.radius * *in.approach);
+      sample.approach.push_back(*in.approach);
     }
   }
+  const auto& points = sample.points;
+  const auto& centres = sample.centres;
 
   FittedFeature out;
   out.geometry = nominal;
@@ -121,7 +153,7 @@ Fit<FittedFeature> fit_feature(const std::string& name, const Geometry& nominal,
       break;
     }
     case FeatureKind::Plane: {
-      Fit<Plane> f = probed ? fit_plane_probed(centres, approach, r) : fit_plane(points);
+      Fit<Plane> f = probed ? fit_plane_probed(centres, sample.approach, r) : fit_plane(points);
       if (!f) return failed(name, f);
       const Vector3d n_out = f->normal;  // probed: out of the material
       out.stats = f->stats;
@@ -135,44 +167,22 @@ Fit<FittedFeature> fit_feature(const std::string& name, const Geometry& nominal,
       break;
     }
     case FeatureKind::Circle: {
-      auto c0 = fit_circle3d(probed ? centres : points);
-      if (!c0) return failed(name, c0);
-      Circle3 c = *c0;
-      if (probed) {
-        auto comp = compensate(*c0, centres, approach, r);
-        if (!comp) return failed(name, comp);
-        c = *comp;
-        if (r > 0) g.inner = c.diameter > c0->diameter;
-      }
-      g.point = c.center;
-      g.direction = aligned_with(c.normal, nominal.direction);
-      g.diameter = c.diameter;
-      out.stats = c.stats;
-      for (std::size_t i = 0; i < points.size(); ++i) {
-        if (!probed) {
-          out.surface.push_back(points[i]);
-          continue;
-        }
-        const Vector3d radial = across(centres[i] - c.center, g.direction).normalized();
-        out.surface.push_back(to_surface(centres[i], radial, r, g.inner));
-      }
+      auto c = round_fit(sample, fit_circle3d(sample.fitted()), [](const Circle3& f) { return f.diameter; }, g.inner);
+      if (!c) return failed(name, c);
+      g.point = c->center;
+      g.direction = aligned_with(c->normal, nominal.direction);
+      g.diameter = c->diameter;
+      out.stats = c->stats;
+      out.surface = surface_points(sample, g.inner, [&](const Vector3d& p) { return across(p - g.point, g.direction).normalized(); });
       break;
     }
     case FeatureKind::Sphere: {
-      auto s0 = fit_sphere(probed ? centres : points);
-      if (!s0) return failed(name, s0);
-      Sphere s = *s0;
-      if (probed) {
-        auto comp = compensate(*s0, centres, approach, r);
-        if (!comp) return failed(name, comp);
-        s = *comp;
-        if (r > 0) g.inner = s.diameter > s0->diameter;
-      }
-      g.point = s.center;
-      g.diameter = s.diameter;
-      out.stats = s.stats;
-      for (std::size_t i = 0; i < points.size(); ++i)
-        out.surface.push_back(probed ? to_surface(centres[i], (centres[i] - s.center).normalized(), r, g.inner) : points[i]);
+      auto f = round_fit(sample, fit_sphere(sample.fitted()), [](const Sphere& s) { return s.diameter; }, g.inner);
+      if (!f) return failed(name, f);
+      g.point = f->center;
+      g.diameter = f->diameter;
+      out.stats = f->stats;
+      out.surface = surface_points(sample, g.inner, [&](const Vector3d& p) { return (p - g.point).normalized(); });
       break;
     }
     case FeatureKind::Cylinder: {
@@ -180,27 +190,13 @@ Fit<FittedFeature> fit_feature(const std::string& name, const Geometry& nominal,
       start.point = nominal.point;
       start.direction = nominal.direction;
       start.diameter = nominal.diameter;
-      auto c0 = fit_cylinder(probed ? centres : points, start);
-      if (!c0) return failed(name, c0);
-      Cylinder c = *c0;
-      if (probed) {
-        auto comp = compensate(*c0, centres, approach, r);
-        if (!comp) return failed(name, comp);
-        c = *comp;
-        if (r > 0) g.inner = c.diameter > c0->diameter;
-      }
-      g.point = c.point;
-      g.direction = aligned_with(c.direction, nominal.direction);
-      g.diameter = c.diameter;
-      out.stats = c.stats;
-      for (std::size_t i = 0; i < points.size(); ++i) {
-        if (!probed) {
-          out.surface.push_back(points[i]);
-          continue;
-        }
-        const Vector3d radial = across(centres[i] - c.point, g.direction).normalized();
-        out.surface.push_back(to_surface(centres[i], radial, r, g.inner));
-      }
+      auto c = round_fit(sample, fit_cylinder(sample.fitted(), start), [](const Cylinder& f) { return f.diameter; }, g.inner);
+      if (!c) return failed(name, c);
+      g.point = c->point;
+      g.direction = aligned_with(c->direction, nominal.direction);
+      g.diameter = c->diameter;
+      out.stats = c->stats;
+      out.surface = surface_points(sample, g.inner, [&](const Vector3d& p) { return across(p - g.point, g.direction).normalized(); });
       out.axis_ends = axis_extent(g.point, g.direction, out.surface);
       break;
     }
@@ -211,30 +207,17 @@ Fit<FittedFeature> fit_feature(const std::string& name, const Geometry& nominal,
       start.direction = nominal.direction;
       start.apex_angle_rad = 2 * half;
       start.distance = 0.5 * nominal.diameter * std::cos(half);
-      auto c0 = fit_cone(probed ? centres : points, start);
-      if (!c0) return failed(name, c0);
-      Cone c = *c0;
-      if (probed) {
-        auto comp = compensate(*c0, centres, approach, r);
-        if (!comp) return failed(name, comp);
-        c = *comp;
-        if (r > 0) g.inner = c.distance > c0->distance;
-      }
-      const double phi = c.half_angle();
-      g.point = c.point;
-      g.direction = c.direction;  // toward increasing radius: a physical sign
-      g.diameter = 2 * c.distance / std::cos(phi);
-      g.apex_angle_deg = c.apex_angle_deg();
-      out.stats = c.stats;
-      for (std::size_t i = 0; i < points.size(); ++i) {
-        if (!probed) {
-          out.surface.push_back(points[i]);
-          continue;
-        }
-        const Vector3d radial = across(centres[i] - c.point, c.direction).normalized();
-        const Vector3d normal = std::cos(phi) * radial - std::sin(phi) * c.direction;
-        out.surface.push_back(to_surface(centres[i], normal, r, g.inner));
-      }
+      auto c = round_fit(sample, fit_cone(sample.fitted(), start), [](const Cone& f) { return f.distance; }, g.inner);
+      if (!c) return failed(name, c);
+      const double phi = c->half_angle();
+      g.point = c->point;
+      g.direction = c->direction;  // toward increasing radius: a physical sign
+      g.diameter = 2 * c->distance / std::cos(phi);
+      g.apex_angle_deg = c->apex_angle_deg();
+      out.stats = c->stats;
+      out.surface = surface_points(sample, g.inner, [&](const Vector3d& p) {
+        return Vector3d(std::cos(phi) * across(p - g.point, g.direction).normalized() - std::sin(phi) * g.direction);
+      });
       out.axis_ends = axis_extent(g.point, g.direction, out.surface);
       break;
     }

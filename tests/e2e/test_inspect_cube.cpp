@@ -6,6 +6,8 @@
 // nominal surface. The JSON report, read back with --points, gives the same figures.
 #include <catch2/catch.hpp>
 
+#include <fstream>
+
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
@@ -99,4 +101,47 @@ TEST_CASE("messcap inspect: the worked-example cube measured live matches the si
   for (std::size_t i = 0; i < report["characteristics"].size(); ++i)
     CHECK(second["characteristics"][i]["actual"].get<double>() ==
           Approx(report["characteristics"][i]["actual"].get<double>()).margin(1e-5));
+}
+
+TEST_CASE("messcap inspect without a machine: bad arguments, a bad plan, out of tolerance") {
+  TempDir dir;
+  const std::string messcap = client_binary("messcap");
+  const std::string plan = std::string(IMESS_SOURCE_DIR) + "/examples/cube-1996.plan.json";
+  auto usage = run_program({messcap, "inspect"});
+  CHECK(usage.status == 2);
+  CHECK(usage.err.find("inspect needs a PLAN file") != std::string::npos);
+  usage = run_program({messcap, "inspect", plan, "--points", "x.txt", "localhost"});
+  CHECK(usage.status == 2);
+  CHECK(usage.err.find("either --points FILE or HOST[:PORT]") != std::string::npos);
+
+  {
+    std::ofstream bad(dir.file("bad.json"));
+    bad << R"({"part": "p", "features": [{"name": "a", "type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1]}],
+              "characteristics": [{"name": "s", "type": "roundness", "feature": "a", "tolerance": 0.1}]})";
+  }
+  const auto bad = run_program({messcap, "inspect", dir.file("bad.json"), "--points", dir.file("none.txt")});
+  CHECK(bad.status == 1);
+  CHECK(bad.err.find("bad.json: characteristics[0].feature: roundness applies to a circle, and 'a' is a plane") !=
+        std::string::npos);
+
+  // The nominal cube with its right face 0.1 mm too far out, as plain surface points in machine
+  // coordinates (the plan's placement: part + (400, 300, 0)): the length is out of tolerance.
+  {
+    std::ofstream pts(dir.file("cube.txt"));
+    const auto parsed = nlohmann::json::parse(read_file(plan));
+    for (const auto& f : parsed["features"])
+      for (const auto& p : f["probe"]) {
+        const double shift = f["name"] == "right" ? 0.1 : 0.0;
+        pts << f["name"].get<std::string>() << " " << p[0].get<double>() + 400 + shift << " " << p[1].get<double>() + 300 << " "
+            << p[2].get<double>() << "\n";
+      }
+  }
+  const auto out = run_program({messcap, "inspect", plan, "--points", dir.file("cube.txt"), "--json", "-"});
+  INFO(out.err);
+  CHECK(out.status == 5);
+  const json report = json::parse(out.out);
+  CHECK(characteristic(report, "length")["deviation"].get<double>() == Approx(0.1).margin(1e-9));
+  CHECK(characteristic(report, "length")["in_tolerance"] == false);
+  CHECK(report["summary"]["out_of_tolerance"] == 1);
+  CHECK(out.err.find("OUT") != std::string::npos);  // the table, on stderr beside --json -
 }
