@@ -1,5 +1,5 @@
 // Umbrella header of imess::metrology: fits, probe compensation, comparison metrics, frames,
-// alignment, the 5-axis offset convention and the point file reader.
+// alignment, the 5-axis offset convention, the point file reader and inspection plans.
 #pragma once
 
 #include "imess/metrology/alignment.hpp"
@@ -10,5 +10,8 @@
 #include "imess/metrology/five_axis.hpp"
 #include "imess/metrology/frame.hpp"
 #include "imess/metrology/frame_store.hpp"
+#include "imess/metrology/inspection.hpp"
+#include "imess/metrology/inspection_plan.hpp"
+#include "imess/metrology/inspection_points.hpp"
 #include "imess/metrology/point_file.hpp"
 #include "imess/metrology/probe_compensation.hpp"

@@ -1,0 +1,33 @@
+// The reports of messcap inspect: the terminal table, the JSON document and the self-contained
+// HTML page (inline SVG pictures). Formats in docs/metrology.md §17.
+#pragma once
+
+#include <ostream>
+#include <string>
+
+#include "imess/metrology/inspection.hpp"
+#include "imess/metrology/inspection_plan.hpp"
+
+namespace imess::messcap {
+
+struct ReportSource {
+  std::string plan;      // the plan file
+  std::string measured;  // "messd at HOST:PORT" or "points from FILE"
+};
+
+// One line per characteristic: nominal, actual, deviation, tolerance, ok / OUT / --.
+void print_inspection_table(std::ostream& out, const metrology::InspectionPlan& plan,
+                            const metrology::InspectionResult& result, const ReportSource& source);
+std::string inspection_json(const metrology::InspectionPlan& plan, const metrology::InspectionResult& result,
+                            const ReportSource& source);
+std::string inspection_html(const metrology::InspectionPlan& plan, const metrology::InspectionResult& result,
+                            const ReportSource& source);
+
+// Shared by the reports: "ok", "OUT" or "--" (not evaluated), and the tolerance as text
+// ("-0.0500/+0.0500", "<= 0.0100").
+std::string verdict_text(const metrology::CharacteristicResult& c);
+std::string tolerance_text(const metrology::CharacteristicResult& c);
+// Units of a characteristic's values: "deg" for angles, "mm" otherwise.
+const char* unit_of(const metrology::CharacteristicResult& c);
+
+}  // namespace imess::messcap
