@@ -5,11 +5,13 @@
 #include "capture_command.hpp"
 #include "convert_command.hpp"
 #include "fit_command.hpp"
+#include "relate_command.hpp"
 
 int main(int argc, char* argv[]) {
   using namespace imess::messcap;
   const std::string_view command = argc > 1 ? argv[1] : "";
   if (command == "fit") return run_fit_command(argc, argv);
   if (command == "convert") return run_convert_command(argc, argv);
+  if (command == "relate") return run_relate_command(argc, argv);
   return run_capture(argc, argv);
 }
