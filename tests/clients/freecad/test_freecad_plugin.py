@@ -10,23 +10,13 @@ import sys
 import tempfile
 import threading
 import time
-import traceback
 
-BIN_DIR, SOURCE_DIR = sys.argv[1], sys.argv[2]
-sys.path.insert(0, os.path.join(SOURCE_DIR, "clients", "freecad"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))
+from plugin_test import BIN_DIR, MESSCAP, SOURCE_DIR, Gui, check, finish, macro_namespace  # noqa: E402
 
 import FreeCAD  # noqa: E402
 import imess_capture  # noqa: E402
-
-MESSCAP = os.path.join(BIN_DIR, "messcap")
-os.environ["IMESS_MESSCAP"] = MESSCAP  # the plugin's way to be told which messcap to run
-failures = []
-
-
-def check(condition, text):
-    if not condition:
-        failures.append(text)
-        print("FAIL " + text)
+import imess_fit  # noqa: E402
 
 
 class Operator(threading.Thread):
@@ -122,7 +112,7 @@ def protocol_checks():
     s.poll()
     check(not s.connected() and s.closed_reason == "closed by messd", "a closed link is noticed")
     try:
-        imess_capture.run_fit("circle", [FreeCAD.Vector(i, 0, 0) for i in range(3)], MESSCAP)
+        imess_fit.run_fit("circle", [FreeCAD.Vector(i, 0, 0) for i in range(3)], MESSCAP)
         check(False, "a fit of collinear points must fail")
     except imess_capture.CaptureError as e:
         check("collinear" in str(e), "the failed fit says why: %s" % e)
@@ -131,29 +121,7 @@ def protocol_checks():
 
 def panel_checks():
     """The GUI macro's wiring, on an offscreen Qt: Connect, timer ticks, the Circle button."""
-    from PySide import QtGui
-
-    app = QtGui.QApplication.instance() or QtGui.QApplication([])
-    source = open(os.path.join(SOURCE_DIR, "clients", "freecad", "IMESS_Capture.FCMacro")).read()
-    check(source.rstrip().endswith("show_panel()"), "the macro ends by showing its panel")
-    ns = {"__file__": os.path.join(SOURCE_DIR, "clients", "freecad", "IMESS_Capture.FCMacro")}
-    exec(compile(source.rstrip()[: -len("show_panel()")], "IMESS_Capture.FCMacro", "exec"), ns)
-
-    class Gui:  # freecadcmd has no selection or main window: a stand-in for both
-        selected = []
-
-        class Selection:
-            @staticmethod
-            def getSelection():
-                return Gui.selected
-
-        @staticmethod
-        def updateGui():
-            app.processEvents()
-
-    ns["FreeCADGui"] = Gui
-    warnings = []  # a modal message box would wait for a click that never comes
-    QtGui.QMessageBox.warning = staticmethod(lambda parent, title, text: warnings.append(text))
+    ns, warnings, app = macro_namespace()
     server = socket.socket()
     server.bind(("127.0.0.1", 0))
     server.listen(1)
@@ -227,8 +195,8 @@ def capture_checks(workdir):
 
         top = [o for o, p in zip(session.points, op.points) if p[0] == "top"]
         bore = [o for o, p in zip(session.points, op.points) if p[0] == "bore"]
-        plane = imess_capture.fit_feature(doc, "plane", top, MESSCAP)
-        circle = imess_capture.fit_feature(doc, "circle", bore, MESSCAP)
+        plane = imess_fit.fit_feature(doc, "plane", top, MESSCAP)
+        circle = imess_fit.fit_feature(doc, "circle", bore, MESSCAP)
         check(abs(circle.Diameter - 30.0) <= 0.005, "bore diameter %.6f, expected 30 +- 0.005" % circle.Diameter)
         check(abs(circle.Center.x - 460) < 0.5 and abs(circle.Center.y - 350) < 0.5, "bore centre %s" % circle.Center)
         check(abs(abs(plane.Normal.z) - 1) < 1e-6 and abs(plane.FitPoint.z - 80) <= 0.005,
@@ -260,15 +228,9 @@ def capture_checks(workdir):
         messd.wait(10)
 
 
-try:
-    started = time.time()
-    protocol_checks()
-    panel_checks()
+def capture_in_tempdir():
     with tempfile.TemporaryDirectory(prefix="imess-freecad-") as d:
         capture_checks(d)
-    print("freecad plugin: %d failures, %.1f s" % (len(failures), time.time() - started))
-except Exception:  # noqa: BLE001
-    traceback.print_exc()
-    failures.append("exception")
-sys.stdout.flush()
-os._exit(1 if failures else 0)
+
+
+finish("freecad plugin", protocol_checks, panel_checks, capture_in_tempdir)
