@@ -35,6 +35,20 @@ def find_messcap():
                        "(scripts/run builds build/bin/messcap)")
 
 
+def document_group(doc, name, label):
+    """The group `name` of the document, made (labelled `label`) when it is not there yet."""
+    group = doc.getObject(name)
+    if group is None:
+        group = doc.addObject("App::DocumentObjectGroup", name)
+        group.Label = label
+    return group
+
+
+def xyz_text(points):
+    """Points as 'x y z' lines at full precision: what messcap reads."""
+    return "".join("%r %r %r\n" % (p.x, p.y, p.z) for p in points)
+
+
 def parse_xyz(args):
     """'1.000 2.000 3.000' -> FreeCAD.Vector, or None when it is not three numbers."""
     parts = args.split()
@@ -171,15 +185,8 @@ class CaptureSession:
         return False
 
     # --- the document ---------------------------------------------------------------------
-    def group(self, name, label):
-        g = self.doc.getObject(name)
-        if g is None:
-            g = self.doc.addObject("App::DocumentObjectGroup", name)
-            g.Label = label
-        return g
-
     def add_point(self, p):
-        group = self.group(POINT_GROUP, "IMESS points")
+        group = document_group(self.doc, POINT_GROUP, "IMESS points")
         obj = self.doc.addObject("Part::Feature", "MeasPt")
         obj.Shape = Part.Vertex(p)
         number = len(group.Group) + 1

@@ -11,7 +11,7 @@ import tempfile
 import FreeCAD
 import Part
 
-from imess_capture import POINT_GROUP, CaptureError, find_messcap
+from imess_capture import POINT_GROUP, CaptureError, document_group, find_messcap, xyz_text
 
 DEVIATION_GROUP = "IMESS_Deviations"
 MATCH_MM = 1e-3  # an inspected point within this of a captured point colours that point
@@ -143,9 +143,7 @@ def colour_points(doc, source):
         else:
             obj = doc.addObject("Part::Feature", "Deviation")
             obj.Shape = Part.Vertex(p["xyz"])
-            group = doc.getObject(DEVIATION_GROUP) or doc.addObject("App::DocumentObjectGroup", DEVIATION_GROUP)
-            group.Label = "IMESS deviations"
-            group.addObject(obj)
+            document_group(doc, DEVIATION_GROUP, "IMESS deviations").addObject(obj)
             summary["added"] += 1
         d, band = p["deviation"], p["band"]
         colour = deviation_colour(d, scale, band)
@@ -175,7 +173,7 @@ def run_inspect(plan, points, messcap=None):
     work = tempfile.mkdtemp(prefix="imess-inspect-")
     points_path, out_path = os.path.join(work, "points.xyz"), os.path.join(work, "inspection.json")
     with open(points_path, "w") as f:
-        f.writelines("%r %r %r\n" % (p.x, p.y, p.z) for p in points)
+        f.write(xyz_text(points))
     r = subprocess.run([exe, "inspect", plan, "--points", points_path, "--json", out_path],
                        capture_output=True, text=True, timeout=60)
     if not os.path.isfile(out_path):  # a report with characteristics out of tolerance is still a report

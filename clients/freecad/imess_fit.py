@@ -10,7 +10,7 @@ import subprocess
 import FreeCAD
 import Part
 
-from imess_capture import CaptureError, find_messcap
+from imess_capture import CaptureError, document_group, find_messcap, xyz_text
 
 FEATURE_GROUP = "IMESS_Features"
 RELATION_GROUP = "IMESS_Relations"
@@ -42,20 +42,11 @@ def run_fit(kind, points, messcap=None):
     """`messcap fit KIND -` with the points on stdin; returns its JSON as a dict."""
     if kind not in FIT_KINDS:
         raise CaptureError("unknown feature kind %r; accepted: %s" % (kind, ", ".join(FIT_KINDS)))
-    text = "".join("%r %r %r\n" % (p.x, p.y, p.z) for p in points)
-    return run_messcap(["fit", kind, "-"], text, messcap)
+    return run_messcap(["fit", kind, "-"], xyz_text(points), messcap)
 
 
 def _vector(values):
     return FreeCAD.Vector(*values)
-
-
-def _group(doc, name, label):
-    group = doc.getObject(name)
-    if group is None:
-        group = doc.addObject("App::DocumentObjectGroup", name)
-        group.Label = label
-    return group
 
 
 def _span(points, origin, direction):
@@ -64,7 +55,8 @@ def _span(points, origin, direction):
 
 
 def feature_shape(fit, points):
-    """Real FreeCAD geometry for a fit: plane face over the points, circle edge, sphere, cylinder."""
+    """Real FreeCAD geometry for a fit: a plane face over the points, a circle edge, a sphere, a
+    cylinder or cone frustum and a line segment over the points' extent."""
     kind = fit["type"]
     if kind == "plane":
         plane = Part.Plane(_vector(fit["point"]), _vector(fit["normal"]))
@@ -117,7 +109,7 @@ def fit_feature(doc, kind, objects, messcap=None):
     points = points_of(objects)
     fit = run_fit(kind, points, messcap)
     shape = feature_shape(fit, points)
-    group = _group(doc, FEATURE_GROUP, "IMESS features")
+    group = document_group(doc, FEATURE_GROUP, "IMESS features")
     obj = doc.addObject("Part::Feature", "Fit" + kind.capitalize())
     obj.Shape = shape
     for key, ptype, name, doc_text in _PROPERTIES:
@@ -193,6 +185,6 @@ def relate_features(doc, value, a, b, messcap=None):
         obj.Label = "distance %.4f %s-%s" % (rel["distance"], a.Label, b.Label)
     else:
         obj.Label = "angle %.4f deg %s-%s" % (rel["angle_deg"], a.Label, b.Label)
-    _group(doc, RELATION_GROUP, "IMESS distances and angles").addObject(obj)
+    document_group(doc, RELATION_GROUP, "IMESS distances and angles").addObject(obj)
     doc.recompute()
     return obj

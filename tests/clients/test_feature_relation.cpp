@@ -21,43 +21,23 @@ namespace {
 
 constexpr double kEps = 1e-9;
 
-FitReport sphere(const Vector3d& c) {
+// A fitted feature as messcap fit reports it: `at` is the centre or the point on the axis or
+// plane, `dir` the direction, normal or axis its kind has.
+FitReport feature(FitKind kind, const Vector3d& at, const Vector3d& dir = Vector3d::Zero()) {
   FitReport f;
-  f.kind = FitKind::Sphere;
-  f.center = c;
-  f.diameter = 10;
+  f.kind = kind;
+  const bool centred = kind == FitKind::Sphere || kind == FitKind::Circle;
+  (centred ? f.center : f.point) = at;
+  if (kind == FitKind::Plane || kind == FitKind::Circle) f.normal = dir.normalized();
+  if (kind == FitKind::Line) f.direction = dir.normalized();
+  if (kind == FitKind::Cylinder) f.axis = dir.normalized();
   return f;
 }
-FitReport plane(const Vector3d& p, const Vector3d& n) {
-  FitReport f;
-  f.kind = FitKind::Plane;
-  f.point = p;
-  f.normal = n.normalized();
-  return f;
-}
-FitReport line(const Vector3d& p, const Vector3d& d) {
-  FitReport f;
-  f.kind = FitKind::Line;
-  f.point = p;
-  f.direction = d.normalized();
-  return f;
-}
-FitReport cylinder(const Vector3d& p, const Vector3d& a) {
-  FitReport f;
-  f.kind = FitKind::Cylinder;
-  f.point = p;
-  f.axis = a.normalized();
-  f.diameter = 20;
-  return f;
-}
-FitReport circle(const Vector3d& c, const Vector3d& n) {
-  FitReport f;
-  f.kind = FitKind::Circle;
-  f.center = c;
-  f.normal = n.normalized();
-  f.diameter = 30;
-  return f;
-}
+FitReport sphere(const Vector3d& c) { return feature(FitKind::Sphere, c); }
+FitReport plane(const Vector3d& p, const Vector3d& n) { return feature(FitKind::Plane, p, n); }
+FitReport line(const Vector3d& p, const Vector3d& d) { return feature(FitKind::Line, p, d); }
+FitReport cylinder(const Vector3d& p, const Vector3d& a) { return feature(FitKind::Cylinder, p, a); }
+FitReport circle(const Vector3d& c, const Vector3d& n) { return feature(FitKind::Circle, c, n); }
 
 Vector3d rotated_about_x(const Vector3d& v, double deg) {
   return Eigen::AngleAxisd(deg * std::numbers::pi / 180.0, Vector3d::UnitX()) * v;
