@@ -1,7 +1,8 @@
 # Inside freecadcmd: the FreeCAD plugin against a real, simulated messd. A scripted operator
 # measures the cube top (3 points) and the bore (3 points); the points must be in the document
 # as they arrive, a plane and a circle (D 30 +- 0.005) are fitted through messcap, the document
-# is saved, re-opened and checked. argv: BIN_DIR SOURCE_DIR
+# is saved, re-opened and checked. Then the jog logic on a fresh messd: hold +Z, let go, Measure
+# here. argv: BIN_DIR SOURCE_DIR
 import math
 import os
 import socket
@@ -17,6 +18,7 @@ from plugin_test import BIN_DIR, MESSCAP, SOURCE_DIR, Gui, check, finish, macro_
 import FreeCAD  # noqa: E402
 import imess_capture  # noqa: E402
 import imess_fit  # noqa: E402
+import imess_jog  # noqa: E402
 
 
 class Operator(threading.Thread):
@@ -228,9 +230,47 @@ def capture_checks(workdir):
         messd.wait(10)
 
 
+def jog_checks():
+    """The jog buttons' logic on a real messd: hold +Z, let go, Measure here."""
+    messd, port = start_messd()
+    try:
+        doc = FreeCAD.newDocument("jog")
+        session = imess_capture.CaptureSession(doc, "127.0.0.1", port)
+        session.connect()
+        jog = imess_jog.JogControl(session)
+
+        def run(seconds, until=lambda: False):
+            end = time.time() + seconds
+            while time.time() < end and not until():
+                session.poll()
+                jog.tick()
+                time.sleep(0.01)
+
+        run(2, lambda: session.position is not None)
+        start = session.position
+        jog.press("+Z")
+        run(2, lambda: session.position is not None and session.position.z > start.z + 0.5)
+        jog.release("+Z")
+        run(5, lambda: session.state == "idle")
+        run(0.5)  # CurrCor comes at most ReportHz (10) times a second: the last one after the stop
+        check(session.state == "idle" and session.position.z > start.z + 0.5 and not session.messages,
+              "held +Z moved up, letting go stopped it: %s -> %s, %s %s" % (start, session.position, session.state,
+                                                                            session.messages))
+        stopped_at = session.position
+        jog.measure_here()
+        run(3, lambda: len(session.points) == 1)
+        check(len(session.points) == 1 and (session.points[0].Measured - stopped_at).Length < 0.001,
+              "Measure here put the standing position %s into the document: %s" % (stopped_at, [p.Measured for p in session.points]))
+        session.close()
+        FreeCAD.closeDocument(doc.Name)
+    finally:
+        messd.terminate()
+        messd.wait(10)
+
+
 def capture_in_tempdir():
     with tempfile.TemporaryDirectory(prefix="imess-freecad-") as d:
         capture_checks(d)
 
 
-finish("freecad plugin", protocol_checks, panel_checks, capture_in_tempdir)
+finish("freecad plugin", protocol_checks, panel_checks, capture_in_tempdir, jog_checks)
