@@ -1,14 +1,14 @@
 # IMESS live capture for FreeCAD, without the GUI: reads messd's protocol lines from a
-# non-blocking socket, moves a probe marker with CurrCor, adds every MeasPt to the document at
-# once, and fits selected points through `messcap fit KIND -` (the C++ metrology library).
+# non-blocking socket, moves a probe marker with CurrCor and adds every MeasPt to the document
+# at once. Fits (imess_fit), jogging (imess_jog) and deviations (imess_deviation) build on it.
 """IMESS capture logic for FreeCAD (testable under freecadcmd; the GUI macro only wires it)."""
 
+import collections
 import errno
-import json
 import os
 import shutil
 import socket
-import subprocess
+import time
 
 import FreeCAD
 import Part
@@ -16,14 +16,12 @@ import Part
 DEFAULT_HOST = "localhost"
 DEFAULT_PORT = 1066
 POINT_GROUP = "IMESS_Points"
-FEATURE_GROUP = "IMESS_Features"
 MARKER = "IMESS_Probe"
-FIT_KINDS = ("plane", "circle", "sphere", "cylinder")
 MAX_LINE = 4096  # messd lines are short; a longer one is noise and is dropped
 
 
 class CaptureError(Exception):
-    """Connecting, reading or fitting failed; the message says what and why."""
+    """Connecting, reading, fitting or jogging failed; the message says what and why."""
 
 
 def find_messcap():
@@ -35,6 +33,20 @@ def find_messcap():
             return os.path.abspath(c)
     raise CaptureError("messcap not found: set IMESS_MESSCAP, put messcap on PATH, or build it "
                        "(scripts/run builds build/bin/messcap)")
+
+
+def document_group(doc, name, label):
+    """The group `name` of the document, made (labelled `label`) when it is not there yet."""
+    group = doc.getObject(name)
+    if group is None:
+        group = doc.addObject("App::DocumentObjectGroup", name)
+        group.Label = label
+    return group
+
+
+def xyz_text(points):
+    """Points as 'x y z' lines at full precision: what messcap reads."""
+    return "".join("%r %r %r\n" % (p.x, p.y, p.z) for p in points)
 
 
 def parse_xyz(args):
@@ -56,17 +68,21 @@ class CaptureSession:
     moment its line is handled; nothing is buffered, so stopping at any time loses no point.
     """
 
-    def __init__(self, doc, host=DEFAULT_HOST, port=DEFAULT_PORT, sock=None, marker_radius=1.0):
+    def __init__(self, doc, host=DEFAULT_HOST, port=DEFAULT_PORT, sock=None, marker_radius=1.0, clock=time.monotonic):
         self.doc = doc
         self.host, self.port = host, int(port)
         self.sock = sock
         self.marker_radius = marker_radius
+        self.clock = clock
         self.buffer = b""
         self.position = None
         self.state = ""
         self.messages = []  # Warn / Fault / Err lines, newest last
         self.points = []    # the point objects this session created, in order
         self.closed_reason = ""
+        self.pending = collections.deque()  # verbs sent and not yet answered (messd answers in order)
+        self.last_sent = None               # clock() when the last line (or keep-alive) went out
+        self.observers = []                 # observer(line, answered_verb) for every line received
         if self.sock is not None:
             self.sock.setblocking(False)
 
@@ -78,20 +94,30 @@ class CaptureSession:
             raise CaptureError("no partner on %s:%d (%s) - is messd running?" % (self.host, self.port, e.strerror or e))
         self.sock.setblocking(False)
         self.closed_reason = ""
+        self.pending.clear()
         self.send("Hello FreeCAD")
 
     def connected(self):
         return self.sock is not None
 
     def send(self, line):
+        """Sends one line; "" is a keep-alive (no reply). A broken link closes the session."""
         if self.sock is None:
             raise CaptureError("not connected")
-        data = (line.rstrip("\n") + "\n").encode("ascii")
+        line = line.rstrip("\n")
+        data = (line + "\n").encode("ascii")
         self.sock.setblocking(True)
         try:
             self.sock.sendall(data)
+        except OSError as e:
+            self.close("link broken: %s" % e)
+            raise CaptureError("link to messd broken while sending %r: %s" % (line, e))
         finally:
-            self.sock.setblocking(False)
+            if self.sock is not None:
+                self.sock.setblocking(False)
+        self.last_sent = self.clock()
+        if line.strip():
+            self.pending.append(line.split()[0])
 
     def close(self, reason="closed"):
         if self.sock is not None:
@@ -100,6 +126,7 @@ class CaptureSession:
             finally:
                 self.sock = None
                 self.closed_reason = reason
+                self.pending.clear()
 
     def poll(self):
         """Handles every complete line available now; returns how many were handled."""
@@ -135,6 +162,11 @@ class CaptureSession:
     def handle_line(self, line):
         """One protocol line; True when the document changed."""
         verb, _, args = line.partition(" ")
+        answered = None  # the verb of our request an Ok / Err answers
+        if verb in ("Ok", "Err") and self.pending:
+            answered = self.pending.popleft()
+        for observer in list(self.observers):
+            observer(line, answered)
         if verb == "MeasPt":
             p = parse_xyz(args)
             if p is not None:
@@ -153,15 +185,8 @@ class CaptureSession:
         return False
 
     # --- the document ---------------------------------------------------------------------
-    def group(self, name, label):
-        g = self.doc.getObject(name)
-        if g is None:
-            g = self.doc.addObject("App::DocumentObjectGroup", name)
-            g.Label = label
-        return g
-
     def add_point(self, p):
-        group = self.group(POINT_GROUP, "IMESS points")
+        group = document_group(self.doc, POINT_GROUP, "IMESS points")
         obj = self.doc.addObject("Part::Feature", "MeasPt")
         obj.Shape = Part.Vertex(p)
         number = len(group.Group) + 1
@@ -187,101 +212,3 @@ class CaptureSession:
                 marker.ViewObject.ShapeColor = (1.0, 0.2, 0.0)
         marker.Placement = FreeCAD.Placement(p, FreeCAD.Rotation())
         return created
-
-
-# --- fitting ------------------------------------------------------------------------------
-def points_of(objects):
-    """Every vertex of the given objects (measured points or any shape), in order."""
-    pts = []
-    for o in objects:
-        shape = getattr(o, "Shape", None)
-        if shape is not None and not shape.isNull():
-            pts.extend(v.Point for v in shape.Vertexes)
-        elif hasattr(o, "Points"):  # Points::Feature (an imported .asc / .ply cloud)
-            pts.extend(o.Points.Points)
-    return pts
-
-
-def run_fit(kind, points, messcap=None):
-    """`messcap fit KIND -` with the points on stdin; returns its JSON as a dict."""
-    if kind not in FIT_KINDS:
-        raise CaptureError("unknown feature kind %r; accepted: %s" % (kind, ", ".join(FIT_KINDS)))
-    text = "".join("%r %r %r\n" % (p.x, p.y, p.z) for p in points)
-    exe = messcap or find_messcap()
-    r = subprocess.run([exe, "fit", kind, "-"], input=text, capture_output=True, text=True, timeout=30)
-    if r.returncode != 0:
-        raise CaptureError(r.stderr.strip() or "messcap fit %s failed (exit %d)" % (kind, r.returncode))
-    return json.loads(r.stdout)
-
-
-def _vector(values):
-    return FreeCAD.Vector(*values)
-
-
-def _span(points, origin, direction):
-    ts = [(p - origin).dot(direction) for p in points]
-    return min(ts), max(ts)
-
-
-def feature_shape(fit, points):
-    """Real FreeCAD geometry for a fit: plane face over the points, circle edge, sphere, cylinder."""
-    kind = fit["type"]
-    if kind == "plane":
-        plane = Part.Plane(_vector(fit["point"]), _vector(fit["normal"]))
-        uv = [plane.parameter(p) for p in points]
-        us, vs = [c[0] for c in uv], [c[1] for c in uv]
-        margin = 0.1 * max(max(us) - min(us), max(vs) - min(vs), 1.0)
-        return plane.toShape(min(us) - margin, max(us) + margin, min(vs) - margin, max(vs) + margin)
-    if kind == "circle":
-        return Part.Circle(_vector(fit["center"]), _vector(fit["normal"]), fit["diameter"] / 2).toShape()
-    if kind == "sphere":
-        return Part.makeSphere(fit["diameter"] / 2, _vector(fit["center"]))
-    if kind == "cylinder":
-        axis, origin = _vector(fit["axis"]), _vector(fit["point"])
-        lo, hi = _span(points, origin, axis)
-        height = max(hi - lo, 1e-3)
-        return Part.makeCylinder(fit["diameter"] / 2, height, origin + axis * lo, axis)
-    raise CaptureError("no geometry for a fitted %s" % kind)
-
-
-_PROPERTIES = (  # JSON key -> (property type, name, description)
-    ("type", "App::PropertyString", "FitType", "the fitted feature kind"),
-    ("point", "App::PropertyVector", "FitPoint", "plane: centroid; cylinder: on the axis (mm)"),
-    ("normal", "App::PropertyVector", "Normal", "unit normal"),
-    ("center", "App::PropertyVector", "Center", "centre (mm)"),
-    ("axis", "App::PropertyVector", "Axis", "unit axis"),
-    ("diameter", "App::PropertyFloat", "Diameter", "diameter (mm)"),
-    ("rms", "App::PropertyFloat", "RMS", "rms of the residuals (mm)"),
-    ("form_min", "App::PropertyFloat", "FormMin", "most negative residual (mm)"),
-    ("form_max", "App::PropertyFloat", "FormMax", "most positive residual (mm)"),
-    ("n", "App::PropertyInteger", "PointCount", "points fitted"),
-)
-
-
-def fit_feature(doc, kind, objects, messcap=None):
-    """Fits KIND to the objects' points with messcap and adds the feature to the document."""
-    points = points_of(objects)
-    fit = run_fit(kind, points, messcap)
-    shape = feature_shape(fit, points)
-    group = doc.getObject(FEATURE_GROUP)
-    if group is None:
-        group = doc.addObject("App::DocumentObjectGroup", FEATURE_GROUP)
-        group.Label = "IMESS features"
-    obj = doc.addObject("Part::Feature", "Fit" + kind.capitalize())
-    obj.Shape = shape
-    for key, ptype, name, doc_text in _PROPERTIES:
-        if key in fit:
-            obj.addProperty(ptype, name, "IMESS fit", doc_text)
-            value = fit[key]
-            setattr(obj, name, _vector(value) if ptype == "App::PropertyVector" else value)
-    obj.addProperty("App::PropertyString", "FitJSON", "IMESS fit", "messcap fit output, verbatim")
-    obj.FitJSON = json.dumps(fit)
-    obj.addProperty("App::PropertyLinkList", "FitPoints", "IMESS fit", "the points fitted")
-    obj.FitPoints = list(objects)
-    if "diameter" in fit:
-        obj.Label = "%s D%.3f" % (kind, fit["diameter"])
-    else:
-        obj.Label = kind
-    group.addObject(obj)
-    doc.recompute()
-    return obj

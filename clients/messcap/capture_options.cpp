@@ -108,6 +108,7 @@ std::string capture_usage() {
   return "usage: messcap [HOST[:PORT]] [-n N] [-o FILE] [--append | --force] [--reconnect]\n"
          "               [--frame NAME --frames FILE] [--fit KIND] [--outer]\n"
          "       messcap fit KIND [FILE | -]\n"
+         "       messcap relate [A B | -]\n"
          "       messcap convert IN OUT [--fit KIND] [--frame NAME --frames FILE]\n"
          "               [--decimals D] [--force] [--outer]\n"
          "       messcap inspect PLAN [--points FILE | HOST[:PORT]] [--json OUT] [--html OUT]\n"

@@ -205,11 +205,11 @@ class Session {
     if (plan_.alignment) {
       const Vector3d o = frame_.translation(), x = frame_.rotation().col(0), z = frame_.rotation().col(2);
       char buf[256];
-      std::snprintf(buf, sizeof buf, "Frame Set %s %.6f %.6f %.6f %.9f %.9f %.9f %.9f %.9f %.9f", plan_.part.c_str(), o.x(),
+      std::snprintf(buf, sizeof buf, "SetFrame %s O %.6f %.6f %.6f X %.9f %.9f %.9f Z %.9f %.9f %.9f", plan_.part.c_str(), o.x(),
                     o.y(), o.z(), x.x(), x.y(), x.z(), z.x(), z.y(), z.z());
       reply_.reset();
       send(buf);
-      read_until([this] { return reply_.has_value(); }, kReplyTimeout, "the reply to Frame Set");
+      read_until([this] { return reply_.has_value(); }, kReplyTimeout, "the reply to SetFrame");
       if (reply_->rfind("Err ", 0) == 0) log_ << "messcap: messd keeps no part frames (" << *reply_ << "); the frame is in the report\n";
     }
     request("Release");

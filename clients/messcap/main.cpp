@@ -7,6 +7,7 @@
 #include "convert_command.hpp"
 #include "fit_command.hpp"
 #include "inspect_command.hpp"
+#include "relate_command.hpp"
 
 int main(int argc, char* argv[]) {
   using namespace imess::messcap;
@@ -14,5 +15,6 @@ int main(int argc, char* argv[]) {
   if (command == "fit") return run_fit_command(argc, argv);
   if (command == "convert") return run_convert_command(argc, argv);
   if (command == "inspect") return run_inspect_command(argc, argv);
+  if (command == "relate") return run_relate_command(argc, argv);
   return run_capture(argc, argv);
 }

@@ -1,7 +1,8 @@
 # Inside freecadcmd: the FreeCAD plugin against a real, simulated messd. A scripted operator
 # measures the cube top (3 points) and the bore (3 points); the points must be in the document
 # as they arrive, a plane and a circle (D 30 +- 0.005) are fitted through messcap, the document
-# is saved, re-opened and checked. argv: BIN_DIR SOURCE_DIR
+# is saved, re-opened and checked. Then the jog logic on a fresh messd: hold +Z, let go, Measure
+# here. argv: BIN_DIR SOURCE_DIR
 import math
 import os
 import socket
@@ -10,23 +11,14 @@ import sys
 import tempfile
 import threading
 import time
-import traceback
 
-BIN_DIR, SOURCE_DIR = sys.argv[1], sys.argv[2]
-sys.path.insert(0, os.path.join(SOURCE_DIR, "clients", "freecad"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))
+from plugin_test import BIN_DIR, MESSCAP, SOURCE_DIR, Gui, check, finish, macro_namespace  # noqa: E402
 
 import FreeCAD  # noqa: E402
 import imess_capture  # noqa: E402
-
-MESSCAP = os.path.join(BIN_DIR, "messcap")
-os.environ["IMESS_MESSCAP"] = MESSCAP  # the plugin's way to be told which messcap to run
-failures = []
-
-
-def check(condition, text):
-    if not condition:
-        failures.append(text)
-        print("FAIL " + text)
+import imess_fit  # noqa: E402
+import imess_jog  # noqa: E402
 
 
 class Operator(threading.Thread):
@@ -122,7 +114,7 @@ def protocol_checks():
     s.poll()
     check(not s.connected() and s.closed_reason == "closed by messd", "a closed link is noticed")
     try:
-        imess_capture.run_fit("circle", [FreeCAD.Vector(i, 0, 0) for i in range(3)], MESSCAP)
+        imess_fit.run_fit("circle", [FreeCAD.Vector(i, 0, 0) for i in range(3)], MESSCAP)
         check(False, "a fit of collinear points must fail")
     except imess_capture.CaptureError as e:
         check("collinear" in str(e), "the failed fit says why: %s" % e)
@@ -131,29 +123,7 @@ def protocol_checks():
 
 def panel_checks():
     """The GUI macro's wiring, on an offscreen Qt: Connect, timer ticks, the Circle button."""
-    from PySide import QtGui
-
-    app = QtGui.QApplication.instance() or QtGui.QApplication([])
-    source = open(os.path.join(SOURCE_DIR, "clients", "freecad", "IMESS_Capture.FCMacro")).read()
-    check(source.rstrip().endswith("show_panel()"), "the macro ends by showing its panel")
-    ns = {"__file__": os.path.join(SOURCE_DIR, "clients", "freecad", "IMESS_Capture.FCMacro")}
-    exec(compile(source.rstrip()[: -len("show_panel()")], "IMESS_Capture.FCMacro", "exec"), ns)
-
-    class Gui:  # freecadcmd has no selection or main window: a stand-in for both
-        selected = []
-
-        class Selection:
-            @staticmethod
-            def getSelection():
-                return Gui.selected
-
-        @staticmethod
-        def updateGui():
-            app.processEvents()
-
-    ns["FreeCADGui"] = Gui
-    warnings = []  # a modal message box would wait for a click that never comes
-    QtGui.QMessageBox.warning = staticmethod(lambda parent, title, text: warnings.append(text))
+    ns, warnings, app = macro_namespace()
     server = socket.socket()
     server.bind(("127.0.0.1", 0))
     server.listen(1)
@@ -227,8 +197,8 @@ def capture_checks(workdir):
 
         top = [o for o, p in zip(session.points, op.points) if p[0] == "top"]
         bore = [o for o, p in zip(session.points, op.points) if p[0] == "bore"]
-        plane = imess_capture.fit_feature(doc, "plane", top, MESSCAP)
-        circle = imess_capture.fit_feature(doc, "circle", bore, MESSCAP)
+        plane = imess_fit.fit_feature(doc, "plane", top, MESSCAP)
+        circle = imess_fit.fit_feature(doc, "circle", bore, MESSCAP)
         check(abs(circle.Diameter - 30.0) <= 0.005, "bore diameter %.6f, expected 30 +- 0.005" % circle.Diameter)
         check(abs(circle.Center.x - 460) < 0.5 and abs(circle.Center.y - 350) < 0.5, "bore centre %s" % circle.Center)
         check(abs(abs(plane.Normal.z) - 1) < 1e-6 and abs(plane.FitPoint.z - 80) <= 0.005,
@@ -260,15 +230,47 @@ def capture_checks(workdir):
         messd.wait(10)
 
 
-try:
-    started = time.time()
-    protocol_checks()
-    panel_checks()
+def jog_checks():
+    """The jog buttons' logic on a real messd: hold +Z, let go, Measure here."""
+    messd, port = start_messd()
+    try:
+        doc = FreeCAD.newDocument("jog")
+        session = imess_capture.CaptureSession(doc, "127.0.0.1", port)
+        session.connect()
+        jog = imess_jog.JogControl(session)
+
+        def run(seconds, until=lambda: False):
+            end = time.time() + seconds
+            while time.time() < end and not until():
+                session.poll()
+                jog.tick()
+                time.sleep(0.01)
+
+        run(2, lambda: session.position is not None)
+        start = session.position
+        jog.press("+Z")
+        run(2, lambda: session.position is not None and session.position.z > start.z + 0.5)
+        jog.release("+Z")
+        run(5, lambda: session.state == "idle")
+        run(0.5)  # CurrCor comes at most ReportHz (10) times a second: the last one after the stop
+        check(session.state == "idle" and session.position.z > start.z + 0.5 and not session.messages,
+              "held +Z moved up, letting go stopped it: %s -> %s, %s %s" % (start, session.position, session.state,
+                                                                            session.messages))
+        stopped_at = session.position
+        jog.measure_here()
+        run(3, lambda: len(session.points) == 1)
+        check(len(session.points) == 1 and (session.points[0].Measured - stopped_at).Length < 0.001,
+              "Measure here put the standing position %s into the document: %s" % (stopped_at, [p.Measured for p in session.points]))
+        session.close()
+        FreeCAD.closeDocument(doc.Name)
+    finally:
+        messd.terminate()
+        messd.wait(10)
+
+
+def capture_in_tempdir():
     with tempfile.TemporaryDirectory(prefix="imess-freecad-") as d:
         capture_checks(d)
-    print("freecad plugin: %d failures, %.1f s" % (len(failures), time.time() - started))
-except Exception:  # noqa: BLE001
-    traceback.print_exc()
-    failures.append("exception")
-sys.stdout.flush()
-os._exit(1 if failures else 0)
+
+
+finish("freecad plugin", protocol_checks, panel_checks, capture_in_tempdir, jog_checks)
