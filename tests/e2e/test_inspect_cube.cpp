@@ -42,6 +42,13 @@ TEST_CASE("messcap inspect: the worked-example cube measured live matches the si
   INFO("stdout:\n" << run.out << "\nstderr:\n" << run.err);
   REQUIRE(run.status == 0);
   CHECK(run.out.find("13 characteristics: 13 in tolerance, 0 out of tolerance") != std::string::npos);
+  {  // messd keeps the part frame messcap built, active, for every client
+    LineClient monitor(messd.port());
+    CHECK(monitor.request("Frames") == std::optional<std::string>("Ok Frames Active cube-1996 Names machine cube-1996"));
+    const auto frame = monitor.request("Frame");
+    REQUIRE(frame);
+    CHECK(frame->rfind("Ok Frame cube-1996 Origin 400.26", 0) == 0);
+  }
   const json report = json::parse(read_file(dir.file("cube.json")));
 
   const auto scene = imess::sim::worked_example_scene();

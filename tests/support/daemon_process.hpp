@@ -52,6 +52,10 @@ class DaemonProcess {
       if (!mkdtemp(dir.data())) throw std::runtime_error("mkdtemp failed");
       own_journal_ = dir;
       args.insert(args.begin(), {"--journal", dir});
+      // Part frames beside it (the journal reads only its hits-*.jnl files): never the
+      // working directory's messd-frames.json.
+      if (std::find(args.begin(), args.end(), "--frames") == args.end())
+        args.insert(args.begin(), {"--frames", dir + "/frames.json"});
     }
     int out[2];
     if (pipe(out) != 0) throw std::runtime_error("pipe failed");
