@@ -16,6 +16,7 @@ namespace imess::messcap {
 int run_fit_command(int argc, const char* const argv[]) {
   std::optional<exchange::FitKind> kind;
   std::string input = "-";
+  bool surface = false;
   try {
     int positional = 0;
     for (int i = 2; i < argc; ++i) {
@@ -24,8 +25,12 @@ int run_fit_command(int argc, const char* const argv[]) {
         std::cout << capture_usage();
         return client::kExitOk;
       }
+      if (a == "--surface") {
+        surface = true;
+        continue;
+      }
       if (a.size() > 1 && a.front() == '-')
-        throw client::UsageError("fit: unknown option '" + a + "'; usage: messcap fit KIND [FILE | -]");
+        throw client::UsageError("fit: unknown option '" + a + "'; usage: messcap fit [--surface] KIND [FILE | -]");
       if (positional == 0) {
         try {
           kind = exchange::parse_fit_kind(a);
@@ -35,7 +40,7 @@ int run_fit_command(int argc, const char* const argv[]) {
       } else if (positional == 1) {
         input = a;
       } else {
-        throw client::UsageError("fit: unexpected argument '" + a + "'; usage: messcap fit KIND [FILE | -]");
+        throw client::UsageError("fit: unexpected argument '" + a + "'; usage: messcap fit [--surface] KIND [FILE | -]");
       }
       ++positional;
     }
@@ -45,16 +50,18 @@ int run_fit_command(int argc, const char* const argv[]) {
     return client::kExitUsage;
   }
 
-  std::vector<Eigen::Vector3d> points;
+  PointInput in;
   try {
-    points = read_point_input(input);
+    in = read_point_or_hit_input(input);
   } catch (const std::exception& e) {
     std::cerr << "messcap: fit " << exchange::to_string(*kind) << ": " << e.what() << "\n";
     return client::kExitFailure;
   }
-  auto fit = exchange::fit_points(*kind, points);
+  // Hits with approach and tip radius: fit the ball centres and compensate (the default for
+  // measured points); plain x y z files, or --surface, fit the surface points.
+  auto fit = in.probed && !surface ? exchange::fit_probed_points(*kind, in.hits) : exchange::fit_points(*kind, in.points);
   if (!fit) {
-    std::cerr << "messcap: " << fit_failure_message(*kind, points.size(), input_name(input), fit.error()) << "\n";
+    std::cerr << "messcap: " << fit_failure_message(*kind, in.points.size(), input_name(input), fit.error()) << "\n";
     return client::kExitFailure;
   }
   std::cout << exchange::to_json(*fit) << "\n";

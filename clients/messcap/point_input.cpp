@@ -16,7 +16,9 @@ namespace imess::messcap {
 
 std::string input_name(const std::string& path) { return path == "-" ? "<stdin>" : path; }
 
-std::vector<Eigen::Vector3d> read_point_input(const std::string& path) {
+namespace {
+
+std::string read_text(const std::string& path) {
   std::ostringstream text;
   if (path == "-") {
     text << std::cin.rdbuf();
@@ -29,7 +31,26 @@ std::vector<Eigen::Vector3d> read_point_input(const std::string& path) {
   // A header of names ("x,y,z" from messcap's .csv) is a comment, not a point.
   auto first = s.find_first_not_of(" \t\r\n");
   if (first != std::string::npos && std::isalpha(static_cast<unsigned char>(s[first]))) s.insert(first, "#");
-  return metrology::parse_points(s, input_name(path));
+  return s;
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector3d> read_point_input(const std::string& path) {
+  return metrology::parse_points(read_text(path), input_name(path));
+}
+
+PointInput read_point_or_hit_input(const std::string& path) {
+  const std::string s = read_text(path);
+  PointInput in;
+  if (metrology::point_file_columns(s, input_name(path)) == 7) {
+    in.hits = metrology::parse_probed_points(s, input_name(path));
+    in.probed = true;
+    for (const auto& h : in.hits) in.points.push_back(h.surface);
+  } else {
+    in.points = metrology::parse_points(s, input_name(path));
+  }
+  return in;
 }
 
 }  // namespace imess::messcap

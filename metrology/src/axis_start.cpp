@@ -2,8 +2,13 @@
 // projected circle.
 #include "axis_start.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <span>
+
+#include <Eigen/Cholesky>
+#include <Eigen/QR>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
@@ -64,6 +69,143 @@ std::optional<AxisPosition> axis_position(const Eigen::Matrix3Xd& q, const Eigen
   pos.point = u * circle->center.x() + v * circle->center.y();
   pos.radius = circle->radius;
   return pos;
+}
+
+std::vector<Eigen::Vector3d> hemisphere_directions(int count) {
+  // Fibonacci lattice on the upper half sphere: z evenly spaced in (0, 1], azimuth by the golden
+  // angle. Every axis direction is within about one spacing of a lattice direction or its negative.
+  std::vector<Eigen::Vector3d> dirs;
+  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i) {
+    const double z = (i + 0.5) / count;
+    const double r = std::sqrt(1.0 - z * z);
+    dirs.emplace_back(r * std::cos(golden * i), r * std::sin(golden * i), z);
+  }
+  return dirs;
+}
+
+std::vector<std::size_t> local_minima(const std::vector<Eigen::Vector3d>& dirs, const std::vector<double>& score,
+                                      double neighbour_cos, std::size_t keep) {
+  std::vector<std::size_t> minima;
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    if (!std::isfinite(score[i])) continue;
+    bool lowest = true;
+    for (std::size_t j = 0; j < dirs.size() && lowest; ++j) {
+      // Axis directions have no sign: a neighbour is close to +d or to -d.
+      if (j == i || std::abs(dirs[i].dot(dirs[j])) < neighbour_cos) continue;
+      lowest = score[i] < score[j] || (score[i] == score[j] && i < j);
+    }
+    if (lowest) minima.push_back(i);
+  }
+  std::sort(minima.begin(), minima.end(), [&](std::size_t x, std::size_t y) { return score[x] < score[y]; });
+  if (minima.size() > keep) minima.resize(keep);
+  return minima;
+}
+
+namespace {
+
+// Projection of q into the plane perpendicular to a (scaled by 1/scale): x, y and the axial h.
+void project(const Eigen::Matrix3Xd& q, const Eigen::Vector3d& a, double scale, Eigen::Vector3d& u,
+             Eigen::Vector3d& v, Eigen::VectorXd& x, Eigen::VectorXd& y, Eigen::VectorXd& h) {
+  perpendicular_basis(a, u, v);
+  const Eigen::Index n = q.cols();
+  x.resize(n);
+  y.resize(n);
+  h.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    x(i) = u.dot(q.col(i)) / scale;
+    y(i) = v.dot(q.col(i)) / scale;
+    h(i) = a.dot(q.col(i)) / scale;
+  }
+}
+
+}  // namespace
+
+std::optional<DirectionFit> cylinder_on_direction(const Eigen::Matrix3Xd& q, const Eigen::Vector3d& a) {
+  const double scale = rms_spread<3>(q);
+  if (!(scale > 0.0) || q.cols() < 3) return std::nullopt;
+  Eigen::Vector3d u, v;
+  Eigen::VectorXd x, y, h;
+  project(q, a, scale, u, v, x, y, h);
+  const Eigen::Index n = q.cols();
+  Eigen::MatrixXd m(n, 3);
+  m << 2.0 * x, 2.0 * y, Eigen::VectorXd::Ones(n);
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(m);
+  if (qr.rank() < 3) return std::nullopt;
+  const Eigen::Vector3d k = qr.solve(Eigen::VectorXd(x.array().square() + y.array().square()));
+  const double r2 = k(2) + k(0) * k(0) + k(1) * k(1);
+  if (!(r2 > 0.0)) return std::nullopt;
+  DirectionFit f;
+  f.radius = std::sqrt(r2);
+  const Eigen::VectorXd rho = ((x.array() - k(0)).square() + (y.array() - k(1)).square()).sqrt();
+  f.score = (rho.array() - f.radius).square().sum() * scale * scale;
+  f.radius *= scale;
+  f.point = (k(0) * u + k(1) * v) * scale;
+  return f;
+}
+
+std::optional<DirectionFit> cone_on_direction(const Eigen::Matrix3Xd& q, const Eigen::Vector3d& a) {
+  const double scale = rms_spread<3>(q);
+  if (!(scale > 0.0) || q.cols() < 5) return std::nullopt;
+  Eigen::Vector3d u, v;
+  Eigen::VectorXd x, y, h;
+  project(q, a, scale, u, v, x, y, h);
+  const Eigen::Index n = q.cols();
+  // Normal equations (scaled coordinates): a start needs no more precision, and the search
+  // evaluates this for some 900 directions.
+  Eigen::Matrix<double, 5, 5> mtm = Eigen::Matrix<double, 5, 5>::Zero();
+  Eigen::Matrix<double, 5, 1> mtb = Eigen::Matrix<double, 5, 1>::Zero();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Eigen::Matrix<double, 5, 1> row;
+    row << 2.0 * x(i), 2.0 * y(i), h(i), h(i) * h(i), 1.0;
+    mtm.noalias() += row * row.transpose();
+    mtb += row * (x(i) * x(i) + y(i) * y(i));
+  }
+  const Eigen::LDLT<Eigen::Matrix<double, 5, 5>> ldlt(mtm);
+  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-12 * ldlt.vectorD().maxCoeff()))
+    return std::nullopt;
+  const Eigen::Matrix<double, 5, 1> k = ldlt.solve(mtb);
+  const Eigen::VectorXd rho = ((x.array() - k(0)).square() + (y.array() - k(1)).square()).sqrt();
+  const double hm = h.mean();
+  const double hvar = (h.array() - hm).square().sum();
+  if (!(hvar > 0.0)) return std::nullopt;
+  const double slope = ((h.array() - hm) * rho.array()).sum() / hvar;
+  const Eigen::Vector2d rs(rho.mean() - slope * hm, slope);
+  // Parameters (cx, cy, radius, slope); Gauss–Newton while the sum of squares drops.
+  Eigen::Vector4d p(k(0), k(1), rs(0), rs(1));
+  const auto distances = [&](const Eigen::Vector4d& w, Eigen::MatrixXd* J) {
+    Eigen::VectorXd e(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double dx = x(i) - w(0);
+      const double dy = y(i) - w(1);
+      const double r = std::hypot(dx, dy);
+      e(i) = r - w(2) - w(3) * h(i);
+      if (J) J->row(i) << (r > 0.0 ? -dx / r : 0.0), (r > 0.0 ? -dy / r : 0.0), -1.0, -h(i);
+    }
+    return e;
+  };
+  Eigen::MatrixXd J(n, 4);
+  Eigen::MatrixXd J_trial(n, 4);
+  Eigen::VectorXd e = distances(p, &J);
+  for (int it = 0; it < 10; ++it) {
+    const Eigen::Matrix4d jtj = J.transpose() * J;
+    const Eigen::Vector4d step = jtj.ldlt().solve(-(J.transpose() * e));
+    if (!step.allFinite()) break;
+    const Eigen::Vector4d trial = p + step;
+    const Eigen::VectorXd e_trial = distances(trial, &J_trial);
+    if (!(e_trial.squaredNorm() < e.squaredNorm())) break;
+    p = trial;
+    e = e_trial;
+    J = J_trial;
+    if (step.norm() < 1e-12) break;
+  }
+  DirectionFit f;
+  f.slope = p(3);
+  const double cp = std::cos(std::atan(f.slope));
+  f.score = (e * cp).squaredNorm() * scale * scale;
+  f.radius = p(2) * scale;
+  f.point = (p(0) * u + p(1) * v) * scale;
+  return f;
 }
 
 std::optional<FitError> check_axial_input(std::span<const Eigen::Vector3d> points, std::size_t min_points,

@@ -15,6 +15,10 @@ namespace {
 
 // Condition number of the scaled Jacobian above which a parameter is taken as undetermined.
 constexpr double kMaxCondition = 1e10;
+// Residual rms (relative to the data spread) below which the points lie exactly on the ball, and
+// the largest accepted independent gradient cosine otherwise (as for the axial fits).
+constexpr double kExactRms = 1e-10;
+constexpr double kCheckCosine = 1e-7;
 
 template <int Dim>
 class BallProblem {
@@ -95,6 +99,23 @@ Fit<BallFit<Dim>> fit_ball(std::span<const Eigen::Matrix<double, Dim, 1>> points
   }
   if (!(s(Dim) > 0.0))
     return make_error(FitErrorCode::IllConditioned, feature, "the solver ended at a non-positive radius");
+  // Stationarity check with a Jacobian independent of the solver's: central differences of
+  // |p - c| - r (skipped when the points lie exactly on the circle / sphere).
+  Eigen::VectorXd r0(n);
+  pb.evaluate(s, r0, nullptr);
+  if (r0.norm() > kExactRms * spread * std::sqrt(static_cast<double>(n))) {
+    const auto residuals = [&q, n](const Eigen::VectorXd& x) {
+      Eigen::VectorXd r(n);
+      for (Eigen::Index i = 0; i < n; ++i) r(i) = (q.col(i) - x.template head<Dim>()).norm() - x(Dim);
+      return r;
+    };
+    const Eigen::VectorXd step = Eigen::VectorXd::Constant(Dim + 1, 1e-6 * std::max(spread, s(Dim)));
+    if (const double cosine = fd_gradient_cosine(residuals, Eigen::VectorXd(s), step); !(cosine <= kCheckCosine)) {
+      std::ostringstream os;
+      os << "the solver stopped at a point that fails the stationarity check (gradient cosine " << cosine << ")";
+      return make_error(FitErrorCode::NotConverged, feature, os.str());
+    }
+  }
   BallFit<Dim> res;
   res.center = pa.centroid + s.template head<Dim>();
   res.radius = s(Dim);

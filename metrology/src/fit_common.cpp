@@ -97,6 +97,28 @@ std::optional<FitError> check_spread(const PrincipalAxes<Dim>& pa, std::size_t n
   return std::nullopt;
 }
 
+double fd_gradient_cosine(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residuals,
+                          const Eigen::VectorXd& p0, const Eigen::VectorXd& step) {
+  const Eigen::VectorXd r = residuals(p0);
+  const double rn = r.norm();
+  if (rn == 0.0) return 0.0;
+  Eigen::MatrixXd J(r.size(), p0.size());
+  for (Eigen::Index k = 0; k < p0.size(); ++k) {
+    Eigen::VectorXd plus = p0;
+    Eigen::VectorXd minus = p0;
+    plus(k) += step(k);
+    minus(k) -= step(k);
+    J.col(k) = (residuals(plus) - residuals(minus)) / (2.0 * step(k));
+  }
+  const double longest = J.colwise().norm().maxCoeff();
+  double worst = 0.0;
+  for (Eigen::Index k = 0; k < J.cols(); ++k) {
+    const double cn = J.col(k).norm();
+    if (cn > 1e-6 * longest) worst = std::max(worst, std::abs(J.col(k).dot(r)) / (cn * rn));
+  }
+  return worst;
+}
+
 FitStats make_stats(const Eigen::VectorXd& residuals, int iterations) {
   FitStats s;
   s.point_count = static_cast<std::size_t>(residuals.size());

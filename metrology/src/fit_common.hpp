@@ -2,6 +2,7 @@
 // bases perpendicular to a direction. Not installed; include only from metrology/src.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -42,6 +43,13 @@ PrincipalAxes<Dim> principal_axes(std::span<const Eigen::Matrix<double, Dim, 1>>
 template <int Dim>
 std::optional<FitError> check_spread(const PrincipalAxes<Dim>& pa, std::size_t n, int needed_dims,
                                      std::string_view feature);
+
+// Largest cosine between the residual vector r(p0) and a column of the central-difference
+// Jacobian of r at p0 (step(k) per parameter): the stationarity test of a solution with a
+// Jacobian independent of the solver's. Columns below 1e-6 of the longest (parameters the
+// residuals do not depend on) are skipped; 0 when r(p0) is zero.
+double fd_gradient_cosine(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residuals,
+                          const Eigen::VectorXd& p0, const Eigen::VectorXd& step);
 
 // Residual statistics; iterations as reported by the solver.
 FitStats make_stats(const Eigen::VectorXd& residuals, int iterations);

@@ -4,6 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include <Eigen/SVD>
 
 #include <Eigen/QR>
 
@@ -71,6 +76,47 @@ class ConeProblem {
     return sc;
   }
 
+  double length() const { return scale_; }
+
+  // Residuals from the public Cone (point, direction, distance, apex angle: 8 parameters), by
+  // finite differences — not the solver's local frame or Jacobian.
+  double independent_cosine(const State& st) const {
+    Eigen::VectorXd p(8);
+    p << st.c, st.a, st.s, 2.0 * st.phi;
+    const auto residuals = [this](const Eigen::VectorXd& x) {
+      Cone k;
+      k.point = x.head<3>();
+      k.direction = x.segment<3>(3).normalized();
+      k.distance = x(6);
+      k.apex_angle_rad = x(7);
+      Eigen::VectorXd r(q_.cols());
+      for (Eigen::Index i = 0; i < q_.cols(); ++i) r(i) = k.signed_distance(q_.col(i));
+      return r;
+    };
+    const double len = std::max(scale_, std::abs(st.s));
+    Eigen::VectorXd step(8);
+    step << Eigen::Vector3d::Constant(1e-6 * len), Eigen::Vector3d::Constant(1e-6), 1e-6 * len, 1e-6;
+    return detail::fd_gradient_cosine(residuals, p, step);
+  }
+
+  bool same_solution(const State& x0, const State& y0) const {
+    const State x = oriented(x0);
+    const State y = oriented(y0);
+    const double len = std::max(scale_, std::max(std::abs(x.s), std::abs(y.s)));
+    const Eigen::Vector3d dc = y.c - x.c;
+    return (x.a - y.a).norm() < 1e-6 && (dc - dc.dot(x.a) * x.a).norm() < 1e-6 * len &&
+           std::abs(x.s - y.s) < 1e-6 * len && std::abs(x.phi - y.phi) < 1e-6;
+  }
+
+  // (a, phi) and (-a, -phi) are the same cone: the one with phi >= 0.
+  static State oriented(State st) {
+    if (st.phi < 0.0) {
+      st.a = -st.a;
+      st.phi = -st.phi;
+    }
+    return st;
+  }
+
  private:
   const Eigen::Matrix3Xd& q_;
   double scale_;
@@ -97,18 +143,70 @@ ConeProblem::State start_on_axis(const Eigen::Matrix3Xd& q, const Eigen::Vector3
   return st;
 }
 
+std::string describe(const ConeProblem::State& s0, const Eigen::Vector3d& centroid) {
+  const ConeProblem::State s = ConeProblem::oriented(s0);
+  std::ostringstream os;
+  const Eigen::Vector3d p = centroid + s.c;
+  os << "axis through (" << p.x() << ", " << p.y() << ", " << p.z() << ") along (" << s.a.x() << ", " << s.a.y()
+     << ", " << s.a.z() << "), apex angle " << 2.0 * s.phi * 180.0 / std::numbers::pi << " deg";
+  return os.str();
+}
+
+// A cone whose apex angle does not differ from 0 beyond its standard uncertainty (3 sigma from
+// the residuals and the Jacobian), or by less than a radius change of 1e-9 of the data size over
+// the probed axial extent (exact data), is a cylinder: say so instead of reporting a cone with
+// its apex far away.
+// Half apex angle up to which a statistically insignificant angle makes the cone a cylinder.
+constexpr double kCylinderHalfAngle = 0.5 * std::numbers::pi / 180.0;
+
+std::optional<FitError> cylinder_check(const ConeProblem& pb, const Eigen::Matrix3Xd& q, const ConeProblem::State& st) {
+  const Eigen::Index n = q.cols();
+  Eigen::VectorXd r(n);
+  Eigen::MatrixXd J(n, 6);
+  pb.evaluate(st, r, &J);
+  const Eigen::VectorXd h = st.a.transpose() * q;
+  const double extent = h.maxCoeff() - h.minCoeff();
+  const double floor = 1e-9 * pb.length() / std::max(extent, 1e-300);
+  double sigma = 0.0;
+  if (n > 6) {
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinV);
+    const Eigen::VectorXd sv = svd.singularValues();
+    double var = 0.0;
+    for (Eigen::Index k = 0; k < sv.size(); ++k)
+      if (sv(k) > 0.0) var += std::pow(svd.matrixV()(5, k) / sv(k), 2);
+    sigma = std::sqrt(r.squaredNorm() / static_cast<double>(n - 6) * var);
+  }
+  // The statistical bound only matters for an apex angle near 0: a cone of a degree or more
+  // whose angle is poorly determined (few points, a narrow sector) is still reported as a cone.
+  const double bound = std::max(std::min(3.0 * sigma, kCylinderHalfAngle), floor);
+  if (std::abs(st.phi) > bound) return std::nullopt;
+  std::ostringstream os;
+  os << "the apex angle " << 2.0 * st.phi * 180.0 / std::numbers::pi
+     << " deg is not distinguishable from 0 (bound " << 2.0 * bound * 180.0 / std::numbers::pi
+     << " deg: 3 standard deviations up to 1 deg, or a radius change of 1e-9 of the size over the probed "
+        "length): the "
+     << n << " points lie on a cylinder; fit a cylinder instead (fit_cylinder, messcap fit cylinder)";
+  return detail::make_error(FitErrorCode::ConeIsCylinder, kName, os.str());
+}
+
 Fit<Cone> refine(std::span<const Eigen::Vector3d> points, const detail::PrincipalAxes<3>& pa,
                  const Eigen::Matrix3Xd& q, const std::vector<ConeProblem::State>& starts,
                  const FitOptions& options, bool sample_starts) {
   const ConeProblem pb(q, detail::rms_spread<3>(q));
   const auto valid = [](const ConeProblem::State& st) { return std::abs(st.phi) < 0.5 * std::numbers::pi; };
   const auto best = detail::best_start(pb, q, starts, options, sample_starts, valid);
-  if (!best.state) return detail::no_solution_error(best, options, starts.size(), points.size(), kName);
-  ConeProblem::State st = *best.state;
-  if (st.phi < 0.0) {  // orient the axis toward increasing radius
-    st.a = -st.a;
-    st.phi = -st.phi;
+  if (best.ambiguous) {
+    std::ostringstream os;
+    os << "the " << points.size() << " points lie exactly on at least two different cones ("
+       << describe(best.ambiguous->first, pa.centroid) << "; " << describe(best.ambiguous->second, pa.centroid)
+       << "), so they do not determine one (" << kMinPointsCone
+       << " points are the minimum, but several cones pass through 6 points); probe more points";
+    return detail::make_error(FitErrorCode::AmbiguousSolution, kName, os.str());
   }
+  if (!best.state) return detail::no_solution_error(best, options, starts.size(), points.size(), kName);
+  // Orient the axis toward increasing radius.
+  const ConeProblem::State st = ConeProblem::oriented(*best.state);
+  if (auto e = cylinder_check(pb, q, st)) return *e;
   Cone cone;
   cone.point = pa.centroid + st.c;
   cone.direction = st.a;
@@ -125,10 +223,19 @@ Fit<Cone> fit_cone(std::span<const Eigen::Vector3d> points, const FitOptions& op
   if (auto e = detail::check_axial_input(points, kMinPointsCone, kName, pa)) return *e;
   const Eigen::Matrix3Xd q = detail::centred<3>(points, pa.centroid);
   const Eigen::Matrix3Xd qs = detail::start_sample(q);
-  const auto starts = detail::axial_starts<ConeProblem::State>(
-      qs, pa, [&qs](const detail::AxisPosition& pos, const Eigen::Vector3d& axis) {
-        return start_on_axis(qs, pos.point, axis);
-      });
+  std::vector<ConeProblem::State> starts;
+  for (const Eigen::Vector3d& axis : detail::start_directions(qs, pa, detail::cone_on_direction)) {
+    if (auto f = detail::cone_on_direction(qs, axis)) {
+      ConeProblem::State st;
+      st.c = f->point;
+      st.a = axis;
+      st.phi = std::atan(f->slope);
+      st.s = f->radius * std::cos(st.phi);
+      starts.push_back(st);
+    } else if (auto pos = detail::axis_position(qs, axis)) {
+      starts.push_back(start_on_axis(qs, pos->point, axis));
+    }
+  }
   if (starts.empty()) return detail::no_start_error(kName);
   return refine(points, pa, q, starts, options, true);
 }

@@ -1,7 +1,11 @@
-// Cylinder fit: candidate starting axes, each refined by Levenberg–Marquardt on the residuals
-// (distance from the axis) - r; the smallest sum of squares wins.
+// Cylinder fit: starting axes from the principal axes, an algebraic quadric and a search over
+// axis directions; each refined by Levenberg–Marquardt on (distance from the axis) - r; the
+// smallest sum of squares that passes the independent stationarity check wins.
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+
+#include <Eigen/Geometry>
 
 #include "axis_start.hpp"
 #include "fit_common.hpp"
@@ -29,6 +33,7 @@ class CylinderProblem {
 
   Eigen::Index residual_count() const { return q_.cols(); }
   Eigen::Index parameter_count() const { return 5; }
+  double length() const { return scale_; }
 
   void evaluate(const State& s, Eigen::VectorXd& res, Eigen::MatrixXd* J) const {
     Eigen::Vector3d u;
@@ -62,10 +67,45 @@ class CylinderProblem {
     return sc;
   }
 
+  // Residuals from the public Cylinder (point, direction, radius: 7 parameters), by finite
+  // differences — not the solver's local frame or Jacobian.
+  double independent_cosine(const State& s) const {
+    Eigen::VectorXd p(7);
+    p << s.c, s.a, s.r;
+    const auto residuals = [this](const Eigen::VectorXd& x) {
+      Cylinder cyl;
+      cyl.point = x.head<3>();
+      cyl.direction = x.segment<3>(3).normalized();
+      Eigen::VectorXd r(q_.cols());
+      for (Eigen::Index i = 0; i < q_.cols(); ++i) r(i) = cyl.distance_from_axis(q_.col(i)) - x(6);
+      return r;
+    };
+    const double len = std::max(scale_, std::abs(s.r));
+    Eigen::VectorXd step(7);
+    step << Eigen::Vector3d::Constant(1e-6 * len), Eigen::Vector3d::Constant(1e-6), 1e-6 * len;
+    return detail::fd_gradient_cosine(residuals, p, step);
+  }
+
+  bool same_solution(const State& x, const State& y) const {
+    const double len = std::max(scale_, std::max(x.r, y.r));
+    const Eigen::Vector3d dc = y.c - x.c;
+    return x.a.cross(y.a).norm() < 1e-6 && (dc - dc.dot(x.a) * x.a).norm() < 1e-6 * len &&
+           std::abs(x.r - y.r) < 1e-6 * len;
+  }
+
  private:
   const Eigen::Matrix3Xd& q_;
   double scale_;
 };
+
+std::string describe(const CylinderProblem::State& s, const Eigen::Vector3d& centroid) {
+  std::ostringstream os;
+  const Eigen::Vector3d p = centroid + s.c;
+  const Eigen::Vector3d a = detail::canonical_sign(s.a);
+  os << "axis through (" << p.x() << ", " << p.y() << ", " << p.z() << ") along (" << a.x() << ", " << a.y()
+     << ", " << a.z() << "), diameter " << 2.0 * s.r;
+  return os.str();
+}
 
 Fit<Cylinder> refine(std::span<const Eigen::Vector3d> points, const detail::PrincipalAxes<3>& pa,
                      const Eigen::Matrix3Xd& q, const std::vector<CylinderProblem::State>& starts,
@@ -73,6 +113,14 @@ Fit<Cylinder> refine(std::span<const Eigen::Vector3d> points, const detail::Prin
   const CylinderProblem pb(q, detail::rms_spread<3>(q));
   const auto valid = [](const CylinderProblem::State& st) { return st.r > 0.0; };
   const auto best = detail::best_start(pb, q, starts, options, sample_starts, valid);
+  if (best.ambiguous) {
+    std::ostringstream os;
+    os << "the " << points.size() << " points lie exactly on at least two different cylinders ("
+       << describe(best.ambiguous->first, pa.centroid) << "; " << describe(best.ambiguous->second, pa.centroid)
+       << "), so they do not determine one (" << kMinPointsCylinder
+       << " points are the minimum, but up to 6 cylinders pass through 5 points); probe more points";
+    return detail::make_error(FitErrorCode::AmbiguousSolution, kName, os.str());
+  }
   if (!best.state) return detail::no_solution_error(best, options, starts.size(), points.size(), kName);
   Cylinder cyl;
   cyl.point = pa.centroid + best.state->c;
@@ -88,10 +136,11 @@ Fit<Cylinder> fit_cylinder(std::span<const Eigen::Vector3d> points, const FitOpt
   detail::PrincipalAxes<3> pa;
   if (auto e = detail::check_axial_input(points, kMinPointsCylinder, kName, pa)) return *e;
   const Eigen::Matrix3Xd q = detail::centred<3>(points, pa.centroid);
-  const auto starts = detail::axial_starts<CylinderProblem::State>(
-      detail::start_sample(q), pa, [](const detail::AxisPosition& pos, const Eigen::Vector3d& axis) {
-        return CylinderProblem::State{pos.point, axis, pos.radius};
-      });
+  const Eigen::Matrix3Xd qs = detail::start_sample(q);
+  std::vector<CylinderProblem::State> starts;
+  for (const Eigen::Vector3d& axis : detail::start_directions(qs, pa, detail::cylinder_on_direction)) {
+    if (auto pos = detail::axis_position(qs, axis)) starts.push_back({pos->point, axis, pos->radius});
+  }
   if (starts.empty()) return detail::no_start_error(kName);
   return refine(points, pa, q, starts, options, true);
 }

@@ -15,6 +15,8 @@ std::string_view to_string(FitErrorCode code) noexcept {
     case FitErrorCode::InconsistentApproach: return "inconsistent_approach";
     case FitErrorCode::InvalidArgument: return "invalid_argument";
     case FitErrorCode::NonPositiveSize: return "non_positive_size";
+    case FitErrorCode::AmbiguousSolution: return "ambiguous_solution";
+    case FitErrorCode::ConeIsCylinder: return "cone_is_cylinder";
   }
   return "unknown";
 }

@@ -184,6 +184,48 @@ TEST_CASE("messcap fit: stdin, and failures name the points and the reason") {
   CHECK(r.status == 2);
 }
 
+TEST_CASE("messcap fit: hits with approach and tip radius are fitted probe-compensated, --surface plainly") {
+  // A bore of diameter 20 (axis z through (100, 50)) probed with a 1 mm tip moving outward: the
+  // surface points messd reports lie on radius 10, the ball centres on radius 9.
+  TempDir dir;
+  std::string hits = "# x y z i j k r\n";
+  for (int i = 0; i < 12; ++i) {
+    const double t = 0.5 * i;
+    char line[160];
+    std::snprintf(line, sizeof line, "%.4f %.4f %.4f %.6f %.6f 0 1.0000\n", 100 + 10 * std::cos(t), 50 + 10 * std::sin(t),
+                  5.0 * (i % 3), std::cos(t), std::sin(t));
+    hits += line;
+  }
+  write_text(dir.file("bore.hits"), hits);
+  const auto probed = fit_json("cylinder", dir.file("bore.hits"));
+  CHECK(probed["diameter"].get<double>() == Approx(20.0).margin(1e-3));
+  CHECK((vec(probed["point"]).head<2>() - Eigen::Vector2d(100, 50)).norm() < 1e-3);
+  // The surface path fits the same surface points: same bore, with the residuals of the surface.
+  auto r = run_program({client_binary("messcap"), "fit", "--surface", "cylinder", dir.file("bore.hits")});
+  REQUIRE(r.status == 0);
+  CHECK(nlohmann::json::parse(r.out)["diameter"].get<double>() == Approx(20.0).margin(1e-3));
+  // A ball centre fit of the wrong side would give 18 (radius 9 - 1): hits moving inward = a shaft.
+  std::string shaft;
+  for (int i = 0; i < 12; ++i) {
+    const double t = 0.5 * i;
+    char line[160];
+    std::snprintf(line, sizeof line, "%.4f %.4f %.4f %.6f %.6f 0 1.0000\n", 10 * std::cos(t), 10 * std::sin(t),
+                  5.0 * (i % 3), -std::cos(t), -std::sin(t));
+    shaft += line;
+  }
+  write_text(dir.file("shaft.hits"), shaft);
+  CHECK(fit_json("cylinder", dir.file("shaft.hits"))["diameter"].get<double>() == Approx(20.0).margin(1e-3));
+  // A forced point (no direction) cannot be compensated: the error says so and names --surface.
+  write_text(dir.file("forced.hits"), "0 0 0 0 0 1 2\n1 0 0 0 0 1 2\n0 1 0 0 0 0 0\n");
+  r = run_program({client_binary("messcap"), "fit", "plane", dir.file("forced.hits")});
+  CHECK(r.status == 1);
+  CHECK_THAT(r.err, Catch::Contains("hit 2 has no approach direction") && Catch::Contains("--surface"));
+  write_text(dir.file("bad.hits"), "0 0 0 0 0 1 2\n1 0 0 0 0.5 0.5 2\n");
+  r = run_program({client_binary("messcap"), "fit", "plane", dir.file("bad.hits")});
+  CHECK(r.status == 1);
+  CHECK_THAT(r.err, Catch::Contains(dir.file("bad.hits") + ":2:7:") && Catch::Contains("unit vector"));
+}
+
 TEST_CASE("messcap convert: csv, xyz, asc, json and dmi read back point by point, in a frame") {
   TempDir dir;
   const std::vector<Vector3d> pts{{0, 0, 0}, {430.125, 330, 80}, {-12.5, 7.25, 600}, {1, 2, 3}};

@@ -4,9 +4,11 @@
 
 #include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "imess/metrology/fit.hpp"
+#include "imess/metrology/probe_compensation.hpp"
 
 namespace imess::exchange {
 namespace {
@@ -119,9 +121,65 @@ std::string_view to_string(FitKind kind) {
   return "?";
 }
 
-Fit<FitReport> fit_points(FitKind kind, std::span<const Vector3d> points) {
+namespace {
+
+// One report per library feature (shared by the surface and the probed paths).
+FitReport report(const metrology::Plane& f) {
   FitReport r;
-  r.kind = kind;
+  r.kind = FitKind::Plane;
+  r.point = f.point;
+  r.normal = f.normal;
+  set_stats(r, f.stats);
+  return r;
+}
+FitReport report(const metrology::Circle3& f) {
+  FitReport r;
+  r.kind = FitKind::Circle;
+  r.center = f.center;
+  r.normal = f.normal;
+  r.diameter = f.diameter;
+  set_stats(r, f.stats);
+  return r;
+}
+FitReport report(const metrology::Sphere& f) {
+  FitReport r;
+  r.kind = FitKind::Sphere;
+  r.center = f.center;
+  r.diameter = f.diameter;
+  set_stats(r, f.stats);
+  return r;
+}
+FitReport report(const metrology::Cylinder& f) {
+  FitReport r;
+  r.kind = FitKind::Cylinder;
+  r.point = f.point;
+  r.axis = f.direction;
+  r.diameter = f.diameter;
+  set_stats(r, f.stats);
+  return r;
+}
+FitReport report(const metrology::Cone& f) {
+  FitReport r;
+  r.kind = FitKind::Cone;
+  const double r0 = f.radius_at(0.0);
+  r.point = f.point;
+  r.axis = f.direction;
+  r.diameter = 2.0 * r0;
+  r.apex = f.point - (r0 / std::tan(f.half_angle())) * f.direction;
+  r.apex_angle_deg = f.apex_angle_deg();
+  set_stats(r, f.stats);
+  return r;
+}
+
+template <class F>
+Fit<FitReport> reported(const Fit<F>& f) {
+  if (!f) return f.error();
+  return report(*f);
+}
+
+}  // namespace
+
+Fit<FitReport> fit_points(FitKind kind, std::span<const Vector3d> points) {
   switch (kind) {
     case FitKind::Line2d:
     case FitKind::Circle2d:
@@ -129,59 +187,55 @@ Fit<FitReport> fit_points(FitKind kind, std::span<const Vector3d> points) {
     case FitKind::Line: {
       auto f = metrology::fit_line3d(points);
       if (!f) return f.error();
+      FitReport r;
+      r.kind = kind;
       r.point = f->point;
       r.direction = f->direction;
       set_stats(r, f->stats);
       return r;
     }
-    case FitKind::Plane: {
-      auto f = metrology::fit_plane(points);
-      if (!f) return f.error();
-      r.point = f->point;
-      r.normal = f->normal;
-      set_stats(r, f->stats);
-      return r;
-    }
-    case FitKind::Circle: {
-      auto f = metrology::fit_circle3d(points);
-      if (!f) return f.error();
-      r.center = f->center;
-      r.normal = f->normal;
-      r.diameter = f->diameter;
-      set_stats(r, f->stats);
-      return r;
-    }
-    case FitKind::Sphere: {
-      auto f = metrology::fit_sphere(points);
-      if (!f) return f.error();
-      r.center = f->center;
-      r.diameter = f->diameter;
-      set_stats(r, f->stats);
-      return r;
-    }
-    case FitKind::Cylinder: {
-      auto f = metrology::fit_cylinder(points);
-      if (!f) return f.error();
-      r.point = f->point;
-      r.axis = f->direction;
-      r.diameter = f->diameter;
-      set_stats(r, f->stats);
-      return r;
-    }
-    case FitKind::Cone: {
-      auto f = metrology::fit_cone(points);
-      if (!f) return f.error();
-      const double r0 = f->radius_at(0.0);
-      r.point = f->point;
-      r.axis = f->direction;
-      r.diameter = 2.0 * r0;
-      r.apex = f->point - (r0 / std::tan(f->half_angle())) * f->direction;
-      r.apex_angle_deg = f->apex_angle_deg();
-      set_stats(r, f->stats);
-      return r;
-    }
+    case FitKind::Plane: return reported(metrology::fit_plane(points));
+    case FitKind::Circle: return reported(metrology::fit_circle3d(points));
+    case FitKind::Sphere: return reported(metrology::fit_sphere(points));
+    case FitKind::Cylinder: return reported(metrology::fit_cylinder(points));
+    case FitKind::Cone: return reported(metrology::fit_cone(points));
   }
   return FitError{FitErrorCode::InvalidArgument, "unknown feature kind"};
+}
+
+bool has_probed_fit(FitKind kind) {
+  return kind == FitKind::Plane || kind == FitKind::Circle || kind == FitKind::Sphere ||
+         kind == FitKind::Cylinder || kind == FitKind::Cone;
+}
+
+Fit<FitReport> fit_probed_points(FitKind kind, std::span<const metrology::ProbedPoint> hits) {
+  const std::string name(to_string(kind));
+  std::vector<Vector3d> centres;
+  std::vector<Vector3d> approach;
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    if (!hits[i].has_approach())
+      return FitError{FitErrorCode::InvalidArgument,
+                      name + ": hit " + std::to_string(i) + " has no approach direction (a forced point, 0 0 0); "
+                      "probe compensation needs one for every hit (fit the surface points with --surface)"};
+    if (hits[i].radius != hits[0].radius)
+      return FitError{FitErrorCode::InvalidArgument,
+                      name + ": hit " + std::to_string(i) + " has tip radius " + std::to_string(hits[i].radius) +
+                          ", hit 0 " + std::to_string(hits[0].radius) + "; one feature is fitted with one tip"};
+    centres.push_back(hits[i].centre());
+    approach.push_back(hits[i].approach);
+  }
+  const double r = hits.empty() ? 0.0 : hits[0].radius;
+  switch (kind) {
+    case FitKind::Plane: return reported(metrology::fit_plane_probed(centres, approach, r));
+    case FitKind::Circle: return reported(metrology::fit_circle3d_probed(centres, approach, r));
+    case FitKind::Sphere: return reported(metrology::fit_sphere_probed(centres, approach, r));
+    case FitKind::Cylinder: return reported(metrology::fit_cylinder_probed(centres, approach, r));
+    case FitKind::Cone: return reported(metrology::fit_cone_probed(centres, approach, r));
+    default: break;
+  }
+  std::vector<Vector3d> surface;
+  for (const auto& h : hits) surface.push_back(h.surface);
+  return fit_points(kind, surface);
 }
 
 }  // namespace imess::exchange

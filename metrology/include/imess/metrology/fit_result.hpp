@@ -23,6 +23,9 @@ enum class FitErrorCode : int {
   InconsistentApproach = 8,  // probe compensation: hits approached the surface from both sides
   InvalidArgument = 9,       // sizes of inputs disagree, negative tip radius, ...
   NonPositiveSize = 10,      // compensation would leave a radius / distance <= 0
+  AmbiguousSolution = 11,    // the points lie exactly on two different features (a minimal
+                             // cylinder or cone set): they do not determine one
+  ConeIsCylinder = 12,       // cone: the apex angle is not distinguishable from 0; fit a cylinder
 };
 
 // Stable lower_snake name of a code, e.g. "collinear_points".

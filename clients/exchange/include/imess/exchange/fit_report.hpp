@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "imess/metrology/fit_result.hpp"
+#include "imess/metrology/point_file.hpp"
 
 namespace imess::exchange {
 
@@ -48,6 +49,13 @@ struct FitReport {
 // z is preferred, then y, then x): the other two are fitted and the result embedded again.
 // A failure carries the library's FitError (or InvalidArgument for the coordinate-plane rule).
 metrology::Fit<FitReport> fit_points(FitKind kind, std::span<const Eigen::Vector3d> points);
+
+// Probe-compensated fit (docs/metrology.md 3): the library's fit_*_probed on the ball centres
+// (surface - r * approach) with the approach directions and the tip radius, for plane, circle,
+// sphere, cylinder and cone (has_probed_fit). The other kinds (line, line2d, circle2d) are fitted
+// to the surface points. Every hit needs an approach direction, and all one tip radius.
+bool has_probed_fit(FitKind kind);
+metrology::Fit<FitReport> fit_probed_points(FitKind kind, std::span<const metrology::ProbedPoint> hits);
 
 // One JSON object on one line, keys in the documented order (type, point, direction, normal,
 // center, axis, diameter, apex, apex_angle_deg, rms, form_min, form_max, n), full precision.

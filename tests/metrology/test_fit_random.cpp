@@ -1,0 +1,282 @@
+// Randomised fits: for every feature, 200 random instances (random position, orientation and
+// size; minimal point counts up to 12 points; arcs, caps and sectors down to 30 degrees;
+// deviations made orthogonal to the Jacobian so the generator stays the exact least-squares
+// solution). Each result must be the generator (relative error below 1e-6 of the size) and, where
+// the residuals are not zero, pass a stationarity test with this file's own Jacobian. Minimal
+// cylinder and cone sets may instead be refused as ambiguous — then the message must name two
+// cylinders/cones. Known limit (docs/metrology.md 2.7): a cylinder or cone with few points can
+// have another minimum that the start search reaches instead of the generator's; such results
+// must still be stationary (or, for the cone, no start converged), and at most 4 % of the
+// draws may be such (4 %: the measured state is 1 cylinder and 6 cones of 200, an open issue). IMESS_PRINT_FITS=1 prints
+// the worst error (over the results that are the generator) per feature and the counts.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include <catch2/catch.hpp>
+
+#include "imess/metrology/compare.hpp"
+#include "imess/metrology/fit.hpp"
+#include "synthetic.hpp"
+
+using namespace imess::metrology;
+using namespace imess::metrology::test;
+
+namespace {
+
+constexpr int kSeeds = 200;
+constexpr double kRelTol = 1e-6;  // closeness to the generator, relative to its size
+constexpr double kCosTol = 1e-6;  // stationarity with the test's own Jacobian
+
+// Worst figures of one feature, printed at the end of its test case on request.
+struct Worst {
+  const char* feature;
+  double error = 0.0;   // relative to size: max(location, size) / size, orientation in rad
+  double cosine = 0.0;
+  int ambiguous = 0;
+  int misses = 0;  // cylinder, cone: a higher minimum than the generator's, or no convergence
+  int lower = 0;   // cylinder, cone: a minimum lower than the generator's (the fit is right)
+  void add(const Deviation& d, double size, double cos) {
+    error = std::max({error, d.location / size, d.size / size, d.orientation, d.apex_angle});
+    cosine = std::max(cosine, cos);
+  }
+  ~Worst() {
+    if (std::getenv("IMESS_PRINT_FITS") == nullptr) return;
+    std::printf("%-9s worst relative error %.2e  worst gradient cosine %.2e  ambiguous minimal sets %d"
+                "  lower minimum %d  missed %d  (of %d)\n",
+                feature, error, cosine, ambiguous, lower, misses, kSeeds);
+  }
+};
+
+Eigen::Vector3d random_point(Rng& rng) { return {rng.uniform(-500, 500), rng.uniform(-500, 500), rng.uniform(-500, 500)}; }
+
+// Largest gradient cosine of residuals r with rows of J, or 0 when the residuals are rounding.
+double cosine_if_residual(const Eigen::MatrixXd& J, const Eigen::VectorXd& r, double size) {
+  if (r.norm() <= 1e-9 * size * std::sqrt(static_cast<double>(r.size()))) return 0.0;
+  return max_gradient_cosine(J, r);
+}
+
+// A point count from the minimum up to 12 (a quarter of the draws at the minimum).
+std::size_t count(Rng& rng, std::size_t minimum) {
+  return rng.uniform(0, 1) < 0.25 ? minimum : minimum + static_cast<std::size_t>(rng.uniform(0, 12.999 - minimum));
+}
+
+}  // namespace
+
+TEST_CASE("random lines and planes are their exact least-squares fits", "[fit][random]") {
+  Worst wl{"line3d"};
+  Worst wp{"plane"};
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    Rng rng(1000 + seed);
+    const double size = rng.uniform(1, 200);
+    const Eigen::Vector3d c = random_point(rng);
+    const Eigen::Vector3d dir = rng.unit_vector();
+    const auto pts = line_samples(rng, c, dir, count(rng, 2), size, rng.uniform(0, 0.01) * size);
+    auto line = fit_line3d(pts);
+    REQUIRE(line.ok());
+    Deviation d;
+    d.orientation = direction_angle(line->direction, dir);
+    d.location = point_line_distance(line->point, c, dir);
+    wl.add(d, size, 0.0);
+    CHECK(d.orientation < kRelTol);
+    CHECK(d.location < kRelTol * size);
+
+    const auto s = plane_samples(rng, c, dir, count(rng, 3), 0.5 * size, rng.uniform(0, 0.01) * size);
+    auto plane = fit_plane(s.points);
+    REQUIRE(plane.ok());
+    Eigen::MatrixXd J(static_cast<Eigen::Index>(s.points.size()), 6);
+    Eigen::VectorXd r(J.rows());
+    for (Eigen::Index i = 0; i < J.rows(); ++i) {
+      r(i) = plane->normal.dot(s.points[i] - plane->point);
+      rigid_row(J, i, s.points[i], plane->point, plane->normal);
+    }
+    Deviation dp;
+    dp.orientation = direction_angle(plane->normal, dir);
+    dp.location = std::abs(dir.dot(plane->point - c));
+    const double cos = cosine_if_residual(J, r, size);
+    wp.add(dp, size, cos);
+    CHECK(dp.orientation < kRelTol);
+    CHECK(dp.location < kRelTol * size);
+    CHECK(cos < kCosTol);
+  }
+}
+
+TEST_CASE("random circles on arcs down to 30 degrees are their exact least-squares fits", "[fit][random]") {
+  Worst w2{"circle2d"};
+  Worst w3{"circle3d"};
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    Rng rng(2000 + seed);
+    const double radius = rng.uniform(1, 200);
+    const double span = deg(rng.uniform(30, 360));
+    const double start = rng.uniform(0, 2 * kPi);
+    const Eigen::Vector2d c2(rng.uniform(-500, 500), rng.uniform(-500, 500));
+    const auto pts = circle2_samples(rng, c2, radius, start, span, count(rng, 3), rng.uniform(0, 0.01) * radius);
+    auto f = fit_circle2d(pts);
+    INFO("seed " << seed << " span " << span);
+    REQUIRE(f.ok());
+    Eigen::MatrixXd J(static_cast<Eigen::Index>(pts.size()), 3);
+    Eigen::VectorXd r(J.rows());
+    for (Eigen::Index i = 0; i < J.rows(); ++i) {
+      const Eigen::Vector2d d = pts[static_cast<std::size_t>(i)] - f->center;
+      r(i) = d.norm() - f->radius();
+      J.row(i) << -d.x() / d.norm(), -d.y() / d.norm(), -1.0;
+    }
+    Deviation d;
+    d.location = (f->center - c2).norm();
+    d.size = std::abs(f->diameter - 2 * radius);
+    const double cos = cosine_if_residual(J, r, radius);
+    w2.add(d, radius, cos);
+    CHECK(d.location < kRelTol * radius);
+    CHECK(d.size < kRelTol * radius);
+    CHECK(cos < kCosTol);
+
+    const Eigen::Vector3d c3 = random_point(rng);
+    const Eigen::Vector3d n = rng.unit_vector();
+    const auto p3 = circle3_samples(rng, c3, n, radius, start, span, count(rng, 3), rng.uniform(0, 0.01) * radius,
+                                    rng.uniform(0, 0.01) * radius);
+    auto g = fit_circle3d(p3);
+    REQUIRE(g.ok());
+    Deviation d3;
+    d3.location = (g->center - c3).norm();
+    d3.size = std::abs(g->diameter - 2 * radius);
+    d3.orientation = direction_angle(g->normal, n);
+    w3.add(d3, radius, 0.0);
+    CHECK(d3.location < kRelTol * radius);
+    CHECK(d3.size < kRelTol * radius);
+    CHECK(d3.orientation < kRelTol);
+  }
+}
+
+TEST_CASE("random spheres on caps down to 30 degrees are their exact least-squares fits", "[fit][random]") {
+  Worst w{"sphere"};
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    Rng rng(3000 + seed);
+    const double radius = rng.uniform(1, 200);
+    const Eigen::Vector3d c = random_point(rng);
+    const auto s = sphere_samples(rng, c, radius, rng.unit_vector(), deg(rng.uniform(30, 180)), count(rng, 4),
+                                  rng.uniform(0, 0.01) * radius);
+    auto f = fit_sphere(s.points);
+    INFO("seed " << seed);
+    REQUIRE(f.ok());
+    Eigen::MatrixXd J(static_cast<Eigen::Index>(s.points.size()), 4);
+    Eigen::VectorXd r(J.rows());
+    for (Eigen::Index i = 0; i < J.rows(); ++i) {
+      const Eigen::Vector3d d = s.points[static_cast<std::size_t>(i)] - f->center;
+      r(i) = d.norm() - f->radius();
+      J.row(i) << -d.transpose() / d.norm(), -1.0;
+    }
+    Deviation d;
+    d.location = (f->center - c).norm();
+    d.size = std::abs(f->diameter - 2 * radius);
+    const double cos = cosine_if_residual(J, r, radius);
+    w.add(d, radius, cos);
+    CHECK(d.location < kRelTol * radius);
+    CHECK(d.size < kRelTol * radius);
+    CHECK(cos < kCosTol);
+  }
+}
+
+TEST_CASE("random cylinders on sectors down to 30 degrees are their exact least-squares fits", "[fit][random]") {
+  Worst w{"cylinder"};
+  int misses = 0;
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    Rng rng(4000 + seed);
+    const double radius = rng.uniform(1, 200);
+    const Eigen::Vector3d c = random_point(rng);
+    const Eigen::Vector3d axis = rng.unit_vector();
+    const std::size_t n = count(rng, kMinPointsCylinder);
+    const auto s = cylinder_samples(rng, c, axis, radius, deg(rng.uniform(30, 360)), rng.uniform(0.3, 3) * radius, n,
+                                    rng.uniform(0, 0.01) * radius);
+    auto f = fit_cylinder(s.points);
+    INFO("seed " << seed << " points " << n);
+    if (!f.ok() && n == kMinPointsCylinder && f.error().code == FitErrorCode::AmbiguousSolution) {
+      CHECK_THAT(f.error().message, Catch::Contains("at least two different cylinders"));
+      ++w.ambiguous;
+      continue;
+    }
+    REQUIRE(f.ok());
+    Cylinder truth;
+    truth.point = c;
+    truth.direction = axis;
+    truth.diameter = 2 * radius;
+    Eigen::MatrixXd J(static_cast<Eigen::Index>(n), 7);
+    Eigen::VectorXd r(J.rows());
+    for (Eigen::Index i = 0; i < J.rows(); ++i) {
+      const Eigen::Vector3d p = s.points[static_cast<std::size_t>(i)];
+      const Eigen::Vector3d radial = (p - f->point) - (p - f->point).dot(f->direction) * f->direction;
+      r(i) = radial.norm() - f->radius();
+      rigid_row(J, i, p, f->point, radial.normalized());
+      J(i, 6) = -1.0;
+    }
+    const Deviation d = compare(*f, truth);
+    const double cos = cosine_if_residual(J, r, radius);
+    if (d.location < kRelTol * radius && d.size < kRelTol * radius) w.add(d, radius, cos);
+    CHECK(cos < kCosTol);  // always a least-squares stationary point
+    if (d.location < kRelTol * radius && d.size < kRelTol * radius && d.orientation < kRelTol) continue;
+    double ssq_truth = 0.0;
+    for (const auto& p : s.points) ssq_truth += std::pow(truth.distance_from_axis(p) - radius, 2);
+    if (r.squaredNorm() < ssq_truth * (1.0 - 1e-9)) {
+      ++w.lower;
+      continue;
+    }
+    // Known limit: another minimum (or an unflagged second interpolating cylinder) won.
+    ++misses;
+    WARN("cylinder seed " << seed << " (" << n << " points): a different minimum, rms " << f->stats.rms);
+  }
+  w.misses = misses;
+  CHECK(misses <= kSeeds / 25);  // measured: cylinder 1, cone 6 of 200 (open issue, docs 2.7)
+}
+
+TEST_CASE("random cones (apex 10 to 120 degrees, sectors and height bands) are their exact fits", "[fit][random]") {
+  Worst w{"cone"};
+  int misses = 0;
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    Rng rng(5000 + seed);
+    Cone truth;
+    truth.direction = rng.unit_vector();
+    truth.point = random_point(rng);
+    truth.apex_angle_rad = deg(rng.uniform(10, 120));
+    const double radius = rng.uniform(2, 100);
+    truth.distance = radius * std::cos(truth.half_angle());
+    const std::size_t n = count(rng, kMinPointsCone);
+    const double h0 = rng.uniform(-0.5, 0.5) * radius;
+    const auto s = cone_samples(rng, truth, deg(rng.uniform(30, 360)), h0, h0 + rng.uniform(0.2, 1.5) * radius, n,
+                                rng.uniform(0, 0.01) * radius);
+    auto f = fit_cone(s.points);
+    INFO("seed " << seed << " points " << n);
+    if (!f.ok() && n == kMinPointsCone && f.error().code == FitErrorCode::AmbiguousSolution) {
+      CHECK_THAT(f.error().message, Catch::Contains("at least two different cones"));
+      ++w.ambiguous;
+      continue;
+    }
+    if (!f.ok()) {  // known limit, counted with the other misses: no start converged
+      CHECK(f.error().code == FitErrorCode::NotConverged);
+      ++misses;
+      WARN("cone seed " << seed << " (" << n << " points): " << f.error().message);
+      continue;
+    }
+    Eigen::MatrixXd J(static_cast<Eigen::Index>(n), 8);
+    Eigen::VectorXd r(J.rows());
+    for (Eigen::Index i = 0; i < J.rows(); ++i) r(i) = cone_row(*f, s.points[static_cast<std::size_t>(i)], &J, i);
+    const Deviation d = compare(*f, truth);
+    const double cos = cosine_if_residual(J, r, radius);
+    if (d.location < kRelTol * radius && d.size < kRelTol * radius) w.add(d, radius, cos);
+    CHECK(cos < kCosTol);  // always a least-squares stationary point
+    if (d.location < kRelTol * radius && d.size < kRelTol * radius && d.orientation < kRelTol && d.apex_angle < kRelTol) continue;
+    // With deviations and few points another minimum can be lower than the generator's: then
+    // the fit is right and the generator is not the least-squares solution.
+    double ssq_truth = 0.0;
+    for (const auto& p : s.points) ssq_truth += std::pow(cone_row(truth, p, nullptr, 0), 2);
+    if (r.squaredNorm() < ssq_truth * (1.0 - 1e-9)) {
+      ++w.lower;
+      continue;
+    }
+    // Known limit: another minimum (or an unflagged second interpolating cone) won.
+    ++misses;
+    WARN("cone seed " << seed << " (" << n << " points): a different minimum, rms " << f->stats.rms);
+  }
+  w.misses = misses;
+  CHECK(misses <= kSeeds / 25);  // measured: cylinder 1, cone 6 of 200 (open issue, docs 2.7)
+}
