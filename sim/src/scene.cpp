@@ -79,4 +79,18 @@ Scene worked_example_scene() {
   return Scene({PlaneSolid{Vec3::Zero(), Vec3::UnitZ()}, cube});
 }
 
+SphereSolid reference_sphere() { return SphereSolid{Vec3(750, 650, 60), 25}; }
+
+CylinderSolid reference_sphere_stem() {
+  const SphereSolid ball = reference_sphere();
+  return CylinderSolid{Vec3(ball.center.x(), ball.center.y(), 0), 10, ball.center.z()};
+}
+
+Scene default_scene() {
+  std::vector<Solid> solids = worked_example_scene().solids();
+  solids.push_back(reference_sphere());
+  solids.push_back(reference_sphere_stem());
+  return Scene(std::move(solids));
+}
+
 }  // namespace imess::sim

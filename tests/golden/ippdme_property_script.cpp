@@ -88,7 +88,10 @@ Vec3 yawed(const sim::BoxSolid& b, const Vec3& local) {
 // travel, kept only when the scene agrees it lies on the surface with free space before it
 // (not on a fillet, a rim or inside another solid).
 std::optional<Surface> surface_point(const Machine& m, Random& r) {
-  const auto& solids = m.scene.solids();
+  // Boxes and planes only: the reference sphere on its stem is kept out of the scripts.
+  std::vector<sim::Solid> solids;
+  for (const auto& solid : m.scene.solids())
+    if (std::holds_alternative<sim::BoxSolid>(solid) || std::holds_alternative<sim::PlaneSolid>(solid)) solids.push_back(solid);
   if (solids.empty()) return std::nullopt;
   for (int attempt = 0; attempt < 20; ++attempt) {
     const auto& solid = solids[static_cast<std::size_t>(r.pick(0, static_cast<int>(solids.size()) - 1))];
@@ -118,8 +121,6 @@ std::optional<Surface> surface_point(const Machine& m, Random& r) {
       const Vec3 n = p->normal.normalized();
       const Vec3 q(r.real(m.lo[0], m.hi[0]), r.real(m.lo[1], m.hi[1]), r.real(m.lo[2], m.hi[2]));
       s = {q - n * n.dot(q - p->point), n};
-    } else {
-      continue;  // no shipped scene has spheres or cylinders
     }
     if (std::abs(m.scene.distance(s.p)) < 1e-6 && m.scene.distance(s.p + s.n * (m.tip + 1)) > m.tip + 0.9) return s;
   }

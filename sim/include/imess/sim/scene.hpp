@@ -65,4 +65,14 @@ double box_distance(const BoxSolid& box, const Vec3& p) noexcept;
 // The 1996 worked example: a cube with a vertical bore and one rounded edge on a table.
 Scene worked_example_scene();
 
+// The reference sphere probes are qualified on (`messcap qualify`): a 25 mm ball, its centre
+// at (750, 650, 60), on a 10 mm stem standing on the table — clear of the worked example and
+// of every path the tests and examples drive (docs/configuration.md).
+SphereSolid reference_sphere();
+CylinderSolid reference_sphere_stem();
+
+// The simulated table of the shipped configurations and of messd with none: the worked
+// example plus the reference sphere on its stem.
+Scene default_scene();
+
 }  // namespace imess::sim

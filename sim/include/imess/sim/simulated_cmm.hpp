@@ -10,7 +10,7 @@ namespace imess::sim {
 struct SimulatedCmmConfig {
   MechanicsConfig mechanics;
   CardConfig card;
-  Scene scene = worked_example_scene();
+  Scene scene = default_scene();
   bool streamed = false;  // the card on a serial line (TimedCardLink), not the instant request/reply link
   LineConfig line;
 };

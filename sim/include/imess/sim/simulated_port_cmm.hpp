@@ -13,7 +13,7 @@ namespace imess::sim {
 
 struct SimulatedStepperCmmConfig {
   MechanicsConfig mechanics;
-  Scene scene = worked_example_scene();
+  Scene scene = default_scene();
   StepperMachineConfig stepper;
   std::string port_file;          // "" = private to the process
   std::uint16_t port_base = 0x300;  // first port of the simulated space
@@ -47,7 +47,7 @@ namespace imess::sim {
 
 struct SimulatedDriveKitCmmConfig {
   MechanicsConfig mechanics;
-  Scene scene = worked_example_scene();
+  Scene scene = default_scene();
   DriveKitSimConfig kits;
   std::string port_file;
   std::uint16_t port_base = 0x300;
