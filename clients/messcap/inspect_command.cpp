@@ -2,19 +2,16 @@
 // table on the terminal and the JSON / HTML reports.
 #include "inspect_command.hpp"
 
-#include <cerrno>
 #include <charconv>
-#include <cstring>
-#include <fstream>
 #include <iostream>
 #include <optional>
-#include <sstream>
 
 #include "imess/client/usage_error.hpp"
 #include "imess/metrology/inspection_points.hpp"
 #include "inspect_report.hpp"
 #include "inspect_session.hpp"
 #include "option_value.hpp"
+#include "text_file.hpp"
 
 namespace imess::messcap {
 namespace {
@@ -66,28 +63,6 @@ InspectOptions parse_options(int argc, const char* const argv[]) {
   return o;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read '" + path + "': " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void write_file(const std::string& path, const std::string& text) {
-  if (path == "-") {
-    std::cout << text;
-    return;
-  }
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out || !(out << text) || !out.flush()) throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-    throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));
-}
-
 }  // namespace
 
 std::string inspect_usage() {
@@ -126,11 +101,11 @@ int run_inspect_command(int argc, const char* const argv[]) {
   }
   std::ostream& table = o.json_out && *o.json_out == "-" ? std::cerr : std::cout;
   try {
-    const auto plan = metrology::parse_inspection_plan(read_file(o.plan), o.plan);
+    const auto plan = metrology::parse_inspection_plan(read_text_file(o.plan), o.plan);
     ReportSource source{o.plan, ""};
     std::vector<metrology::MeasuredPoint> points;
     if (o.points_file) {
-      points = metrology::parse_measured_points(read_file(*o.points_file), *o.points_file);
+      points = metrology::parse_measured_points(read_text_file(*o.points_file), *o.points_file);
       source.measured = "points from " + *o.points_file;
     } else {
       points = measure_live(plan, LiveOptions{*o.endpoint, o.feed}, std::cerr);
@@ -138,8 +113,8 @@ int run_inspect_command(int argc, const char* const argv[]) {
     }
     const auto result = metrology::evaluate_inspection(plan, points);
     print_inspection_table(table, plan, result, source);
-    if (o.json_out) write_file(*o.json_out, inspection_json(plan, result, source));
-    if (o.html_out) write_file(*o.html_out, inspection_html(plan, result, source));
+    if (o.json_out) write_text_file(*o.json_out, inspection_json(plan, result, source));
+    if (o.html_out) write_text_file(*o.html_out, inspection_html(plan, result, source));
     return result.out_of_tolerance() + result.not_evaluated() > 0 ? kExitOutOfTolerance : client::kExitOk;
   } catch (const std::exception& e) {
     std::cerr << "messcap: inspect: " << e.what() << "\n";

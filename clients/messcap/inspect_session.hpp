@@ -5,27 +5,21 @@
 
 #include <optional>
 #include <ostream>
-#include <stdexcept>
 #include <vector>
 
 #include "imess/client/endpoint.hpp"
 #include "imess/metrology/inspection.hpp"
 #include "imess/metrology/inspection_plan.hpp"
+#include "machine_link.hpp"
 
 namespace imess::messcap {
-
-// messd unreachable, a refused command, a failed probe: the message says which and why.
-class InspectSessionError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 struct LiveOptions {
   client::Endpoint endpoint;
   std::optional<double> feed;  // overrides the plan's probing.feed
 };
 
-// Progress goes to `log` (one line per feature). Throws InspectSessionError, or
+// Progress goes to `log` (one line per feature). Throws MachineError (machine_link.hpp), or
 // metrology::InspectionError when the alignment features give no part frame.
 std::vector<metrology::MeasuredPoint> measure_live(const metrology::InspectionPlan& plan, const LiveOptions& options,
                                                    std::ostream& log);
