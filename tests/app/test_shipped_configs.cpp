@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -13,6 +14,7 @@
 
 #include "backend_registry.hpp"
 #include "config_rig.hpp"
+#include "imess/sim/scene.hpp"
 #include "json_object.hpp"
 
 using namespace imess;
@@ -124,5 +126,29 @@ TEST_CASE("every shipped configuration builds its machine, and it is the machine
       CHECK(snap.position[a] >= cfg.core.axes[a].travel_min - 1e-6);
       CHECK(snap.position[a] <= cfg.core.axes[a].travel_max + 1e-6);
     }
+  }
+}
+
+TEST_CASE("the shipped simulated tables are the built-in one: the worked example and the reference sphere on its stem") {
+  const auto built_in = sim::default_scene();
+  const auto sphere = sim::reference_sphere();
+  // A point on the sphere 10 degrees above its equator, one at its pole, one on the stem, one
+  // on the cube's top: the same distances everywhere, and zero on the reference sphere.
+  const std::vector<sim::Vec3> probes = {
+      sphere.center + sphere.diameter / 2 * sim::Vec3(std::cos(0.1745), 0, std::sin(0.1745)),
+      sphere.center + sim::Vec3(0, 0, sphere.diameter / 2), sim::Vec3(755, 650, 20), sim::Vec3(460, 320, 80),
+      sim::Vec3(750, 650, 90)};
+  CHECK(built_in.distance(probes[0]) == Approx(0).margin(1e-9));
+  CHECK(built_in.distance(probes[1]) == Approx(0).margin(1e-9));
+  for (const auto& rel : globbed_configs()) {
+    ConfigRig rig(kRoot + "/" + rel);
+    const auto& scene = rig.config().sim.scene;
+    if (rig.config().backend.rfind("sim-", 0) != 0 || scene.solids().empty()) continue;  // no simulated table
+    INFO(rel);
+    CHECK(scene.solids().size() == built_in.solids().size());
+    for (const auto& p : probes) CHECK(scene.distance(p) == Approx(built_in.distance(p)).margin(1e-9));
+    // Inside the travel, with room above it for the touches and the moves between them.
+    const auto& z = rig.config().core.axes[2];
+    CHECK(sphere.center.z() + sphere.diameter / 2 + 40 < z.travel_max);
   }
 }
