@@ -389,7 +389,8 @@ std::vector<std::string> load_messdrc_text(const std::string& text, const std::s
     auto number = [&](std::string_view name) {
       return messdrc_number(*net::find_param(name), value, !extra.empty(), at);
     };
-    const bool known = key == "SpeedLevel" || key == "TipRadius" || key == "TipReversed";
+    const bool offset = key == "ProbeOffX" || key == "ProbeOffY" || key == "ProbeOffZ";
+    const bool known = key == "SpeedLevel" || key == "TipRadius" || key == "TipReversed" || offset;
     if (known) {
       if (auto [it, fresh] = seen.emplace(key, n); !fresh)
         throw ConfigError(at + key + " is set again (first on line " + std::to_string(it->second) +
@@ -401,6 +402,10 @@ std::vector<std::string> load_messdrc_text(const std::string& text, const std::s
     } else if (key == "TipRadius") {
       cfg.core.params.tip_radius = number("TipRadius");
       cfg.notes.push_back("messdrc: TipRadius " + value);
+    } else if (offset) {  // a qualification's probe offset (messcap qualify --rc writes them)
+      const auto* spec = net::find_param(key);
+      *config_place(*spec, cfg) = number(key);
+      cfg.notes.push_back("messdrc: " + key + " " + value);
     } else if (key == "TipReversed") {
       if ((value != "true" && value != "false") || !extra.empty())
         throw ConfigError(at + "TipReversed takes true or false, got '" + value + "'");
@@ -410,7 +415,7 @@ std::vector<std::string> load_messdrc_text(const std::string& text, const std::s
       std::string shown = key.substr(0, 40);
       for (char& c : shown)
         if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
-      warnings.push_back(at + "unknown setting '" + shown + "' ignored (known: SpeedLevel, TipReversed, TipRadius)");
+      warnings.push_back(at + "unknown setting '" + shown + "' ignored (known: SpeedLevel, TipReversed, TipRadius, ProbeOffX, ProbeOffY, ProbeOffZ)");
     }
   }
   if (!seen.count("TipRadius")) {  // the 1996 manual: a messdrc without TipRadius means no compensation

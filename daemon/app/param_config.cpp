@@ -9,6 +9,7 @@ double* config_place(const net::ParamSpec& spec, DaemonConfig& cfg) {
   switch (spec.home) {
     case net::ParamHome::Core: return &core::param_ref(cfg.core.params, spec.core_id);
     case net::ParamHome::ReportHz: return &cfg.server.report_hz;
+    case net::ParamHome::ProbeOffset: return &cfg.server.probe_offset[static_cast<std::size_t>(spec.axis)];
     case net::ParamHome::LoopPeriod: return &cfg.period_us;
     case net::ParamHome::AxisCount:
     case net::ParamHome::Backend: return nullptr;

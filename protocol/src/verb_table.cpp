@@ -13,6 +13,10 @@ constexpr ArgSpec percent(std::string_view name) {
   return number(name, -100, 100, "StartMv speeds are percent of MaxSpeed, {min} to {max}");
 }
 constexpr double kAny = std::numeric_limits<double>::infinity();
+// A component of the probe offset (the ProbeOffX/Y/Z parameters' range).
+constexpr ArgSpec offset(std::string_view name) {
+  return number(name, -100, 100, "Qualify takes probe offsets from {min} to {max} mm, got '{got}'");
+}
 constexpr ArgSpec coordinate(std::string_view name) { return number(name, -kAny, kAny, ""); }
 Xyz xyz(const Args& a) { return {a.number(0), a.number(1), a.number(2)}; }
 std::optional<double> optional_number(const Args& a, std::size_t i) {
@@ -207,6 +211,13 @@ const std::array kVerbs{
                return Align{std::string(a.at[0].text), a.at[1].choice == 1,
                             {std::string(a.at[2].text), std::string(a.at[3].text), std::string(a.at[4].text)}};
              }},
+    VerbSpec{"Qualify",
+             args(number("radius", 0, 50, "Qualify takes a tip radius from {min} to {max} mm, got '{got}'"),
+                  number("form", 0, 50, "Qualify takes the sphere's form error from {min} to {max} mm, got '{got}'"),
+                  offset("dx"), offset("dy"), offset("dz")),
+             "a probe qualification: TipRadius and the probe offset (ProbeOffX/Y/Z) at once; the Qualified event tells all",
+             false, Access::Controlling, command_index<Qualify>(),
+             [](const Args& a) -> Command { return Qualify{a.number(0), a.number(1), {a.number(2), a.number(3), a.number(4)}}; }},
     VerbSpec{"DelFrame", args(word("name")), "delete a stored part frame (the active one: machine becomes active)", false,
              Access::Controlling, command_index<DelFrame>(),
              [](const Args& a) -> Command { return DelFrame{std::string(a.at[0].text)}; }},

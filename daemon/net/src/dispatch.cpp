@@ -168,6 +168,7 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::SetFrame& c) { set_frame(s, slot, c); },
           [&](const protocol::Align& c) { align(s, slot, c); },
           [&](const protocol::DelFrame& c) { del_frame(s, slot, c.name); },
+          [&](const protocol::Qualify& c) { qualify(s, slot, c); },
       },
       cmd);
 }
@@ -213,7 +214,7 @@ std::string unknown_param(const std::string& name) {
 
 // Get [name]: one parameter, or all of them in one line.
 void Server::get_param(Session& s, std::uint32_t slot, const protocol::Get& c) {
-  ParamPlaces at{core_, config_.report_hz, config_.period_us, config_.backend};
+  ParamPlaces at{core_, config_.report_hz, config_.period_us, config_.backend, config_.probe_offset};
   if (c.name.empty()) {
     std::string all;
     for (const auto& p : param_table()) all += (all.empty() ? "" : " ") + std::string(p.name) + " " + param_text(p, at);
@@ -246,7 +247,7 @@ void Server::set_param(Session& s, std::uint32_t slot, const protocol::Set& c) {
     return;
   }
   spdlog::debug("client {} sets {} to {}", s.id(), p->name, *v);  // debug: a flood must not fill the disk
-  ParamPlaces at{core_, config_.report_hz, config_.period_us, config_.backend};
+  ParamPlaces at{core_, config_.report_hz, config_.period_us, config_.backend, config_.probe_offset};
   store_param(*p, at, *v);
   reply(s, slot, format_ok("Set"));
 }

@@ -47,13 +47,15 @@ void Server::pump_events() {
       }
       case EventKind::MeasPt: {
         ++points_;
-        send_hit(e);  // journal, then Hit, then the 1996 MeasPt
-        if (ipp_) ipp_->hit(e);
+        core::Event point = e;  // the probe offset (a qualification's) moves every measured point
+        point.p += hal::Vec3(config_.probe_offset[0], config_.probe_offset[1], config_.probe_offset[2]);
+        send_hit(point);  // journal, then Hit, then the 1996 MeasPt
+        if (ipp_) ipp_->hit(point);
         if (config_.log_motion)
-          spdlog::info("point {}: {:.4f} {:.4f} {:.4f} {} dir {:.4f} {:.4f} {:.4f}", points_, e.p.x(), e.p.y(), e.p.z(),
+          spdlog::info("point {}: {:.4f} {:.4f} {:.4f} {} dir {:.4f} {:.4f} {:.4f}", points_, point.p.x(), point.p.y(), point.p.z(),
                        e.compensated ? "compensated" : "as is (ForcePt)", e.dir.x(), e.dir.y(), e.dir.z());
         else
-          spdlog::info("point {}: {:.3f} {:.3f} {:.3f}", points_, e.p.x(), e.p.y(), e.p.z());
+          spdlog::info("point {}: {:.3f} {:.3f} {:.3f}", points_, point.p.x(), point.p.y(), point.p.z());
         if (config_.beep && isatty(STDERR_FILENO)) {
           [[maybe_unused]] auto n = ::write(STDERR_FILENO, "\a", 1);
         }

@@ -4,6 +4,7 @@
 
 #include "imess/net/server.hpp"
 #include "imess/protocol/messages.hpp"
+#include "imess/protocol/numbers.hpp"
 
 namespace imess::net {
 
@@ -21,6 +22,24 @@ void Server::send_hit(const core::Event& e) {
   broadcast(line);
   broadcast(protocol::format_meas_pt(hit.p));
   send_part_point(hit);
+}
+
+// Qualify radius form dx dy dz: TipRadius through the parameter lane (as Set does, so the
+// next hit already uses it) and the probe offset here, then the Qualified event to everyone.
+void Server::qualify(Session& s, std::uint32_t slot, const protocol::Qualify& c) {
+  core_.set_param(core::ParamId::TipRadius, c.radius);
+  config_.probe_offset = {c.offset.x, c.offset.y, c.offset.z};
+  reply(s, slot, protocol::format_ok("Qualify"));
+  std::string text = "TipRadius ";
+  protocol::append_fixed(text, c.radius, 4);
+  text += " Offset";
+  for (double v : config_.probe_offset) {
+    text += ' ';
+    protocol::append_fixed(text, v, 4);
+  }
+  text += " Form ";
+  protocol::append_fixed(text, c.form, 4);
+  broadcast(protocol::format_event("Qualified", text));
 }
 
 }  // namespace imess::net

@@ -31,6 +31,14 @@ constexpr ParamSpec plain(std::string_view name, std::string_view unit, double m
   return p;
 }
 
+// One component of the probe offset (Qualify sets all three with the tip radius).
+constexpr ParamSpec probe_offset(std::string_view name, int axis, std::string_view config) {
+  ParamSpec p = plain(name, "mm", -100, 100, 0, config,
+                      "probe offset, added to every measured point (the ball centre seen from the machine's position)");
+  p.home = ParamHome::ProbeOffset, p.axis = axis, p.decimals = 4;
+  return p;
+}
+
 const std::array kParams{
     core_param("TipRadius", "mm", 0, 50, 2.0, ParamId::TipRadius, "motion.tip_radius",
                "probe ball radius used for compensation; 0 = none"),
@@ -55,6 +63,9 @@ const std::array kParams{
     core_param("PrehitDist", "mm", 0, 50, 2, ParamId::PrehitDistance, "motion.prehit_distance",
                "probing: before the target, where the touch speed is reached"),
     core_param("ProbeSpeed", "mm/s", 0.1, 50, 5, ParamId::ProbeSpeed, "motion.probe_speed", "probing: the touch speed"),
+    probe_offset("ProbeOffX", 0, "motion.probe_offset_x"),
+    probe_offset("ProbeOffY", 1, "motion.probe_offset_y"),
+    probe_offset("ProbeOffZ", 2, "motion.probe_offset_z"),
     net_param(plain("ReportHz", "Hz", 0.1, 100, 10, "server.report_hz", "CurrCor broadcast rate (only when the position changed)"),
               ParamHome::ReportHz, false, 3),
     net_param(plain("Period", "us", 100, 100000, 1000, "motion.period_us", "the motion loop's period, from the configuration's motion.period_us"),
@@ -100,6 +111,7 @@ std::string param_text(const ParamSpec& spec, const ParamPlaces& at) {
     case ParamHome::LoopPeriod: v = at.period_us; break;
     case ParamHome::AxisCount: v = at.core.config().layout.count; break;
     case ParamHome::Backend: return std::string(at.backend);
+    case ParamHome::ProbeOffset: v = at.probe_offset[static_cast<std::size_t>(spec.axis)]; break;
   }
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", spec.decimals, v);
@@ -110,6 +122,7 @@ void store_param(const ParamSpec& spec, ParamPlaces& at, double value) {
   switch (spec.home) {
     case ParamHome::Core: at.core.set_param(spec.core_id, value); break;  // the parameter lane: no ring slot
     case ParamHome::ReportHz: at.report_hz = value; break;
+    case ParamHome::ProbeOffset: at.probe_offset[static_cast<std::size_t>(spec.axis)] = value; break;
     case ParamHome::LoopPeriod:
     case ParamHome::AxisCount:
     case ParamHome::Backend: break;  // read-only: Set refuses them before this

@@ -103,6 +103,9 @@ struct Align {                                              // from journaled hi
   std::array<std::string, 3> hits;
 };
 struct DelFrame { std::string name; };
+// A probe qualification's result (messcap qualify measures it on a reference sphere): the
+// effective tip radius, the sphere's form error and the probe offset, applied at once.
+struct Qualify { double radius = 0, form = 0; Xyz offset; };
 inline constexpr double kMaxDwellSeconds = 3600;
 inline constexpr int kMaxArcTurns = 1000;  // ArcTo P: 1 (the arc alone) ... this
 
@@ -113,6 +116,6 @@ using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo
                              Reset, Set, Get, Stats, HandMv, Quit, Replay, Take, Release, Watch, Version,
                              MoveTo, ArcTo, Dwell, Queue, Pause, Resume, Probe, JogAx, SetOut, Outputs,
                              Programs, Load, Upload, Run, Abort, Program, Key, Frames, Frame, PartPos, UseFrame,
-                             SetFrame, Align, DelFrame>;
+                             SetFrame, Align, DelFrame, Qualify>;
 
 }  // namespace imess::protocol

@@ -2,6 +2,7 @@
 // same values): one entry per parameter — wire name, unit, range, default, read-only, help,
 // and where its value lives. Adding a parameter: one entry in params.cpp (+ its home).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -23,6 +24,7 @@ enum class ParamHome : std::uint8_t {
   LoopPeriod,  // the motion loop's period, us (fixed at start)
   AxisCount,   // axes the core drives
   Backend,     // the backend type (a word)
+  ProbeOffset, // the io thread's probe offset, component `axis` (added to every measured point)
 };
 
 struct ParamSpec {
@@ -35,6 +37,7 @@ struct ParamSpec {
   int decimals = 3;                // Get prints this many
   ParamHome home = ParamHome::Core;
   core::ParamId core_id = core::ParamId::TipRadius;  // home == Core
+  int axis = 0;                    // home == ProbeOffset: 0 x, 1 y, 2 z
   std::string_view config;         // the configuration key setting it at start ("motion.tip_radius"); empty: none
   std::string_view help;           // one line
 };
@@ -53,6 +56,7 @@ struct ParamPlaces {
   double& report_hz;
   double period_us;
   std::string_view backend;
+  std::array<double, 3>& probe_offset;
 };
 
 // The value as Get prints it ("2.000", "1000", "sim-servo-card").

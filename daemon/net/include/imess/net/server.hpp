@@ -3,6 +3,7 @@
 #pragma once
 #include <boost/asio.hpp>
 #include <spdlog/spdlog.h>
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <map>
@@ -65,6 +66,7 @@ struct ServerConfig {
   ProgramConfig programs;           // the programs folder and how program words map to this machine
   IppConfig ippdme;                 // the I++ DME server (TCP 1294) and its tools
   std::string frames_file;          // the part frames' store (JSON); empty: kept for this run only
+  std::array<double, 3> probe_offset{};  // ProbeOffX/Y/Z: added to every measured point (mm)
 };
 
 // Opens, binds and listens on listen:port (0: any free port); returns the port. Throws
@@ -140,6 +142,7 @@ class Server {
   void press_key(Session& s, std::uint32_t slot, const std::string& name);
   void get_param(Session& s, std::uint32_t slot, const protocol::Get& c);
   void set_param(Session& s, std::uint32_t slot, const protocol::Set& c);
+  void qualify(Session& s, std::uint32_t slot, const protocol::Qualify& c);
   std::string status_line();
   std::string stats_line();
   // hits.cpp, replay.cpp
