@@ -205,6 +205,16 @@ Fit<Cone> refine(std::span<const Eigen::Vector3d> points, const detail::Principa
     return detail::make_error(FitErrorCode::AmbiguousSolution, kName, os.str());
   }
   if (!best.state) return detail::no_solution_error(best, options, starts.size(), points.size(), kName);
+  if (sample_starts && points.size() == kMinPointsCone) {
+    // A minimal set has no redundancy: the search found one exact solution, but several cones
+    // generally pass through 6 points, and no fit can tell which one the workpiece is. Refused
+    // like two found ones.
+    std::ostringstream os;
+    os << "the " << points.size() << " points are the minimum for a cone: they lie exactly on "
+       << describe(*best.state, pa.centroid) << ", but several cones generally pass through 6 points, and the points cannot tell which one "
+       << "the workpiece is; probe more points (or refine from a nominal cone)";
+    return detail::make_error(FitErrorCode::AmbiguousSolution, kName, os.str());
+  }
   // Orient the axis toward increasing radius.
   const ConeProblem::State st = ConeProblem::oriented(*best.state);
   if (auto e = cylinder_check(pb, q, st)) return *e;

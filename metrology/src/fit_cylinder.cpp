@@ -124,6 +124,17 @@ Fit<Cylinder> refine(std::span<const Eigen::Vector3d> points, const detail::Prin
     return detail::make_error(FitErrorCode::AmbiguousSolution, kName, os.str());
   }
   if (!best.state) return detail::no_solution_error(best, options, starts.size(), points.size(), kName);
+  if (sample_starts && points.size() == kMinPointsCylinder) {
+    // A minimal set has no redundancy: the search found one exact solution, but an even number
+    // of cylinders (2, 4 or 6) passes through 5 points in general position when one does, and
+    // no fit can tell which one the workpiece is. Refused like two found ones.
+    std::ostringstream os;
+    os << "the " << points.size() << " points are the minimum for a cylinder: they lie exactly on "
+       << describe(*best.state, pa.centroid) << ", but an even number of cylinders (2, 4 or 6) passes through 5 points in general position "
+          "when one does, and the points cannot tell which one "
+       << "the workpiece is; probe more points (or refine from a nominal cylinder)";
+    return detail::make_error(FitErrorCode::AmbiguousSolution, kName, os.str());
+  }
   Cylinder cyl;
   cyl.point = pa.centroid + best.state->c;
   cyl.direction = detail::canonical_sign(best.state->a);
