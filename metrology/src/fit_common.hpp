@@ -47,7 +47,9 @@ std::optional<FitError> check_spread(const PrincipalAxes<Dim>& pa, std::size_t n
 // Largest cosine between the residual vector r(p0) and a column of the central-difference
 // Jacobian of r at p0 (step(k) per parameter): the stationarity test of a solution with a
 // Jacobian independent of the solver's. Columns below 1e-6 of the longest (parameters the
-// residuals do not depend on) are skipped; 0 when r(p0) is zero.
+// residuals do not depend on) are skipped; 0 when r(p0) is zero, or when the Gauss-Newton step
+// to the stationary point is below 1e-3 of `step` in every parameter (p0 is the solution to
+// 1e-9 of the feature's size: the cosine of rounded data's last digits says nothing more).
 double fd_gradient_cosine(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residuals,
                           const Eigen::VectorXd& p0, const Eigen::VectorXd& step);
 

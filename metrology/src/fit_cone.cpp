@@ -78,25 +78,26 @@ class ConeProblem {
 
   double length() const { return scale_; }
 
-  // Residuals from the public Cone (point, direction, distance, apex angle: 8 parameters), by
-  // finite differences — not the solver's local frame or Jacobian.
+  // Residuals from the public Cone, by finite differences — not the solver's local frame or
+  // Jacobian. Perturbed are its degrees of freedom only: the point across the axis, the direction
+  // tilted, the distance and the apex angle (as for the cylinder: no column of rounding noise).
   double independent_cosine(const State& st) const {
-    Eigen::VectorXd p(8);
-    p << st.c, st.a, st.s, 2.0 * st.phi;
-    const auto residuals = [this](const Eigen::VectorXd& x) {
+    const Eigen::Vector3d u = st.a.unitOrthogonal();
+    const Eigen::Vector3d v = st.a.cross(u);
+    const auto residuals = [&](const Eigen::VectorXd& x) {
       Cone k;
-      k.point = x.head<3>();
-      k.direction = x.segment<3>(3).normalized();
-      k.distance = x(6);
-      k.apex_angle_rad = x(7);
+      k.point = st.c + x(0) * u + x(1) * v;
+      k.direction = (st.a + x(2) * u + x(3) * v).normalized();
+      k.distance = st.s + x(4);
+      k.apex_angle_rad = 2.0 * st.phi + x(5);
       Eigen::VectorXd r(q_.cols());
       for (Eigen::Index i = 0; i < q_.cols(); ++i) r(i) = k.signed_distance(q_.col(i));
       return r;
     };
     const double len = std::max(scale_, std::abs(st.s));
-    Eigen::VectorXd step(8);
-    step << Eigen::Vector3d::Constant(1e-6 * len), Eigen::Vector3d::Constant(1e-6), 1e-6 * len, 1e-6;
-    return detail::fd_gradient_cosine(residuals, p, step);
+    Eigen::VectorXd step(6);
+    step << 1e-6 * len, 1e-6 * len, 1e-6, 1e-6, 1e-6 * len, 1e-6;
+    return detail::fd_gradient_cosine(residuals, Eigen::VectorXd::Zero(6), step);
   }
 
   bool same_solution(const State& x0, const State& y0) const {
@@ -204,6 +205,16 @@ Fit<Cone> refine(std::span<const Eigen::Vector3d> points, const detail::Principa
     return detail::make_error(FitErrorCode::AmbiguousSolution, kName, os.str());
   }
   if (!best.state) return detail::no_solution_error(best, options, starts.size(), points.size(), kName);
+  if (sample_starts && points.size() == kMinPointsCone) {
+    // A minimal set has no redundancy: the search found one exact solution, but several cones
+    // generally pass through 6 points, and no fit can tell which one the workpiece is. Refused
+    // like two found ones.
+    std::ostringstream os;
+    os << "the " << points.size() << " points are the minimum for a cone: they lie exactly on "
+       << describe(*best.state, pa.centroid) << ", but several cones generally pass through 6 points, and the points cannot tell which one "
+       << "the workpiece is; probe more points (or refine from a nominal cone)";
+    return detail::make_error(FitErrorCode::AmbiguousSolution, kName, os.str());
+  }
   // Orient the axis toward increasing radius.
   const ConeProblem::State st = ConeProblem::oriented(*best.state);
   if (auto e = cylinder_check(pb, q, st)) return *e;

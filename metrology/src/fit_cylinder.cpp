@@ -67,23 +67,25 @@ class CylinderProblem {
     return sc;
   }
 
-  // Residuals from the public Cylinder (point, direction, radius: 7 parameters), by finite
-  // differences — not the solver's local frame or Jacobian.
+  // Residuals from the public Cylinder, by finite differences — not the solver's local frame or
+  // Jacobian. Perturbed are the five degrees of freedom only: the point across the axis, the
+  // direction tilted, the radius (docs/metrology.md 2.7: a point moved along the axis or a
+  // direction scaled along itself change nothing but rounding, and such a column's cosine is noise).
   double independent_cosine(const State& s) const {
-    Eigen::VectorXd p(7);
-    p << s.c, s.a, s.r;
-    const auto residuals = [this](const Eigen::VectorXd& x) {
+    const Eigen::Vector3d u = s.a.unitOrthogonal();
+    const Eigen::Vector3d v = s.a.cross(u);
+    const auto residuals = [&](const Eigen::VectorXd& x) {
       Cylinder cyl;
-      cyl.point = x.head<3>();
-      cyl.direction = x.segment<3>(3).normalized();
+      cyl.point = s.c + x(0) * u + x(1) * v;
+      cyl.direction = (s.a + x(2) * u + x(3) * v).normalized();
       Eigen::VectorXd r(q_.cols());
-      for (Eigen::Index i = 0; i < q_.cols(); ++i) r(i) = cyl.distance_from_axis(q_.col(i)) - x(6);
+      for (Eigen::Index i = 0; i < q_.cols(); ++i) r(i) = cyl.distance_from_axis(q_.col(i)) - (s.r + x(4));
       return r;
     };
     const double len = std::max(scale_, std::abs(s.r));
-    Eigen::VectorXd step(7);
-    step << Eigen::Vector3d::Constant(1e-6 * len), Eigen::Vector3d::Constant(1e-6), 1e-6 * len;
-    return detail::fd_gradient_cosine(residuals, p, step);
+    Eigen::VectorXd step(5);
+    step << 1e-6 * len, 1e-6 * len, 1e-6, 1e-6, 1e-6 * len;
+    return detail::fd_gradient_cosine(residuals, Eigen::VectorXd::Zero(5), step);
   }
 
   bool same_solution(const State& x, const State& y) const {
@@ -122,6 +124,17 @@ Fit<Cylinder> refine(std::span<const Eigen::Vector3d> points, const detail::Prin
     return detail::make_error(FitErrorCode::AmbiguousSolution, kName, os.str());
   }
   if (!best.state) return detail::no_solution_error(best, options, starts.size(), points.size(), kName);
+  if (sample_starts && points.size() == kMinPointsCylinder) {
+    // A minimal set has no redundancy: the search found one exact solution, but an even number
+    // of cylinders (2, 4 or 6) passes through 5 points in general position when one does, and
+    // no fit can tell which one the workpiece is. Refused like two found ones.
+    std::ostringstream os;
+    os << "the " << points.size() << " points are the minimum for a cylinder: they lie exactly on "
+       << describe(*best.state, pa.centroid) << ", but an even number of cylinders (2, 4 or 6) passes through 5 points in general position "
+          "when one does, and the points cannot tell which one "
+       << "the workpiece is; probe more points (or refine from a nominal cylinder)";
+    return detail::make_error(FitErrorCode::AmbiguousSolution, kName, os.str());
+  }
   Cylinder cyl;
   cyl.point = pa.centroid + best.state->c;
   cyl.direction = detail::canonical_sign(best.state->a);

@@ -73,6 +73,13 @@ inline bool ssq_change_is_rounding(double ssq, double ssq_new, double length_sca
   return std::abs(ssq - ssq_new) <= ssq_rounding;
 }
 
+// Iterations in a row whose change of the sum of squares is within its rounding after which the
+// solver stops ("rounding floor"): with large residuals and a poorly conditioned problem (a wide
+// cone on a sector) Gauss–Newton steps can keep jumping by 1e-7 of the size around the minimum
+// while the sum of squares changes only in its last digits, and no other test fires.
+inline constexpr int kRoundingSteps = 10;
+inline constexpr double kFloorCosine = 1e-9;
+
 // Problem requirements:
 //   using State = ...;
 //   Eigen::Index residual_count() const;  Eigen::Index parameter_count() const;
@@ -102,6 +109,7 @@ LmOutcome levenberg_marquardt(const Problem& pb, typename Problem::State& x, con
   double lambda = 0.0;
   LmOutcome out;
   int flat_steps = 0;
+  int rounding_steps = 0;  // iterations in a row whose change of the sum of squares is rounding
 
   Eigen::MatrixXd a(m + n, n);
   Eigen::VectorXd rhs(m + n);
@@ -137,9 +145,13 @@ LmOutcome levenberg_marquardt(const Problem& pb, typename Problem::State& x, con
     const double actual_rel = (ssq - ssq_new) / ssq;
     // Near the minimum the sum of squares stops resolving the step (its change is rounding),
     // while the step itself, computed from the residuals and J, is still accurate: take it.
-    const bool rounding_level = std::isfinite(ssq_new) && predicted_rel <= opt.ssq_tolerance &&
-                                ssq_change_is_rounding(ssq, ssq_new, sc.maxCoeff(), m);
+    const bool change_is_rounding = std::isfinite(ssq_new) && ssq_change_is_rounding(ssq, ssq_new, sc.maxCoeff(), m);
+    const bool rounding_level = predicted_rel <= opt.ssq_tolerance && change_is_rounding;
+    // At the rounding floor: the sum of squares has not changed beyond its rounding for
+    // kRoundingSteps iterations (taken or not) — no step can be verified any more.
+    rounding_steps = change_is_rounding ? rounding_steps + 1 : 0;
     if (std::isfinite(ssq_new) && (ssq_new < ssq || rounding_level)) {
+      const double ssq_old = ssq;
       x = candidate;
       r = r_new;
       J = J_new;
@@ -153,10 +165,20 @@ LmOutcome levenberg_marquardt(const Problem& pb, typename Problem::State& x, con
       } else {
         flat_steps = 0;
       }
-      lambda = (flat || lambda < 1e-10) ? 0.0 : lambda * 0.1;
+      // Damping is relaxed only when the model predicted the decrease well (gain ratio > 0.75):
+      // with large residuals the undamped step can overshoot right after a damped one succeeded.
+      const bool good_model = predicted > 0.0 && (ssq_old - ssq) > 0.75 * predicted;
+      if (flat || lambda < 1e-10) {
+        lambda = 0.0;
+      } else if (good_model) {
+        lambda *= 0.1;
+      }
+      if (rounding_steps >= kRoundingSteps && max_gradient_cosine(J, r) <= kFloorCosine)
+        return finish(true, "rounding floor");
     } else {
       // No decrease: at the rounding floor when the step was already negligible.
       if (step <= opt.step_tolerance) return finish(true, "step");
+      if (rounding_steps >= kRoundingSteps) return finish(true, "rounding floor");
       lambda = lambda == 0.0 ? 1e-4 : lambda * 10.0;
       if (lambda > 1e30) return finish(true, "stalled");
     }

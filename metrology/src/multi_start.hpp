@@ -31,11 +31,6 @@ inline constexpr double kExactRms = 1e-10;
 // Largest accepted cosine between the residual vector and a column of the independent
 // (finite-difference) Jacobian at a solution that does not interpolate the points.
 inline constexpr double kCheckCosine = 1e-7;
-// Below this rms (relative to the length scale) the check is skipped: there the residuals are at
-// the level of the data's printed resolution and the cosine measured 1e-6..1e-5 at the right
-// solution of 4-decimal data (an open point, docs/metrology.md 2.7).
-inline constexpr double kCheckedRms = 1e-5;
-
 template <class Problem>
 struct MultiStart {
   std::optional<typename Problem::State> state;
@@ -65,7 +60,6 @@ MultiStart<Problem> multi_start(const Problem& pb, const std::vector<typename Pr
     return e * e * static_cast<double>(pb.residual_count());
   };
   const double exact_ssq = ssq_at(kExactRms);
-  const double checked_ssq = ssq_at(kCheckedRms);
   for (const auto& start : starts) {
     typename Problem::State s = start;
     const LmOutcome out = levenberg_marquardt(pb, s, options);
@@ -80,8 +74,7 @@ MultiStart<Problem> multi_start(const Problem& pb, const std::vector<typename Pr
       for (const auto& e : exact)
         if (!best.ambiguous && !pb.same_solution(e, s)) best.ambiguous.emplace(e, s);
       exact.push_back(s);
-    } else if (const double check = out.ssq > checked_ssq ? pb.independent_cosine(s) : 0.0;
-               !(check <= kCheckCosine)) {
+    } else if (const double check = pb.independent_cosine(s); !(check <= kCheckCosine)) {
       best.worst_check = std::max(best.worst_check, check);
       continue;
     }

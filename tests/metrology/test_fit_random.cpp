@@ -1,14 +1,12 @@
-// Randomised fits: for every feature, 200 random instances (random position, orientation and
-// size; minimal point counts up to 12 points; arcs, caps and sectors down to 30 degrees;
-// deviations made orthogonal to the Jacobian so the generator stays the exact least-squares
-// solution). Each result must be the generator (relative error below 1e-6 of the size) and, where
-// the residuals are not zero, pass a stationarity test with this file's own Jacobian. Minimal
-// cylinder and cone sets may instead be refused as ambiguous — then the message must name two
-// cylinders/cones. Known limit (docs/metrology.md 2.7): a cylinder or cone with few points can
-// have another minimum that the start search reaches instead of the generator's; such results
-// must still be stationary (or, for the cone, no start converged), and at most 4 % of the
-// draws may be such (4 %: the measured state is 1 cylinder and 6 cones of 200, an open issue). IMESS_PRINT_FITS=1 prints
-// the worst error (over the results that are the generator) per feature and the counts.
+// Randomised fits: for every feature, 500 random instances with fixed seeds (random position,
+// orientation and size; minimal point counts up to 12 points; arcs, caps and sectors down to 30
+// degrees; a quarter exact, the others with deviations made orthogonal to the Jacobian so the
+// generator stays a least-squares solution). Exact data must give the generator (relative error
+// below 1e-6 of the size). Data with deviations must give a least-squares solution: stationary by
+// this file's own Jacobian and with a sum of squares no larger than the generator's. Minimal
+// cylinder and cone sets must be refused as ambiguous (several exact solutions). No misses are
+// tolerated except the one cone listed in docs/metrology.md 2.7. IMESS_PRINT_FITS=1 prints the worst
+// figures per feature.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -26,7 +24,7 @@ using namespace imess::metrology::test;
 
 namespace {
 
-constexpr int kSeeds = 200;
+constexpr int kSeeds = 500;
 constexpr double kRelTol = 1e-6;  // closeness to the generator, relative to its size
 constexpr double kCosTol = 1e-6;  // stationarity with the test's own Jacobian
 
@@ -178,21 +176,30 @@ TEST_CASE("random spheres on caps down to 30 degrees are their exact least-squar
   }
 }
 
+// The deviation amplitude of a draw: a quarter of the draws are exact.
+double amplitude(Rng& rng, double size) { return rng.uniform(0, 1) < 0.25 ? 0.0 : rng.uniform(0, 0.01) * size; }
+
+// Whether a result that is not the generator is still right: data with deviations, a sum of
+// squares no larger than the generator's (then it is that minimum or a lower one).
+bool no_worse(double ssq, double ssq_truth, double amp) { return amp > 0.0 && ssq <= ssq_truth * (1.0 + 1e-9); }
+
 TEST_CASE("random cylinders on sectors down to 30 degrees are their exact least-squares fits", "[fit][random]") {
   Worst w{"cylinder"};
-  int misses = 0;
   for (int seed = 0; seed < kSeeds; ++seed) {
     Rng rng(4000 + seed);
     const double radius = rng.uniform(1, 200);
     const Eigen::Vector3d c = random_point(rng);
     const Eigen::Vector3d axis = rng.unit_vector();
     const std::size_t n = count(rng, kMinPointsCylinder);
-    const auto s = cylinder_samples(rng, c, axis, radius, deg(rng.uniform(30, 360)), rng.uniform(0.3, 3) * radius, n,
-                                    rng.uniform(0, 0.01) * radius);
+    const double span = rng.uniform(30, 360);
+    const double length = rng.uniform(0.3, 3) * radius;
+    const double amp = amplitude(rng, radius);
+    const auto s = cylinder_samples(rng, c, axis, radius, deg(span), length, n, amp);
     auto f = fit_cylinder(s.points);
-    INFO("seed " << seed << " points " << n);
-    if (!f.ok() && n == kMinPointsCylinder && f.error().code == FitErrorCode::AmbiguousSolution) {
-      CHECK_THAT(f.error().message, Catch::Contains("at least two different cylinders"));
+    INFO("seed " << seed << " points " << n << " span " << span << " amplitude " << amp);
+    if (n == kMinPointsCylinder) {  // several cylinders pass through 5 points: always refused
+      REQUIRE_FALSE(f.ok());
+      CHECK(f.error().code == FitErrorCode::AmbiguousSolution);
       ++w.ambiguous;
       continue;
     }
@@ -212,26 +219,26 @@ TEST_CASE("random cylinders on sectors down to 30 degrees are their exact least-
     }
     const Deviation d = compare(*f, truth);
     const double cos = cosine_if_residual(J, r, radius);
-    if (d.location < kRelTol * radius && d.size < kRelTol * radius) w.add(d, radius, cos);
     CHECK(cos < kCosTol);  // always a least-squares stationary point
-    if (d.location < kRelTol * radius && d.size < kRelTol * radius && d.orientation < kRelTol) continue;
-    double ssq_truth = 0.0;
-    for (const auto& p : s.points) ssq_truth += std::pow(truth.distance_from_axis(p) - radius, 2);
-    if (r.squaredNorm() < ssq_truth * (1.0 - 1e-9)) {
-      ++w.lower;
+    if (d.location < kRelTol * radius && d.size < kRelTol * radius && d.orientation < kRelTol) {
+      w.add(d, radius, cos);
       continue;
     }
-    // Known limit: another minimum (or an unflagged second interpolating cylinder) won.
-    ++misses;
-    WARN("cylinder seed " << seed << " (" << n << " points): a different minimum, rms " << f->stats.rms);
+    double ssq_truth = 0.0;
+    for (const auto& p : s.points) ssq_truth += std::pow(truth.distance_from_axis(p) - radius, 2);
+    if (no_worse(r.squaredNorm(), ssq_truth, amp)) {
+      w.cosine = std::max(w.cosine, cos);
+      if (r.squaredNorm() < ssq_truth * (1.0 - 1e-9)) ++w.lower;
+      continue;
+    }
+    ++w.misses;
+    WARN("cylinder seed " << seed << " (" << n << " points): a worse minimum, rms " << f->stats.rms);
   }
-  w.misses = misses;
-  CHECK(misses <= kSeeds / 25);  // measured: cylinder 1, cone 6 of 200 (open issue, docs 2.7)
+  CHECK(w.misses == 0);
 }
 
 TEST_CASE("random cones (apex 10 to 120 degrees, sectors and height bands) are their exact fits", "[fit][random]") {
   Worst w{"cone"};
-  int misses = 0;
   for (int seed = 0; seed < kSeeds; ++seed) {
     Rng rng(5000 + seed);
     Cone truth;
@@ -242,41 +249,40 @@ TEST_CASE("random cones (apex 10 to 120 degrees, sectors and height bands) are t
     truth.distance = radius * std::cos(truth.half_angle());
     const std::size_t n = count(rng, kMinPointsCone);
     const double h0 = rng.uniform(-0.5, 0.5) * radius;
-    const auto s = cone_samples(rng, truth, deg(rng.uniform(30, 360)), h0, h0 + rng.uniform(0.2, 1.5) * radius, n,
-                                rng.uniform(0, 0.01) * radius);
+    const double span = rng.uniform(30, 360);
+    const double h1 = h0 + rng.uniform(0.2, 1.5) * radius;
+    const double amp = amplitude(rng, radius);
+    const auto s = cone_samples(rng, truth, deg(span), h0, h1, n, amp);
     auto f = fit_cone(s.points);
-    INFO("seed " << seed << " points " << n);
-    if (!f.ok() && n == kMinPointsCone && f.error().code == FitErrorCode::AmbiguousSolution) {
-      CHECK_THAT(f.error().message, Catch::Contains("at least two different cones"));
+    INFO("seed " << seed << " points " << n << " span " << span << " amplitude " << amp);
+    if (n == kMinPointsCone) {  // several cones pass through 6 points: always refused
+      REQUIRE_FALSE(f.ok());
+      CHECK(f.error().code == FitErrorCode::AmbiguousSolution);
       ++w.ambiguous;
       continue;
     }
-    if (!f.ok()) {  // known limit, counted with the other misses: no start converged
-      CHECK(f.error().code == FitErrorCode::NotConverged);
-      ++misses;
-      WARN("cone seed " << seed << " (" << n << " points): " << f.error().message);
-      continue;
-    }
+    REQUIRE(f.ok());
     Eigen::MatrixXd J(static_cast<Eigen::Index>(n), 8);
     Eigen::VectorXd r(J.rows());
     for (Eigen::Index i = 0; i < J.rows(); ++i) r(i) = cone_row(*f, s.points[static_cast<std::size_t>(i)], &J, i);
     const Deviation d = compare(*f, truth);
     const double cos = cosine_if_residual(J, r, radius);
-    if (d.location < kRelTol * radius && d.size < kRelTol * radius) w.add(d, radius, cos);
     CHECK(cos < kCosTol);  // always a least-squares stationary point
-    if (d.location < kRelTol * radius && d.size < kRelTol * radius && d.orientation < kRelTol && d.apex_angle < kRelTol) continue;
-    // With deviations and few points another minimum can be lower than the generator's: then
-    // the fit is right and the generator is not the least-squares solution.
-    double ssq_truth = 0.0;
-    for (const auto& p : s.points) ssq_truth += std::pow(cone_row(truth, p, nullptr, 0), 2);
-    if (r.squaredNorm() < ssq_truth * (1.0 - 1e-9)) {
-      ++w.lower;
+    if (d.location < kRelTol * radius && d.size < kRelTol * radius && d.orientation < kRelTol && d.apex_angle < kRelTol) {
+      w.add(d, radius, cos);
       continue;
     }
-    // Known limit: another minimum (or an unflagged second interpolating cone) won.
-    ++misses;
-    WARN("cone seed " << seed << " (" << n << " points): a different minimum, rms " << f->stats.rms);
+    double ssq_truth = 0.0;
+    for (const auto& p : s.points) ssq_truth += std::pow(cone_row(truth, p, nullptr, 0), 2);
+    if (no_worse(r.squaredNorm(), ssq_truth, amp)) {
+      w.cosine = std::max(w.cosine, cos);
+      if (r.squaredNorm() < ssq_truth * (1.0 - 1e-9)) ++w.lower;
+      continue;
+    }
+    ++w.misses;
+    WARN("cone seed " << seed << " (" << n << " points): a worse minimum, rms " << f->stats.rms);
   }
-  w.misses = misses;
-  CHECK(misses <= kSeeds / 25);  // measured: cylinder 1, cone 6 of 200 (open issue, docs 2.7)
+  // Known (docs/metrology.md 2.7): seed 328, 9 points with deviations, ends in a minimum above the
+  // generator's from every start. Any further miss fails.
+  CHECK(w.misses <= 1);
 }
