@@ -286,6 +286,7 @@ TEST_CASE("bounded motion on sim-portio-drive.json") { run_property("sim-portio-
 TEST_CASE("bounded motion on sim-portio-drive-map-a.json") { run_property("sim-portio-drive-map-a.json", 5); }
 TEST_CASE("bounded motion on sim-servo-card-serial.json") { run_property("sim-servo-card-serial.json", 6); }
 TEST_CASE("bounded motion on sim-mrm-arm.json") { run_property("sim-mrm-arm.json", 7); }
+TEST_CASE("bounded motion on sim-servo-card-loop-time.json") { run_property("sim-servo-card-loop-time.json", 8); }
 
 TEST_CASE("every shipped configuration is covered by the bounded-motion property") {
   std::vector<std::string> shipped;
@@ -294,5 +295,5 @@ TEST_CASE("every shipped configuration is covered by the bounded-motion property
   std::sort(shipped.begin(), shipped.end());
   CHECK(shipped == std::vector<std::string>{"sim-mrm-arm.json", "sim-parport-3dstep.json", "sim-parport-shd.json",
                                             "sim-portio-drive-map-a.json", "sim-portio-drive.json",
-                                            "sim-servo-card-serial.json", "sim-servo-card.json"});
+                                            "sim-servo-card-loop-time.json", "sim-servo-card-serial.json", "sim-servo-card.json"});
 }
