@@ -19,6 +19,7 @@ using protocol::ErrorCode;
 using protocol::format_err;
 using protocol::format_ok;
 using Vec = Eigen::Vector3d;
+constexpr double kMaxFrameOrigin = 1e6;  // mm: a kilometre; beyond it a typo, not a part
 
 void append_vector(std::string& out, std::string_view label, const Vec& v, int decimals) {
   out += ' ';
@@ -60,7 +61,7 @@ const metrology::Frame* Server::frame_named(Session& s, std::uint32_t slot, std:
   if (const auto* f = frames_.find(name)) return f;
   std::string names;
   for (const auto& n : frames_.names()) names += ' ' + n;
-  reply(s, slot, format_err(ErrorCode::BadValue, std::string(verb) + ": no frame '" + name + "'; the frames are" + names));
+  reply(s, slot, format_err(ErrorCode::BadValue, std::string(verb) + ": no frame '" + name.substr(0, 40) + "'; the frames are" + names));
   return nullptr;
 }
 
@@ -120,6 +121,10 @@ void Server::set_frame(Session& s, std::uint32_t slot, const protocol::SetFrame&
   }
   const Vec origin = c.origin ? Vec((*c.origin)[0], (*c.origin)[1], (*c.origin)[2])
                               : Vec(layout().cartesian(core_.snapshot().position));
+  if (!(origin.cwiseAbs().maxCoeff() <= kMaxFrameOrigin)) {
+    reply(s, slot, format_err(ErrorCode::BadValue, "SetFrame " + c.name + ": the origin's coordinates go from -1000000 to 1000000 mm"));
+    return;
+  }
   if (c.x_axis.has_value() != c.z_axis.has_value()) {
     reply(s, slot, format_err(ErrorCode::BadValue, "SetFrame " + c.name + ": give both X and Z (the axes' directions) or neither (the machine's axes)"));
     return;
