@@ -41,6 +41,14 @@ std::string frame_text(const metrology::Frame& f) {
   return out.substr(1);
 }
 
+// " machine a b": the names, each after a blank; `from` 1 leaves machine out (the stored ones).
+std::string names_text(const PartFrames& frames, std::size_t from = 0) {
+  std::string out;
+  const auto names = frames.names();
+  for (std::size_t i = from; i < names.size(); ++i) out += ' ' + names[i];
+  return out;
+}
+
 // The journaled hits of one set: surface points, approach directions, tip radii.
 struct HitGroup {
   std::vector<Vec> surface, centre, approach;
@@ -59,16 +67,12 @@ bool Server::frames_usable(Session& s, std::uint32_t slot, std::string_view verb
 const metrology::Frame* Server::frame_named(Session& s, std::uint32_t slot, std::string_view verb, std::string& name) {
   if (name.empty()) name = frames_.active();
   if (const auto* f = frames_.find(name)) return f;
-  std::string names;
-  for (const auto& n : frames_.names()) names += ' ' + n;
-  reply(s, slot, format_err(ErrorCode::BadValue, std::string(verb) + ": no frame '" + name.substr(0, 40) + "'; the frames are" + names));
+  reply(s, slot, format_err(ErrorCode::BadValue, std::string(verb) + ": no frame '" + name.substr(0, 40) + "'; the frames are" + names_text(frames_)));
   return nullptr;
 }
 
 void Server::list_frames(Session& s, std::uint32_t slot) {
-  std::string data = "Active " + frames_.active() + " Names";
-  for (const auto& n : frames_.names()) data += ' ' + n;
-  reply(s, slot, format_ok("Frames", data));
+  reply(s, slot, format_ok("Frames", "Active " + frames_.active() + " Names" + names_text(frames_)));
 }
 
 void Server::show_frame(Session& s, std::uint32_t slot, std::string name) {
@@ -261,9 +265,7 @@ void Server::del_frame(Session& s, std::uint32_t slot, const std::string& name) 
   const bool was_active = frames_.active() == name;
   std::string save_error;
   if (!frames_.remove(name, save_error)) {
-    std::string names;
-    for (const auto& n : frames_.names()) names += ' ' + n;
-    reply(s, slot, format_err(ErrorCode::BadValue, "DelFrame: no stored frame '" + name.substr(0, 40) + "'; the stored frames are" + names.substr(8)));
+    reply(s, slot, format_err(ErrorCode::BadValue, "DelFrame: no stored frame '" + name.substr(0, 40) + "'; the stored frames are" + names_text(frames_, 1)));
     return;
   }
   if (!save_error.empty()) log_limited(spdlog::level::err, "frames", "deleting part frame " + name + ": " + save_error);
