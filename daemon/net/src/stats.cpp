@@ -1,7 +1,8 @@
 // Stats: the motion loop's timing since the start (summarised by the loop once a second), and
 // over a measuring interval a client restarts with `Stats Reset` and reads with `Stats
 // Interval` (figures) or `Stats Hist` (every non-empty 1 µs bucket), so that a benchmark gets
-// the distribution of exactly the seconds it measured.
+// the distribution of exactly the seconds it measured. `Ok Stats Reset` comes once the loop has
+// begun the new interval (the reply slot waits; later replies keep their order).
 #include <cstdio>
 #include <memory>
 
@@ -28,14 +29,33 @@ std::string Server::stats_line() {
          std::to_string(st.overruns) + " Realtime " + (st.realtime ? "yes" : "no");
 }
 
+// Ok Stats Reset once the loop has begun the new interval (within a period), so that whatever
+// a client asks after the reply is of the new interval; a loop that stands still longer than
+// kMaxWaits polls gets the reply anyway (its interval then begins at its next cycle).
+void Server::reply_when_restarted(std::weak_ptr<Session> ws, std::uint32_t slot, int waited) {
+  constexpr int kMaxWaits = 10000;  // of 200 µs: 2 s
+  if (runner_->interval_restarted() || waited >= kMaxWaits) {
+    if (auto s = ws.lock()) reply(*s, slot, protocol::format_ok("Stats", "Reset"));
+    return;
+  }
+  auto timer = std::make_shared<boost::asio::steady_timer>(io_, std::chrono::microseconds(200));
+  timer->async_wait([this, ws = std::move(ws), slot, waited, timer](const boost::system::error_code& ec) {
+    if (!ec) reply_when_restarted(ws, slot, waited + 1);
+  });
+}
+
 void Server::stats(Session& s, std::uint32_t slot, const protocol::Stats& c) {
   using Form = protocol::Stats::Form;
   using protocol::format_ok;
   switch (c.form) {
     case Form::SinceStart: reply(s, slot, format_ok("Stats", stats_line())); return;
     case Form::Reset:
-      if (runner_) runner_->restart_interval();
-      reply(s, slot, format_ok("Stats", "Reset"));
+      if (!runner_) {
+        reply(s, slot, format_ok("Stats", "Reset"));
+        return;
+      }
+      runner_->restart_interval();
+      reply_when_restarted(s.weak_from_this(), slot, 0);
       return;
     case Form::Interval:
     case Form::Hist: break;
