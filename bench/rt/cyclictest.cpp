@@ -38,15 +38,15 @@ bool Cyclictest::start(const std::string& binary, double interval_us, int priori
   priority_ = priority;
   out_path_ = work_dir + "/cyclictest.out";
   err_path_ = work_dir + "/cyclictest.err";
-  const long loops = std::lround(seconds * 1e6 / interval_us);
   // Histogram range: messd's (latency_bucket: 0 … 5000 µs, the last bucket everything longer).
   const int range = static_cast<int>(core::kLatencyBuckets) - 1;
   // -q: only the summary; -m: mlockall as messd; --default-system: leave power management as
   // messd meets it (cyclictest would otherwise hold /dev/cpu_dma_latency at 0 for the whole
-  // machine, messd too, while it runs).
+  // machine, messd too, while it runs). -D: a duration, not a count of wake-ups: a thread
+  // that misses periods skips them, and a count would then take longer than the seconds.
   std::vector<std::string> args{binary, "-q", "-m", "--default-system", "--policy=fifo",
                                 "-p", std::to_string(priority), "-i", std::to_string(std::lround(interval_us)),
-                                "-l", std::to_string(loops), "-h", std::to_string(range)};
+                                "-D", std::to_string(std::lround(seconds)), "-h", std::to_string(range)};
   command_.clear();
   for (const auto& a : args) command_ += (command_.empty() ? "" : " ") + a;
   pid_ = fork();

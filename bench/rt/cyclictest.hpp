@@ -13,7 +13,7 @@ namespace imess::bench {
 class Cyclictest {
  public:
   static std::string find();  // its path on PATH, "" when not installed
-  // Starts `cyclictest` for seconds × 1e6 / interval_us wake-ups; output kept in work_dir.
+  // Starts `cyclictest` for `seconds` (whole); output kept in work_dir.
   // false: could not start (error() says why).
   bool start(const std::string& binary, double interval_us, int priority, double seconds, const std::string& work_dir);
   // While it runs: looks whether its measuring thread has SCHED_FIFO at the priority.

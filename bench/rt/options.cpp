@@ -1,6 +1,7 @@
 // bench_rt's command line: a subcommand, then options.
 #include "options.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string_view>
@@ -52,6 +53,7 @@ std::optional<Options> parse_options(int argc, char** argv) {
     } else if (a == "--seconds" || a == "--period-us" || a == "--step-len-us" || a == "--step-space-us") {
       const char* t = value();
       if (!t || !number(t, v)) return fail(std::string(a) + " takes a positive number");
+      if (a == "--seconds" && v != std::floor(v)) return fail("--seconds takes whole seconds (cyclictest's -D)");
       if (a == "--seconds") o.seconds = v;
       else if (a == "--period-us") o.period_us = v;
       else if (a == "--step-len-us") o.step_len_us = v;

@@ -8,7 +8,7 @@ namespace imess::bench {
 struct Options {
   bool loop = false, base = false;  // what to measure (`all`: both)
   bool quick = false;
-  std::optional<double> seconds;     // S of every part (default: loop 60 / quick 5, base 60 / quick 3)
+  std::optional<double> seconds;     // S of every part, whole seconds (default: loop 60 / quick 5, base 60 / quick 3)
   std::string json;                  // --json FILE
   std::string messd;                 // --messd PATH ("" the build's)
   std::optional<std::string> load_cmd;  // --load-cmd "... {port} ... {seconds}" ("" no loaded run)
