@@ -110,6 +110,8 @@ bool Cyclictest::finish(double timeout_s) {
     text << err.rdbuf();
     std::string e = text.str();
     while (!e.empty() && (e.back() == '\n' || e.back() == ' ')) e.pop_back();
+    for (auto& ch : e)
+      if (ch == '\n') ch = ' ';  // one line: it is printed in place of the figures
     error_ = "cyclictest " + std::string(WIFEXITED(st) ? "exited with " + std::to_string(WEXITSTATUS(st))
                                                          : "was killed by signal " + std::to_string(WTERMSIG(st))) +
              (e.empty() ? "" : ": " + e.substr(0, 300));

@@ -116,6 +116,9 @@ bool run_loop(const Options& o, Report& report) {
               " us, SCHED_FIFO " + std::to_string(priority) + " requested: Realtime " + (realtime ? "yes" : "no") +
               "; cyclictest at the same time, same period and priority: " + (cyclictest.empty() ? floor_missing : cyclictest) +
               "; " + fixed(seconds, 0) + " s per condition, wall clock");
+  if (!realtime)
+    report.note("loop: SCHED_FIFO was not granted to messd (not root, no CAP_SYS_NICE): its loop runs time-shared, "
+                "and cyclictest, which needs SCHED_FIFO, will not run either");
   if (sysconf(_SC_NPROCESSORS_ONLN) < 2)
     report.note("loop: one CPU: messd's loop and cyclictest run at the same time and delay each other");
   auto& setup = report.setup()["loop"];

@@ -69,6 +69,7 @@ void Report::add(Figure f) {
     if (f.goal_ratio) line += "  goal " + goal_text(f) + (f.met() ? (*f.met() ? "  met" : "  NOT met") : "  (no floor)");
     if (f.virtual_time) line += "  (virtual time)";
   }
+  while (!line.empty() && line.back() == ' ') line.pop_back();
   std::printf("%s\n", line.c_str());
   std::fflush(stdout);
   figures_.push_back(std::move(f));
