@@ -94,8 +94,15 @@ const std::array kVerbs{
              [](const Args& a) -> Command { return Set{std::string(a.at[0].text), std::string(a.at[1].text)}; }},
     VerbSpec{"Get", args(optional(word("name"))), "read one runtime parameter, or all of them", false, Access::Open,
              command_index<Get>(), [](const Args& a) -> Command { return Get{std::string(a.at[0].text)}; }},
-    VerbSpec{"Stats", args(), "motion-loop period, wake-up latency percentiles, overruns, cycles", false, Access::Open,
-             command_index<Stats>(), [](const Args&) -> Command { return Stats{}; }},
+    VerbSpec{"Stats",
+             args(optional(choice("form", "Reset Interval Hist",
+                                  "Stats takes nothing, Reset, Interval or Hist, got '{got}'; usage: {usage}"))),
+             "motion-loop period, wake-up latency percentiles, overruns, cycles since the start; form Reset starts a "
+             "measuring interval, Interval (figures) and Hist (1 us buckets) report it", false, Access::Open,
+             command_index<Stats>(),
+             [](const Args& a) -> Command {
+               return Stats{a.has(0) ? static_cast<Stats::Form>(a.at[0].choice + 1) : Stats::Form::SinceStart};
+             }},
     VerbSpec{"HandMv",
              args(coordinate("dx"), coordinate("dy"), coordinate("dz"),
                   optional(above_min(number("speed", 0, kAny, "HandMv speed must be greater than {min} mm/s")))),

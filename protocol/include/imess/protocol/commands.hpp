@@ -27,7 +27,8 @@ struct Free {};                                             // open the position
 struct Reset {};                                            // clear a fault
 struct Set { std::string name; std::string value; };
 struct Get { std::string name; };                           // empty name: list all
-struct Stats {};
+// Stats: since the start; Reset: a new measuring interval; Interval, Hist: that interval.
+struct Stats { enum class Form { SinceStart, Reset, Interval, Hist } form = Form::SinceStart; };
 struct HandMv { Xyz delta; std::optional<double> speed; };  // simulator: push the carriage by hand
 struct Quit {};
 struct Replay { std::uint64_t from = 0; };                  // re-send journaled hits from this seq

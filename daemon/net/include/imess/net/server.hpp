@@ -144,6 +144,9 @@ class Server {
   void set_param(Session& s, std::uint32_t slot, const protocol::Set& c);
   void qualify(Session& s, std::uint32_t slot, const protocol::Qualify& c);
   std::string status_line();
+  // stats.cpp: the motion loop's timing (Stats, Stats Reset, Stats Interval, Stats Hist)
+  void stats(Session& s, std::uint32_t slot, const protocol::Stats& c);
+  void reply_when_restarted(std::weak_ptr<Session> s, std::uint32_t slot, int waited);
   std::string stats_line();
   // hits.cpp, replay.cpp
   void send_hit(const core::Event& e);
