@@ -85,6 +85,16 @@ def clean(dist):
     return sorted(s for s in dist.get("samples", []) if isinstance(s, (int, float)) and math.isfinite(s))
 
 
+def save(plt, fig, plots_dir, name):
+    """Writes the figure as PNG and SVG; returns the paths."""
+    fig.tight_layout()
+    paths = [os.path.join(plots_dir, f"{name}.{ext}") for ext in ("png", "svg")]
+    for path in paths:
+        fig.savefig(path)
+    plt.close(fig)
+    return paths
+
+
 def plot(runs, plots_dir):
     try:
         import matplotlib
@@ -131,12 +141,7 @@ def plot(runs, plots_dir):
                 tail.set_xlabel(dist.get("unit", ""))
                 tail.set_ylabel("fraction above x (p50, p99, p99.9 lines)")
                 fig.suptitle(f"{dist.get('what', dist['id'])} (run {run_index})", fontsize=9)
-                fig.tight_layout()
-                for ext in ("png", "svg"):
-                    path = os.path.join(plots_dir, f"{dist['id']}.run{run_index}.{ext}")
-                    fig.savefig(path)
-                    written.append(path)
-                plt.close(fig)
+                written += save(plt, fig, plots_dir, f"{dist['id']}.run{run_index}")
             for curve in bench.get("curves", []):
                 fig, ax = plt.subplots(figsize=(6, 4))
                 for name, points in curve.get("series", {}).items():
@@ -149,12 +154,7 @@ def plot(runs, plots_dir):
                     ax.set_xscale("log")
                 ax.legend()
                 ax.set_title(f"{curve.get('what', curve['id'])} (run {run_index})", fontsize=9)
-                fig.tight_layout()
-                for ext in ("png", "svg"):
-                    path = os.path.join(plots_dir, f"{curve['id']}.run{run_index}.{ext}")
-                    fig.savefig(path)
-                    written.append(path)
-                plt.close(fig)
+                written += save(plt, fig, plots_dir, f"{curve['id']}.run{run_index}")
     return written
 
 
