@@ -112,6 +112,29 @@ TEST_CASE("a client that stops reading is dropped after control.write_stall_s") 
   CHECK(clients == "1");
 }
 
+TEST_CASE("a client that reads everything while polling Status every 20 ms is never dropped as stalled") {
+  // Its last reply is usually still unacknowledged (delayed ACK) when the sweep looks, so the
+  // kernel's count of waiting bytes stays the same from sweep to sweep although everything is
+  // read: progress is judged by bytes acknowledged, not by the waiting count going down.
+  TempConfig config(R"({ "control": { "write_stall_s": 0.5 } })");
+  DaemonProcess messd({"--config", config.path()});
+  LineClient poller(messd.port());
+  REQUIRE(starts_with(poller.next(3.0), "CurrCor"));
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(4);
+  int answered = 0;
+  while (std::chrono::steady_clock::now() < until) {
+    auto s = poller.request("Status", 2.0);
+    REQUIRE(s);  // a drop ends the replies
+    ++answered;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  CHECK(answered > 100);
+  LineClient checker(messd.port());
+  auto s = checker.request("Status");
+  REQUIRE(s);
+  CHECK(status_field(*s, "Clients") == "2");
+}
+
 TEST_CASE("a silent client holding control is dropped with Err 211 and the machine stops") {
   TempConfig config(R"({ "control": { "idle_drop_s": 1 } })");
   DaemonProcess messd({"--config", config.path()});

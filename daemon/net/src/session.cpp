@@ -137,11 +137,12 @@ void Session::write() {
     buffers.push_back(asio::buffer(*queue_[i]));
     held.push_back(queue_[i]);
   }
-  asio::async_write(socket_, buffers, [self = shared_from_this(), held = std::move(held)](boost::system::error_code ec, std::size_t) {
+  asio::async_write(socket_, buffers, [self = shared_from_this(), held = std::move(held)](boost::system::error_code ec, std::size_t n) {
     if (ec || !self->open_) {
       self->close();
       return;
     }
+    self->bytes_written_ += n;
     for (std::size_t i = 0; i < held.size(); ++i) {  // lines queued meanwhile stay behind them
       self->queued_bytes_ -= self->queue_.front()->size();
       self->queue_.pop_front();
@@ -169,15 +170,19 @@ void Session::drop(std::string line) {
 
 Session::Clock::duration Session::output_stalled_for(Clock::time_point now) {
   // The kernel takes megabytes into a socket's send buffer, so a client that stopped reading
-  // shows as bytes the peer never acknowledged (SIOCOUTQ), not as an unfinished write.
+  // shows as bytes the peer never acknowledged (SIOCOUTQ), not as an unfinished write. The
+  // client makes progress when the count of bytes it acknowledged grows: a reading client's
+  // waiting count can stay the same from sweep to sweep (its last reply not yet acknowledged,
+  // delayed ACK) while everything flows.
   int unacked = 0;
   if (open_ && ::ioctl(socket_.native_handle(), SIOCOUTQ, &unacked) != 0) unacked = 0;
-  const std::size_t pending = queued_bytes_ + static_cast<std::size_t>(std::max(unacked, 0));
-  if (pending == 0 || pending < last_pending_)
+  const std::size_t in_kernel = std::min(static_cast<std::size_t>(std::max(unacked, 0)), bytes_written_);
+  const std::size_t acknowledged = bytes_written_ - in_kernel;
+  if (queued_bytes_ + in_kernel == 0 || acknowledged > last_acknowledged_)
     stall_start_.reset();  // drained, or draining: the client reads
   else if (!stall_start_)
     stall_start_ = now;
-  last_pending_ = pending;
+  last_acknowledged_ = acknowledged;
   return stall_start_ ? now - *stall_start_ : Clock::duration::zero();
 }
 

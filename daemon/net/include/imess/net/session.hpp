@@ -66,7 +66,7 @@ class Session : public std::enable_shared_from_this<Session> {
   bool dropping() const { return discard_input_; }
   Clock::time_point last_received() const { return last_received_; }   // any bytes, blank lines too
   // For the server's periodic sweep: how long output (ours and the kernel's unacknowledged
-  // bytes) has been waiting without any of it draining; zero when nothing waits.
+  // bytes) has been waiting without the client acknowledging any byte; zero when nothing waits.
   Clock::duration output_stalled_for(Clock::time_point now);
   ClientInfo& info() { return info_; }
   const ClientInfo& info() const { return info_; }
@@ -101,7 +101,8 @@ class Session : public std::enable_shared_from_this<Session> {
   boost::asio::ip::address address_;
   Clock::time_point last_received_ = Clock::now();
   std::optional<Clock::time_point> stall_start_;
-  std::size_t last_pending_ = 0;
+  std::size_t bytes_written_ = 0;      // handed to the kernel, since the start
+  std::size_t last_acknowledged_ = 0;  // bytes_written_ minus the kernel's unacknowledged, at the last sweep
   ClientInfo info_;
 };
 
