@@ -1,0 +1,82 @@
+// jog: how soon a jog shows. From rest the owner sends StartMv (alternately +X and -X at
+// 10 mm/s); measured from just before the send() to the first CurrCor whose position differs
+// from the last one at rest, at the jogging client, at ReportHz 10 and 100; then StopMv,
+// State idle, wait for the final CurrCor, repeat at a random phase. Also StartMv -> State jog
+// (the loop took the jog). Random phases: uniform over one report period, then 0-2 ms.
+// Reference: the Status round trip measured between the jogs.
+#include <stdexcept>
+
+#include "client_pool.hpp"
+#include "clock.hpp"
+#include "figures.hpp"
+#include "requests.hpp"
+
+namespace imess::bench {
+
+void run_jog(Context& ctx) {
+  Report& r = ctx.report();
+  const int samples = ctx.options().samples.value_or(ctx.quick() ? 15 : 200);
+  auto messd = ctx.start_messd(4);
+  ClientPool pool;
+  const int owner = pool.open_ready(messd->port(), 1)[0];
+  std::string rest_pos;  // the position of the last CurrCor
+  auto track = [&](int c, std::string_view l, std::int64_t) {
+    if (c == owner && starts_with(l, "CurrCor ")) rest_pos.assign(l.substr(8));
+  };
+  pool.on_line = track;
+  request_ok(pool, owner, "Take");
+
+  LatencySet status{"jog.status_rtt", "Status round trip between the jogs",
+                    "reference: Status sent (just before its send()) -> Ok Status read, at rest between the jogs", {}};
+  LatencySet state{"jog.state", "StartMv -> State jog",
+                   "StartMv sent from rest -> State jog read by the jogging client (the motion loop took the jog), ReportHz 10 and 100", {}};
+  std::vector<LatencySet> shown;
+  int direction = 1;
+  for (int hz : {10, 100}) {
+    request_ok(pool, owner, "Set ReportHz " + std::to_string(hz));
+    LatencySet set{"jog.currcor." + std::to_string(hz), "StartMv -> first moved CurrCor, ReportHz " + std::to_string(hz),
+                   "StartMv sent from rest -> the first CurrCor with another position read by the jogging client, ReportHz " +
+                       std::to_string(hz),
+                   {}};
+    for (int i = -2; i < samples; ++i) {
+      // At rest: the last CurrCor of the stop has come (one report period, and a margin).
+      pool.run_for(1.5 / hz + 0.02);
+      if (auto s = request(pool, owner, "Status"); s && s->ok() && i >= 0) status.ms.push_back(ns_to_ms(s->arrived_ns - s->sent_ns));
+      const std::string before = rest_pos;
+      std::int64_t moved = 0, jogging = 0;
+      std::string refused;
+      pool.on_line = [&](int c, std::string_view l, std::int64_t t) {
+        if (c != owner) return;
+        if (starts_with(l, "CurrCor ") && !moved && l.substr(8) != before) moved = t;
+        if (starts_with(l, "State jog") && !jogging) jogging = t;
+        if (starts_with(l, "Err ")) refused.assign(l);
+        track(c, l, t);
+      };
+      // A random phase against the CurrCor reporter's period as well as the loop's.
+      std::uniform_real_distribution<double> phase(0, 1.0 / hz);
+      sleep_until_ns(mono_ns() + static_cast<std::int64_t>(phase(ctx.rng()) * 1e9));
+      ctx.random_phase();
+      const std::int64_t t0 = mono_ns();
+      pool.send(owner, direction > 0 ? "StartMv 10 0 0" : "StartMv -10 0 0");
+      const bool ok = pool.run_until([&] { return (moved && jogging) || !refused.empty(); }, 5.0);
+      pool.on_line = track;
+      if (!refused.empty()) throw std::runtime_error("StartMv was refused: " + refused);
+      if (!ok) throw std::runtime_error("no moved CurrCor within 5 s of StartMv (last line: " + pool.last_line(owner) + ")");
+      if (i >= 0) {
+        set.ms.push_back(ns_to_ms(moved - t0));
+        state.ms.push_back(ns_to_ms(jogging - t0));
+      }
+      if (!request_until(pool, owner, "StopMv", "State idle", 5.0))
+        throw std::runtime_error("the machine did not come to rest after StopMv (last line: " + pool.last_line(owner) + ")");
+      direction = -direction;  // back and forth: the machine stays near where it started
+    }
+    shown.push_back(std::move(set));
+  }
+  request(pool, owner, "Set ReportHz 10");
+  request(pool, owner, "Release");
+  add_latency(r, status, nullptr, std::nullopt, std::nullopt);
+  add_latency(r, state, &status, std::nullopt, std::nullopt);
+  for (const auto& set : shown) add_latency(r, set, &status, std::nullopt, Goal{true, 1.5, "ms", ""});
+}
+
+}  // namespace imess::bench
