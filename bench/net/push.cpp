@@ -12,6 +12,7 @@
 #include "clock.hpp"
 #include "fan_out.hpp"
 #include "figures.hpp"
+#include "machine.hpp"
 #include "requests.hpp"
 #include "stats.hpp"
 
@@ -68,10 +69,11 @@ struct ProbeCycle {
     ++failures;
     last_failure = ended ? failed : "no Done within 10 s";
     pool.run_for(0.3);  // the stop or retract settles
-    request(pool, owner, "Reset");  // after a fault (a starved loop on a loaded host); harmless otherwise
-    request_until(pool, owner, "MoveTo " + std::to_string(next_id++) + " Z84", "State idle");
+    if (last_failure.rfind("Fault ", 0) == 0 || last_failure.find("Faulted") != std::string::npos) reset_fault(pool, owner);
+    move_to_rest(pool, owner, next_id++, "Z84");
     if (failures > 5 + static_cast<int>(next_id) / 4)
-      throw std::runtime_error("probing fails too often (" + std::to_string(failures) + " times; last: " + last_failure + ")");
+      throw std::runtime_error("probing fails too often (" + std::to_string(failures) + " times; last: " + last_failure + ")" +
+                               kFaultHint);
     return std::nullopt;
   }
 };
@@ -140,13 +142,14 @@ void run_push(Context& ctx) {
     request_ok(pool, owner, "Take");
     request_ok(pool, owner, "Set ProbeSpeed 20");
     request_ok(pool, owner, "Set RetractSpeed 20");
-    if (!request_until(pool, owner, "MoveTo 100000 X430 Y330 Z84 F100", "State idle"))
-      throw std::runtime_error("the machine did not come to rest over the cube (last line: " + pool.last_line(owner) + ")");
+    move_to_rest(pool, owner, 100000, "X430 Y330 Z84 F100");
     ProbeCycle cycle{ctx, pool, owner, 1, 0, {}};
     for (int i = 0; static_cast<int>(probe.ms.size()) < hits; ++i)
       if (auto ms = cycle.hit(); ms && i >= 2) probe.ms.push_back(*ms);
-    if (cycle.failures > 0)
+    if (cycle.failures > 0) {
       note(std::to_string(cycle.failures) + " probing cycles failed (not counted); last: " + cycle.last_failure);
+      probe.what += "; " + std::to_string(cycle.failures) + " cycles failed and were not counted (last: " + cycle.last_failure + ")";
+    }
     request(pool, owner, "Release");
   }
   add_latency(r, stamped, nullptr, std::nullopt, std::nullopt);

@@ -64,6 +64,8 @@ struct Jogger {
   double lo, hi, percent;
   int direction = 1;
   int reversals = 0;
+  int faults = 0;
+  std::string last_fault;
 
   std::string command() const {
     char buf[64];
@@ -71,6 +73,12 @@ struct Jogger {
     return buf;
   }
   void on_line(int c, std::string_view l) {
+    if (c == owner && starts_with(l, "Fault ")) {  // a starved loop on a loaded host: clear it, jog on
+      ++faults;
+      last_fault.assign(l);
+      pool.send(owner, "Reset");
+      pool.send(owner, command());
+    }
     if (c != owner || !starts_with(l, "CurrCor ")) return;
     const auto w = word(l, 1);
     double x = 0;
@@ -153,7 +161,7 @@ void run_stream(Context& ctx) {
                              "; move it there first");
   const double run_s = window + baseline + 3;
   const double speed = std::clamp(0.9 * std::max(hi - x, x - lo) / run_s, 2.0, 50.0);
-  Jogger jog{pool, owner, lo, hi, 100 * speed / (max_speed > 0 ? max_speed : 100)};
+  Jogger jog{pool, owner, lo, hi, 100 * speed / (max_speed > 0 ? max_speed : 100), 1, 0, 0, {}};
   const ClientPool::LineHandler keep_jogging = [&](int c, std::string_view l, std::int64_t) { jog.on_line(c, l); };
   pool.on_line = keep_jogging;
   jog.direction = hi - x >= x - lo ? 1 : -1;  // toward the more room
@@ -168,6 +176,8 @@ void run_stream(Context& ctx) {
   request(pool, owner, "StopMv");
   request(pool, owner, "Release");
   if (jog.reversals > 0) note("stream: the jog reversed " + std::to_string(jog.reversals) + " times (a few reports are lost at each)");
+  const std::string faults = jog.faults == 0 ? "" : "; " + std::to_string(jog.faults) + " faults during the run (last: " + jog.last_fault + ")";
+  if (!faults.empty()) note("stream" + faults);
 
   const std::string fid = "floor.timer." + ns;
   r.add(rate_figure(fid + ".rate.min", "floor: timer 100 Hz, slowest of " + ns + " clients",
@@ -179,7 +189,7 @@ void run_stream(Context& ctx) {
   const std::string window_text = " over " + std::to_string(static_cast<int>(std::lround(m.window_s))) + " s";
   r.add(rate_figure("stream.rate.min", "CurrCor rate, slowest of " + ns + " clients",
                     "CurrCor lines received by the slowest of " + ns + " clients / window" + window_text +
-                        ", ReportHz 100, owner jogging",
+                        ", ReportHz 100, owner jogging" + faults,
                     m.rates, true, fid + ".rate.min", &floor.rates, Goal{false, 99, "Hz", ""}));
   r.add(rate_figure("stream.rate.median", "CurrCor rate, median of " + ns + " clients",
                     "median per-client CurrCor rate" + window_text + ", ReportHz 100, owner jogging", m.rates, false, fid + ".rate.median",
