@@ -64,14 +64,22 @@ void run_memory(Context& ctx) {
   sleep_until_ns(mono_ns() + 500'000'000);  // messd settles after its start
   const Footprint m = footprint(messd->port(), messd->pid());
 
-  r.add({"memory.rss.0", "messd RSS, no client", "messd's VmRSS with no client connected (0.5 s after start)", m.rss0, "KiB",
-         "floor.memory.rss.0", floor.rss0, std::nullopt});
-  r.add({"memory.rss.100", "messd RSS, 100 clients", "messd's VmRSS with 100 clients connected", m.rss100, "KiB",
-         "floor.memory.rss.100", floor.rss100, std::nullopt});
-  r.add({"memory.rss.1000", "messd RSS, 1000 clients", "messd's VmRSS with 1000 clients connected", m.rss1000, "KiB",
-         "floor.memory.rss.1000", floor.rss1000, std::nullopt});
-  r.add({"memory.rss.after", "messd RSS, after the 1000 left", "messd's VmRSS 1 s after the 1000 clients disconnected", m.after, "KiB",
-         "floor.memory.rss.after", floor.after, std::nullopt});
+  const struct {
+    const char* stem;
+    const char* label;
+    const char* when;
+    std::optional<double> messd, floor;
+  } footprints[] = {{"rss.0", "RSS, no client", "with no client connected (0.5 s after start)", m.rss0, floor.rss0},
+             {"rss.100", "RSS, 100 clients", "with 100 clients connected", m.rss100, floor.rss100},
+             {"rss.1000", "RSS, 1000 clients", "with 1000 clients connected", m.rss1000, floor.rss1000},
+             {"rss.after", "RSS, after the 1000 left", "1 s after the 1000 clients disconnected", m.after, floor.after}};
+  for (const auto& k : footprints) {
+    const std::string floor_id = std::string("floor.memory.") + k.stem;
+    r.add({floor_id, std::string("floor: bench_echo ") + k.label, std::string("floor: bench_echo's VmRSS ") + k.when, k.floor, "KiB", "",
+           std::nullopt, std::nullopt});
+    r.add({std::string("memory.") + k.stem, std::string("messd ") + k.label, std::string("messd's VmRSS ") + k.when, k.messd, "KiB",
+           floor_id, k.floor, std::nullopt});
+  }
   r.add({"floor.memory.per_client.100", "floor: bench_echo RSS per client, 100",
          "floor: (bench_echo's VmRSS with 100 clients - with none) / 100", per_client(floor.rss100, floor.rss0, 100), "KiB", "",
          std::nullopt, std::nullopt});

@@ -54,6 +54,22 @@ std::optional<double> threads_cpu_s(int pid, const std::string& name, bool excep
   return sum;
 }
 
+std::optional<double> threads_wakeups(int pid, const std::string& name, bool except) {
+  if (pid <= 0) return std::nullopt;
+  std::error_code ec;
+  std::filesystem::directory_iterator it("/proc/" + std::to_string(pid) + "/task", ec);
+  if (ec) return std::nullopt;
+  double sum = 0;
+  for (const auto& task : it) {
+    const bool named = first_line(task.path().string() + "/comm") == name;
+    if (named == except) continue;
+    std::ifstream f(task.path().string() + "/status");
+    for (std::string line; std::getline(f, line);)
+      if (line.rfind("voluntary_ctxt_switches:", 0) == 0) sum += std::stod(line.substr(24));
+  }
+  return sum;
+}
+
 std::optional<double> rss_kib(int pid) {
   if (pid <= 0) return std::nullopt;
   std::ifstream f("/proc/" + std::to_string(pid) + "/status");

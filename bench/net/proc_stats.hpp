@@ -12,6 +12,9 @@ std::optional<double> process_cpu_s(int pid);
 // The same summed over the process' threads whose name (comm) is `name`, or over all threads
 // except those when `except` is set.
 std::optional<double> threads_cpu_s(int pid, const std::string& name, bool except);
+// Voluntary context switches (a thread blocking: each is a sleep and a wake-up), summed as
+// threads_cpu_s sums.
+std::optional<double> threads_wakeups(int pid, const std::string& name, bool except);
 // Resident set, KiB (VmRSS of /proc/<pid>/status).
 std::optional<double> rss_kib(int pid);
 // This program's own CPU seconds (getrusage), to show the clients were not the bottleneck.

@@ -1,7 +1,8 @@
 // stream: the CurrCor stream at ReportHz 100 to N clients (default 200) while the owner jogs
 // for the whole window: each client's received rate, and messd's CPU from /proc (the whole
 // process, its motion-loop thread, the rest). Reference: bench_echo's timer at 100 Hz to as
-// many clients. Also: the highest ReportHz messd accepts, and messd's CPU with the owner alone.
+// many clients. Also: the highest ReportHz messd accepts, and messd's CPU and io wake-ups with
+// no client and with the owner alone (the baselines the streaming adds to).
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -24,6 +25,7 @@ constexpr double kRate = 100;  // Hz, the rate the issue asks for
 struct StreamResult {
   std::vector<double> rates;  // Hz, per client
   std::optional<double> cpu, motion_cpu;  // % of one core
+  std::optional<double> io_wakeups;       // per second, the threads other than the motion loop's
   double bench_cpu = 0, window_s = 0;
 };
 
@@ -39,12 +41,14 @@ StreamResult measure(ClientPool& pool, double seconds, int pid, const ClientPool
   std::fill(count.begin(), count.end(), 0);
   const auto cpu0 = process_cpu_s(pid);
   const auto motion0 = threads_cpu_s(pid, "messd-motion", false);
+  const auto wake0 = threads_wakeups(pid, "messd-motion", true);
   const double own0 = own_cpu_s();
   const std::int64_t t0 = mono_ns();
   pool.run_for(seconds);
   const std::int64_t t1 = mono_ns();
   const auto cpu1 = process_cpu_s(pid);
   const auto motion1 = threads_cpu_s(pid, "messd-motion", false);
+  const auto wake1 = threads_wakeups(pid, "messd-motion", true);
   pool.on_line = base;
   StreamResult r;
   r.window_s = ns_to_s(t1 - t0);
@@ -52,6 +56,7 @@ StreamResult measure(ClientPool& pool, double seconds, int pid, const ClientPool
     if (pool.is_open(c)) r.rates.push_back(static_cast<double>(count[static_cast<std::size_t>(c)]) / r.window_s);
   if (cpu0 && cpu1) r.cpu = cpu_percent(*cpu1 - *cpu0, r.window_s);
   if (motion0 && motion1) r.motion_cpu = cpu_percent(*motion1 - *motion0, r.window_s);
+  if (wake0 && wake1) r.io_wakeups = (*wake1 - *wake0) / r.window_s;
   r.bench_cpu = cpu_percent(own_cpu_s() - own0, r.window_s);
   return r;
 }
@@ -128,6 +133,14 @@ void run_stream(Context& ctx) {
     floor = measure(pool, window, echo->pid(), nullptr);
   }
 
+  // messd alone, no client, the machine standing: what the rest is measured on top of.
+  StreamResult idle;
+  {
+    ClientPool none;
+    none.run_for(0.5);
+    idle = measure(none, baseline, messd->pid(), nullptr);
+  }
+
   ClientPool pool;
   const int owner = pool.open_ready(messd->port(), 1)[0];
   request_ok(pool, owner, "Take");
@@ -144,7 +157,7 @@ void run_stream(Context& ctx) {
     if (reply && reply->ok()) max_hz = hz;
     else if (reply && refusal.empty()) refusal = reply->line;
   }
-  r.add({"stream.reporthz.max", "highest ReportHz accepted (of the loop rate, 500, 200, 100)",
+  r.add({"stream.reporthz.max", "highest ReportHz accepted",
          "the highest CurrCor rate Set ReportHz accepts, trying the motion loop's rate (1e6/Period = " + std::to_string(loop_hz) +
              " Hz), 500, 200, 100" + (refusal.empty() ? "" : "; refused: '" + refusal + "'") + "; reference: none (a setting)",
          max_hz > 0 ? std::optional<double>(max_hz) : std::nullopt, "Hz", "", std::nullopt,
@@ -209,6 +222,24 @@ void run_stream(Context& ctx) {
   r.add({"stream.cpu.io", "messd other threads CPU (io), same window",
          "stream.cpu minus the motion-loop thread: the io thread and the rest; reference bench_echo's whole CPU", rest, "%", fid + ".cpu",
          floor.cpu, std::nullopt});
+  r.add({fid + ".io_wakeups", "floor: bench_echo wake-ups a second",
+         "floor: bench_echo's voluntary context switches (sleeps that ended in a wake-up) a second, same window", floor.io_wakeups, "1/s", "",
+         std::nullopt, std::nullopt});
+  r.add({"stream.io_wakeups", "messd io wake-ups a second, " + ns + " clients",
+         "voluntary context switches a second of messd's threads other than the motion loop (the io thread: each is a wake-up), "
+         "same window",
+         m.io_wakeups, "1/s", fid + ".io_wakeups", floor.io_wakeups, std::nullopt});
+  r.add({"stream.cpu.idle", "messd CPU, no client, standing",
+         "messd's CPU with no client connected and the machine standing, % of one core; reference: none (a baseline)", idle.cpu, "%", "",
+         std::nullopt, std::nullopt});
+  std::optional<double> idle_io;
+  if (idle.cpu && idle.motion_cpu) idle_io = *idle.cpu - *idle.motion_cpu;
+  r.add({"stream.cpu.idle.io", "messd io CPU, no client, standing",
+         "the part of stream.cpu.idle outside the motion-loop thread (the io thread's timers); reference: none", idle_io, "%", "",
+         std::nullopt, std::nullopt});
+  r.add({"stream.io_wakeups.idle", "messd io wake-ups a second, no client",
+         "voluntary context switches a second of messd's threads other than the motion loop, no client, standing; reference: none",
+         idle.io_wakeups, "1/s", "", std::nullopt, std::nullopt});
   r.add({"stream.cpu.1client", "messd CPU, owner alone at 100 Hz, jogging",
          "messd's CPU with only the owner connected, ReportHz 100, jogging, % of one core; reference: none (a baseline)", alone.cpu, "%", "",
          std::nullopt, std::nullopt});
