@@ -1,6 +1,6 @@
 // rtt: the Status round trip (just before the send() -> the read() that brought the whole
 // "Ok Status …" line) against bench_echo's echo round trip of the same "Status" line; one
-// client each, random phases 0-2 ms.
+// client each, random phases 0-2 ms. Also Version's round trip (a constant reply).
 #include <stdexcept>
 
 #include "client_pool.hpp"
@@ -46,16 +46,22 @@ void run_rtt(Context& ctx) {
   }
   LatencySet status{"rtt.status", "Status round trip",
                     "Status sent (just before its send()) -> the whole 'Ok Status ...' line read, one client, machine at rest", {}};
+  // Version: the same path through messd's reader, dispatcher and writer with the least work in
+  // between (a constant reply), so Status minus Version is the cost of the status line itself.
+  LatencySet version{"rtt.version", "Version round trip",
+                     "Version sent -> 'Ok Version ...' read, one client, machine at rest (the io path with a constant reply)", {}};
   {
     auto messd = ctx.start_messd(4);
     ClientPool pool;
     const int c = pool.open_ready(messd->port(), 1)[0];
     status.ms = round_trips(ctx, pool, c, "Status", "Ok Status", samples);
+    version.ms = round_trips(ctx, pool, c, "Version", "Ok Version", samples);
   }
   add_latency(ctx.report(), floor, nullptr, std::nullopt, std::nullopt);
   std::optional<Goal> goal;
   if (!floor.ms.empty()) goal = Goal{true, 1.2 * percentile(floor.ms, 0.5), "ms", "1.2 x floor"};
   add_latency(ctx.report(), status, &floor, goal, std::nullopt);
+  add_latency(ctx.report(), version, &floor, std::nullopt, std::nullopt);
 }
 
 }  // namespace imess::bench
