@@ -83,6 +83,12 @@ std::optional<double> Report::value(const std::string& id) const {
   return std::nullopt;
 }
 
+bool Report::measured() const {
+  for (const auto& f : figures_)
+    if (f.value) return true;
+  return false;
+}
+
 void Report::write_json(const std::string& path) const {
   nlohmann::json figures = nlohmann::json::array();
   for (const auto& f : figures_) {

@@ -45,6 +45,8 @@ class Report {
   // The value of a figure already added (nullopt: none, or unavailable).
   std::optional<double> value(const std::string& id) const;
   bool empty() const { return figures_.empty(); }
+  // Whether any figure has a value.
+  bool measured() const;
   // Throws std::runtime_error naming the file when it cannot be written.
   void write_json(const std::string& path) const;
 
