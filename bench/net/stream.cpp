@@ -157,11 +157,6 @@ void run_stream(Context& ctx) {
     if (reply && reply->ok()) max_hz = hz;
     else if (reply && refusal.empty()) refusal = reply->line;
   }
-  r.add({"stream.reporthz.max", "highest ReportHz accepted",
-         "the highest CurrCor rate Set ReportHz accepts, trying the motion loop's rate (1e6/Period = " + std::to_string(loop_hz) +
-             " Hz), 500, 200, 100" + (refusal.empty() ? "" : "; refused: '" + refusal + "'") + "; reference: none (a setting)",
-         max_hz > 0 ? std::optional<double>(max_hz) : std::nullopt, "Hz", "", std::nullopt,
-         std::isfinite(loop_hz) ? std::optional<Goal>(Goal{false, loop_hz, "Hz", "the loop rate"}) : std::nullopt});
   request_ok(pool, owner, "Set ReportHz 100");
 
   // Jog along X for the whole run: about 800 mm of room on the default table.
@@ -187,6 +182,19 @@ void run_stream(Context& ctx) {
   pool.run_for(0.5);
   const StreamResult m = measure(pool, window, messd->pid(), keep_jogging);
   request(pool, owner, "StopMv");
+  // Is the rate a client's own? An observer asks for another one (after the window: if it were
+  // accepted it would change nothing measured).
+  const auto observer = request(pool, owner + 1, "Set ReportHz 50");
+  const std::string per_client = observer ? observer->line : "no reply";
+  char loop_text[32];
+  std::snprintf(loop_text, sizeof loop_text, "%g", loop_hz);
+  r.add({"stream.reporthz.max", "highest ReportHz accepted",
+         "the highest CurrCor rate Set ReportHz accepts, trying the motion loop's rate (1e6/Period = " + std::string(loop_text) +
+             " Hz), 500, 200, 100" + (refusal.empty() ? "" : "; refused: '" + refusal + "'") +
+             "; one rate for all clients, and an observer's own 'Set ReportHz 50' got '" + per_client + "'; reference: none (a setting)",
+         max_hz > 0 ? std::optional<double>(max_hz) : std::nullopt, "Hz", "", std::nullopt,
+         std::isfinite(loop_hz) ? std::optional<Goal>(Goal{false, loop_hz, "Hz", "the loop rate"}) : std::nullopt});
+
   request(pool, owner, "Release");
   if (jog.reversals > 0) note("stream: the jog reversed " + std::to_string(jog.reversals) + " times (a few reports are lost at each)");
   const std::string faults = jog.faults == 0 ? "" : "; " + std::to_string(jog.faults) + " faults during the run (last: " + jog.last_fault + ")";
