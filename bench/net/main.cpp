@@ -1,5 +1,6 @@
 // bench_net: the network figures of messd, each against bench_echo (the loopback floor) in
 // the same run. Prints one line per figure; --json FILE writes them (docs/performance.md).
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -26,6 +27,9 @@ int main(int argc, char** argv) {
     std::fputs(usage_text().c_str(), stdout);
     return 0;
   }
+  // A reader of stdout that went away (`| head`) must not kill bench_net before it stops its
+  // servers and writes its JSON: the write fails instead.
+  std::signal(SIGPIPE, SIG_IGN);
   Report report(options.quick);
   std::unique_ptr<Context> context;
   try {

@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -69,9 +70,14 @@ ServerProcess::ServerProcess(const std::string& path, const std::vector<std::str
   std::vector<char*> argv;
   for (auto& a : all) argv.push_back(a.data());
   argv.push_back(nullptr);
+  const pid_t parent = getpid();
   pid_ = fork();
   if (pid_ < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
   if (pid_ == 0) {
+    // The server ends with bench_net however bench_net ends (a crash, Ctrl-C, a closed pipe):
+    // no messd is left behind holding its port and temporary directory.
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) _exit(127);  // the parent is already gone
     dup2(log, STDOUT_FILENO);
     dup2(log, STDERR_FILENO);
     const int devnull = ::open("/dev/null", O_RDONLY);
