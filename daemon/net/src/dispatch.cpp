@@ -169,6 +169,7 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Align& c) { align(s, slot, c); },
           [&](const protocol::DelFrame& c) { del_frame(s, slot, c.name); },
           [&](const protocol::Qualify& c) { qualify(s, slot, c); },
+          [&](const protocol::Stream& c) { reply(s, slot, set_stream_rate(s, c.hz)); },
       },
       cmd);
 }
