@@ -1,8 +1,9 @@
 // jog: how soon a jog shows. From rest the owner sends StartMv (alternately +X and -X at
 // 10 mm/s); measured from just before the send() to the first CurrCor whose position differs
-// from the last one at rest, at the jogging client, at ReportHz 10 and 100; then StopMv,
-// State idle, wait for the final CurrCor, repeat at a random phase. Also StartMv -> State jog
-// (the loop took the jog). Random phases: uniform over one report period, then 0-2 ms.
+// from the last one at rest, at the jogging client, at ReportHz 10 and 100 and at the client's
+// own Stream 1000; then StopMv, State idle, 2.5 report periods, repeat at a random phase.
+// Also StartMv -> State jog (the loop took the jog). Random phases: uniform over one report
+// period, then 0-2 ms.
 // Reference: the Status round trip measured between the jogs.
 #include <stdexcept>
 
@@ -35,15 +36,19 @@ void run_jog(Context& ctx) {
   int direction = 1;
   int faults = 0;
   std::string last_fault;
-  for (int hz : {10, 100}) {
-    request_ok(pool, owner, "Set ReportHz " + std::to_string(hz));
-    LatencySet set{"jog.currcor." + std::to_string(hz), "StartMv -> first moved CurrCor, ReportHz " + std::to_string(hz),
-                   "StartMv sent from rest -> the first CurrCor with another position read by the jogging client, ReportHz " +
-                       std::to_string(hz),
-                   {}};
+  // The shared ReportHz 10 and 100, then the client's own rate at the loop's (Stream 1000):
+  // what remains there is the loop taking the jog and the carriage moving a printed 0.001 mm.
+  for (int hz : {10, 100, 1000}) {
+    const bool own = hz > 100;
+    request_ok(pool, owner, own ? "Stream " + std::to_string(hz) : "Set ReportHz " + std::to_string(hz));
+    const std::string rate = own ? "Stream " + std::to_string(hz) + " (the client's own rate)" : "ReportHz " + std::to_string(hz);
+    LatencySet set{own ? "jog.currcor.stream" + std::to_string(hz) : "jog.currcor." + std::to_string(hz),
+                   "StartMv -> first moved CurrCor, " + (own ? "Stream " + std::to_string(hz) : "ReportHz " + std::to_string(hz)),
+                   "StartMv sent from rest -> the first CurrCor with another position read by the jogging client, " + rate, {}};
     for (int i = -2; i < samples; ++i) {
-      // At rest: the last CurrCor of the stop has come (one report period, and a margin).
-      pool.run_for(1.5 / hz + 0.02);
+      // At rest as messd counts it: the stop's last CurrCor has come (within a report period
+      // of State idle) and a whole report period passed without a change; and a margin.
+      pool.run_for(2.5 / hz + 0.02);
       if (auto s = request(pool, owner, "Status"); s && s->ok() && i >= 0) status.ms.push_back(ns_to_ms(s->arrived_ns - s->sent_ns));
       const std::string before = rest_pos;
       std::int64_t moved = 0, jogging = 0;
@@ -87,6 +92,7 @@ void run_jog(Context& ctx) {
     note("jog: " + std::to_string(faults) + " samples were repeated after a fault or refusal; last: " + last_fault);
     for (auto& set : shown) set.what += "; " + std::to_string(faults) + " samples repeated after a fault (last: " + last_fault + ")";
   }
+  request(pool, owner, "Stream 0");
   request(pool, owner, "Set ReportHz 10");
   request(pool, owner, "Release");
   add_latency(r, status, nullptr, std::nullopt, std::nullopt);

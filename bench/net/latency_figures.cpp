@@ -22,7 +22,7 @@ void add_latency(Report& r, const LatencySet& set, const LatencySet* reference, 
     f.goal = goal;
     r.add(std::move(f));
   }
-  r.add_distribution(set.id, set.what + count, "ms", set.ms);
+  r.add_distribution(set.id, set.what + count, "ms", set.ms, reference && !reference->ms.empty() ? reference->id : std::string());
 }
 
 }  // namespace imess::bench

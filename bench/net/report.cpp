@@ -71,8 +71,9 @@ void Report::add(Figure f) {
   figures_.push_back(std::move(f));
 }
 
-void Report::add_distribution(std::string id, std::string what, std::string unit, const std::vector<double>& samples) {
-  distributions_.push_back({std::move(id), std::move(what), std::move(unit), thinned(samples)});
+void Report::add_distribution(std::string id, std::string what, std::string unit, const std::vector<double>& samples,
+                              std::string reference_id) {
+  distributions_.push_back({std::move(id), std::move(what), std::move(unit), thinned(samples), std::move(reference_id)});
 }
 
 void Report::add_curve(Curve c) { curves_.push_back(std::move(c)); }
@@ -106,8 +107,11 @@ void Report::write_json(const std::string& path) const {
     figures.push_back(std::move(j));
   }
   nlohmann::json distributions = nlohmann::json::array();
-  for (const auto& d : distributions_)
-    distributions.push_back({{"id", d.id}, {"what", d.what}, {"unit", d.unit}, {"samples", d.samples}});
+  for (const auto& d : distributions_) {
+    nlohmann::json j = {{"id", d.id}, {"what", d.what}, {"unit", d.unit}, {"samples", d.samples}};
+    if (!d.reference_id.empty()) j["reference_id"] = d.reference_id;
+    distributions.push_back(std::move(j));
+  }
   nlohmann::json curves = nlohmann::json::array();
   for (const auto& c : curves_) {
     nlohmann::json series = nlohmann::json::object();

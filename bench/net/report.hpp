@@ -40,7 +40,9 @@ class Report {
   explicit Report(bool quick) : quick_(quick) {}
   // Prints the figure's line on stdout at once and keeps it.
   void add(Figure f);
-  void add_distribution(std::string id, std::string what, std::string unit, const std::vector<double>& samples);
+  // reference_id: the distribution drawn beside it (bench/report.py overlays them), empty: none.
+  void add_distribution(std::string id, std::string what, std::string unit, const std::vector<double>& samples,
+                        std::string reference_id = {});
   void add_curve(Curve c);
   // The value of a figure already added (nullopt: none, or unavailable).
   std::optional<double> value(const std::string& id) const;
@@ -54,6 +56,7 @@ class Report {
   struct Distribution {
     std::string id, what, unit;
     std::vector<double> samples;
+    std::string reference_id;
   };
   bool quick_;
   std::vector<Figure> figures_;

@@ -1,7 +1,8 @@
 // stream: the CurrCor stream at ReportHz 100 to N clients (default 200) while the owner jogs
 // for the whole window: each client's received rate, and messd's CPU from /proc (the whole
 // process, its motion-loop thread, the rest). Reference: bench_echo's timer at 100 Hz to as
-// many clients. Also: the highest ReportHz messd accepts, and messd's CPU and io wake-ups with
+// many clients. Also: the highest rate a client may choose for itself (Stream) and the
+// highest shared ReportHz, and messd's CPU and io wake-ups with
 // no client and with the owner alone (the baselines the streaming adds to).
 #include <algorithm>
 #include <charconv>
@@ -103,6 +104,24 @@ double number_after(std::string_view line, std::string_view name) {
   return v;
 }
 
+// The highest of the loop rate, 500, 200 and 100 Hz that `command hz` is answered Ok for.
+struct Accepted {
+  double hz = 0;
+  std::string refusal;  // the first refusal
+};
+Accepted highest_accepted(ClientPool& pool, int client, const std::string& command, double loop_hz) {
+  Accepted a;
+  for (double hz : {loop_hz, 500.0, 200.0, kRate}) {
+    if (!(hz > 0) || a.hz > 0) continue;
+    char line[64];
+    std::snprintf(line, sizeof line, "%s %g", command.c_str(), hz);
+    auto reply = request(pool, client, line);
+    if (reply && reply->ok()) a.hz = hz;
+    else if (a.refusal.empty()) a.refusal = reply ? reply->line : "no reply";
+  }
+  return a;
+}
+
 Figure rate_figure(const std::string& id, const std::string& label, const std::string& what, const std::vector<double>& rates,
                    bool minimum, const std::string& ref_id, const std::vector<double>* ref, std::optional<Goal> goal) {
   Figure f{id, label, what, std::nullopt, "Hz", ref_id, std::nullopt, goal};
@@ -146,17 +165,7 @@ void run_stream(Context& ctx) {
   request_ok(pool, owner, "Take");
   const double period_us = number_after(request_ok(pool, owner, "Get Period").line, "Period");
   const double loop_hz = period_us > 0 ? 1e6 / period_us : std::numeric_limits<double>::quiet_NaN();
-  // The highest ReportHz accepted among the loop rate and a few below it.
-  double max_hz = 0;
-  std::string refusal;
-  for (double hz : {loop_hz, 500.0, 200.0, kRate}) {
-    if (!(hz > 0) || (max_hz > 0)) continue;
-    char line[64];
-    std::snprintf(line, sizeof line, "Set ReportHz %g", hz);
-    auto reply = request(pool, owner, line);
-    if (reply && reply->ok()) max_hz = hz;
-    else if (reply && refusal.empty()) refusal = reply->line;
-  }
+  const Accepted shared = highest_accepted(pool, owner, "Set ReportHz", loop_hz);
   request_ok(pool, owner, "Set ReportHz 100");
 
   // Jog along X for the whole run: about 800 mm of room on the default table.
@@ -182,18 +191,23 @@ void run_stream(Context& ctx) {
   pool.run_for(0.5);
   const StreamResult m = measure(pool, window, messd->pid(), keep_jogging);
   request(pool, owner, "StopMv");
-  // Is the rate a client's own? An observer asks for another one (after the window: if it were
-  // accepted it would change nothing measured).
-  const auto observer = request(pool, owner + 1, "Set ReportHz 50");
-  const std::string per_client = observer ? observer->line : "no reply";
+  // Can a client choose its own rate, up to the loop's? A new observer asks (after the window:
+  // it changes nothing measured), then returns to the shared rate.
+  const int observer = pool.open_ready(messd->port(), 1)[0];
+  const Accepted own = highest_accepted(pool, observer, "Stream", loop_hz);
+  request(pool, observer, "Stream 0");
   char loop_text[32];
   std::snprintf(loop_text, sizeof loop_text, "%g", loop_hz);
-  r.add({"stream.reporthz.max", "highest ReportHz accepted",
-         "the highest CurrCor rate Set ReportHz accepts, trying the motion loop's rate (1e6/Period = " + std::string(loop_text) +
-             " Hz), 500, 200, 100" + (refusal.empty() ? "" : "; refused: '" + refusal + "'") +
-             "; one rate for all clients, and an observer's own 'Set ReportHz 50' got '" + per_client + "'; reference: none (a setting)",
-         max_hz > 0 ? std::optional<double>(max_hz) : std::nullopt, "Hz", "", std::nullopt,
+  const std::string tried = " trying the motion loop's rate (1e6/Period = " + std::string(loop_text) + " Hz), 500, 200, 100";
+  r.add({"stream.client_hz.max", "highest rate a client may choose (Stream)",
+         "the highest own CurrCor rate an observer's 'Stream hz' is granted," + tried +
+             (own.refusal.empty() ? "" : "; refused: '" + own.refusal + "'") + "; reference: none (a setting)",
+         own.hz > 0 ? std::optional<double>(own.hz) : std::nullopt, "Hz", "", std::nullopt,
          std::isfinite(loop_hz) ? std::optional<Goal>(Goal{false, loop_hz, "Hz", "the loop rate"}) : std::nullopt});
+  r.add({"stream.reporthz.max", "highest shared ReportHz accepted",
+         "the highest shared CurrCor rate the owner's 'Set ReportHz' accepts (every client without a Stream rate of its own)," + tried +
+             (shared.refusal.empty() ? "" : "; refused: '" + shared.refusal + "'") + "; reference: none (a setting)",
+         shared.hz > 0 ? std::optional<double>(shared.hz) : std::nullopt, "Hz", "", std::nullopt, std::nullopt});
 
   request(pool, owner, "Release");
   if (jog.reversals > 0) note("stream: the jog reversed " + std::to_string(jog.reversals) + " times (a few reports are lost at each)");
@@ -255,7 +269,8 @@ void run_stream(Context& ctx) {
          "this program's CPU (getrusage) while its one thread read the " + ns +
              " clients' streams: the client side kept up when well below 100 %; reference: none",
          m.bench_cpu, "%", "", std::nullopt, std::nullopt});
-  r.add_distribution("stream.rates", "per-client CurrCor rate, " + ns + " clients, ReportHz 100, owner jogging", "Hz", m.rates);
+  r.add_distribution("stream.rates", "per-client CurrCor rate, " + ns + " clients, ReportHz 100, owner jogging", "Hz", m.rates,
+                     fid + ".rates");
   r.add_distribution(fid + ".rates", "floor: per-client rate of bench_echo's 100 Hz timer, " + ns + " clients", "Hz", floor.rates);
   auto sorted_series = [](std::vector<double> v) {
     std::sort(v.begin(), v.end());
