@@ -7,9 +7,14 @@ imess_packages=(cmake ninja-build g++ pkg-config libboost-dev libeigen3-dev libs
 # (ezdxf for DXF; freecadcmd for STEP, IGES, PLY, ASC and the plugin). Debian's python3 comes with them.
 imess_test_packages=(python3 python3-ezdxf freecad-python3)
 
-imess_install_deps() {   # imess_install_deps [test]: the build packages, with "test" also the test ones
+# Only for scripts/bench: cyclictest (rt-tests), the floor bench_rt measures messd against,
+# and matplotlib for the plots.
+imess_bench_packages=(rt-tests python3 python3-matplotlib)
+
+imess_install_deps() {   # imess_install_deps [test|bench]: the build packages, plus the test or bench ones
   local wanted=("${imess_packages[@]}")
   [ "${1:-}" = test ] && wanted+=("${imess_test_packages[@]}")
+  [ "${1:-}" = bench ] && wanted+=("${imess_bench_packages[@]}")
   imess_install_packages "${wanted[@]}"
 }
 

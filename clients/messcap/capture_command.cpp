@@ -1,6 +1,7 @@
 // The capture loop: connect, say Hello, take Hit (or, from a messd without a journal, MeasPt)
 // until N points, Ctrl-C or the link closes (--reconnect: until N or Ctrl-C, catching up with
 // Replay after each reconnect); then the optional fit. The file is written before the screen.
+// A .hits file takes only Hit lines: a messd that sends none is refused.
 #include "capture_command.hpp"
 
 #include <csignal>
@@ -15,6 +16,7 @@
 #include "imess/client/stop_signal.hpp"
 #include "imess/client/connect_error.hpp"
 #include "imess/client/connection.hpp"
+#include "imess/client/hello_caps.hpp"
 #include "imess/client/reconnector.hpp"
 #include "imess/client/usage_error.hpp"
 #include "imess/protocol/messages.hpp"
@@ -39,6 +41,9 @@ bool open_output(const CaptureOptions& options, CaptureOutput& output) {
   try {
     if (options.out.frame) output.frame = load_named_frame(*options.out.frames_file, *options.out.frame);
     exchange::ExportData base;
+    // .hits keeps the Hit line's resolution; the formats of plain points MeasPt's 3 decimals.
+    if (options.out.output && exchange::export_format_for(*options.out.output).needs_approach())
+      base.decimals = exchange::kHitDecimals;
     base.frame = options.out.frame.value_or("");
     base.outer = options.out.outer;
     if (options.out.output) output.file = std::make_unique<PointFile>(*options.out.output, options.out.mode, base);
@@ -77,6 +82,10 @@ class Capture {
       return client::kExitFailure;
     }
     if (auto* c = link_.connection()) c->finish();
+    if (refused_) {
+      if (output_.file) output_.file->discard_if_unused();
+      return client::kExitFailure;
+    }
     report_received();
     const FitOutcome fit = options_.out.fit ? fit_kept() : FitOutcome::Done;
     if (fit == FitOutcome::NotWritten) return client::kExitFailure;
@@ -112,7 +121,10 @@ class Capture {
               << "\n";
   }
 
-  bool done() const { return options_.count && received_ >= *options_.count; }
+  bool done() const { return refused_ || (options_.count && received_ >= *options_.count); }
+
+  // The file holds hits with their approach and tip radius (.hits): only Hit lines can fill it.
+  bool wants_approach() const { return output_.file && output_.file->needs_approach(); }
 
   // Reads lines until N points, Ctrl-C or (without --reconnect) the link closes; reconnects
   // and asks for the Replays the sequencer wants.
@@ -158,9 +170,15 @@ class Capture {
       hit_mode_ = true;
       take_all(sequencer_.on_hit(*hit));
     } else if (auto* point = std::get_if<protocol::MeasPtMsg>(&message)) {
-      if (!hit_mode_) take(point->p, std::nullopt);  // a messd without a journal
-    } else if (auto* ok = std::get_if<protocol::OkMsg>(&message); ok && ok->verb == "Replay") {
-      on_replay_ok(*ok);
+      if (hit_mode_) return;  // the point of the Hit just taken
+      // A messd without a journal: its Hit, which messd sends right before, never came.
+      if (wants_approach()) return refuse("sent a MeasPt point without a Hit before it (it keeps no hit journal)");
+      take(to_vector(point->p), std::nullopt, std::nullopt);
+    } else if (auto* ok = std::get_if<protocol::OkMsg>(&message)) {
+      if (ok->verb == "Replay") on_replay_ok(*ok);
+      if (ok->verb == "Hello" && wants_approach() && client::hello_lists_caps(ok->args) &&
+          !client::hello_has_cap(ok->args, "journal"))
+        refuse("sends only MeasPt points (its Hello lists no 'journal' among its Caps)");
     } else if (auto* err = std::get_if<protocol::ErrMsg>(&message)) {
       on_replay_err(*err, line);
     }
@@ -186,18 +204,44 @@ class Capture {
     }
   }
 
-  void take_all(const std::vector<protocol::HitMsg>& due) {
-    for (const auto& h : due) take(h.p, h.seq);
+  // A .hits capture from a messd that sends no Hit: nothing is written, the capture ends.
+  void refuse(const std::string& why) {
+    if (refused_) return;
+    refused_ = true;
+    std::cerr << "messcap: cannot capture into " << output_.file->path()
+              << ": a .hits file holds each hit's approach direction and tip radius, which only Hit lines carry, and "
+                 "messd at "
+              << options_.endpoint.to_string() << " " << why
+              << ". Capture into .xyz or another format of plain points, or from a messd with a hit journal\n";
   }
 
-  // One point: to disk first, then kept for --fit, then on the screen.
-  void take(const protocol::Xyz& at, std::optional<std::uint64_t> seq) {
+  static Eigen::Vector3d to_vector(const protocol::Xyz& v) { return {v.x, v.y, v.z}; }
+
+  void take_all(const std::vector<protocol::HitMsg>& due) {
+    for (const auto& h : due) {
+      metrology::ProbedPoint hit;
+      hit.surface = to_vector(h.p);
+      hit.approach = to_vector(h.dir);
+      if (hit.has_approach()) hit.approach.normalize();  // 6 decimals on the wire
+      hit.radius = h.radius;
+      take(hit.surface, hit, h.seq);
+    }
+  }
+
+  // One point (with the approach and tip radius of its hit when it came as a Hit): to disk
+  // first, then kept for --fit, then on the screen.
+  void take(Eigen::Vector3d p, std::optional<metrology::ProbedPoint> hit, std::optional<std::uint64_t> seq) {
     if (done()) return;  // N reached: later points in the same read are not ours to take
     ++received_;
-    Eigen::Vector3d p(at.x, at.y, at.z);
-    if (output_.frame) p = output_.frame->point_from_parent(p);
-    if (output_.file) output_.file->append(p, seq);
-    if (options_.out.fit) kept_.push_back(p);
+    if (output_.frame) {
+      p = output_.frame->point_from_parent(p);
+      if (hit) hit = hit_from_parent(*output_.frame, *hit);
+    }
+    if (output_.file) hit ? output_.file->append(*hit, seq) : output_.file->append(p, seq);
+    if (options_.out.fit) {
+      kept_.push_back(p);
+      if (hit) kept_hits_.push_back(*hit);
+    }
     std::string text = "point " + std::to_string(received_) + ":";
     for (double v : {p.x(), p.y(), p.z()}) {
       text.push_back(' ');
@@ -214,9 +258,11 @@ class Capture {
     std::cerr << "\n";
   }
 
-  // --fit: the fit of the points taken, printed as JSON and written into the file.
+  // --fit: the fit of the points taken, printed as JSON and written into the file; into a
+  // .hits file probe-compensated, as `messcap fit` fits that file.
   FitOutcome fit_kept() {
-    auto fit = exchange::fit_points(*options_.out.fit, kept_);
+    auto fit = wants_approach() ? exchange::fit_probed_points(*options_.out.fit, kept_hits_)
+                                : exchange::fit_points(*options_.out.fit, kept_);
     if (!fit) {
       std::cerr << "messcap: " << fit_failure_message(*options_.out.fit, kept_.size(), "this capture", fit.error())
                 << (output_.file ? " (the points are in " + output_.file->path() + ")" : std::string()) << "\n";
@@ -252,7 +298,9 @@ class Capture {
   bool hit_mode_ = false;  // a Hit line was seen: MeasPt lines are the same points again
   client::Reconnector link_;
   int received_ = 0;
-  std::vector<Eigen::Vector3d> kept_;  // for --fit
+  std::vector<Eigen::Vector3d> kept_;            // for --fit
+  std::vector<metrology::ProbedPoint> kept_hits_;  // for --fit into .hits (all points came as Hit)
+  bool refused_ = false;  // a .hits capture from a messd without Hit
   std::string ended_by_;
   bool link_lost_ = false;
 };

@@ -61,9 +61,8 @@ void check_output_options(OutputOptions& o, bool append, bool force) {
   if (append && force) throw UsageError("--append and --force exclude each other: continue the file or replace it");
   if ((append || force) && !o.output) throw UsageError(std::string(append ? "--append" : "--force") + " needs -o FILE");
   if (append && !exchange::export_format_for(*o.output).appendable())
-    throw UsageError("--append: '" + *o.output +
-                     "' is written whole, not line by line; --append works with .csv, .xyz and .asc "
-                     "(use --force to replace the file, or a new name)");
+    throw UsageError("--append: '" + *o.output + "' is written whole, not line by line; --append works with " +
+                     exchange::appendable_extensions() + " (use --force to replace the file, or a new name)");
   o.mode = append ? OpenMode::Append : force ? OpenMode::Overwrite : OpenMode::New;
 }
 
@@ -116,25 +115,30 @@ std::string capture_usage() {
          "Captures measured points (Hit; MeasPt from a messd without a journal) from messd:\n"
          "prints each as it arrives ('point 1: x y z') and writes it to FILE at once\n"
          "(flushed to disk per point, so Ctrl-C, a closed connection or a crash never lose\n"
-         "a point). .xyz/.asc files keep each point's journal number ('# hit 17').\n"
+         "a point). .xyz/.asc/.hits files keep each point's journal number ('# hit 17');\n"
+         ".hits files also each hit's approach direction and tip radius (x y z i j k r),\n"
+         "which messcap fit uses to fit probe-compensated (messd must send Hit lines).\n"
          "HOST defaults to localhost, PORT to 1066.\n"
          "\n"
          "  -n, --count N    stop after N points; without -n capture until Ctrl-C\n"
          "                   (SIGINT/SIGTERM) or until messd closes the connection\n"
          "  -o, --output FILE  the format follows the extension (millimetres):\n" +
          formats +
-         "                   .csv/.xyz/.asc grow by one line per point; the others are\n"
+         "                   .csv/.xyz/.asc/.hits grow by one line per point; the others are\n"
          "                   rewritten whole (temporary file + rename) per point\n"
-         "  --append         continue an existing .csv/.xyz/.asc (default: refuse to touch it);\n"
-         "                   .xyz/.asc: first fetch (Replay) every hit after the file's last\n"
+         "  --append         continue an existing .csv/.xyz/.asc/.hits (default: refuse to\n"
+         "                   touch it); .xyz/.asc/.hits: first fetch (Replay) every hit\n"
+         "                   after the file's last\n"
          "  --reconnect      when messd goes away, wait for it and fetch what was missed\n"
          "                   (without: exit status 4 when messd goes away)\n"
          "  --force          replace an existing FILE\n"
          "  --frame NAME --frames FILE\n"
          "                   write (and print) the points in frame NAME of the frame\n"
-         "                   store FILE (JSON; the frame maps its coordinates to the machine's)\n"
+         "                   store FILE (JSON; the frame maps its coordinates to the machine's);\n"
+         "                   .hits: the approach directions turned with it\n"
          "  --fit KIND       when the capture ends, fit KIND to all points and print the\n"
-         "                   result as one JSON line (also into .json and .dmi files)\n"
+         "                   result as one JSON line (also into .json and .dmi files);\n"
+         "                   into .hits probe-compensated, as messcap fit fits that file\n"
          "  --outer          DMIS: the fitted feature is outer (a shaft), not inner (a bore)\n"
          "  -h, --help       this text\n"
          "\n"
@@ -142,11 +146,13 @@ std::string capture_usage() {
          "  lines, the NIST .ds layout or messcap's .csv; '-' or none = stdin) and prints one\n"
          "  JSON object. KIND: " + std::string(exchange::kFitKinds) + ".\n"
          "  Lines of 7 numbers 'x y z i j k r' (surface point, unit approach, tip radius:\n"
-         "  messd's hits) are fitted probe-compensated: plane, circle, sphere, cylinder and\n"
-         "  cone to the ball centres (xyz - r*ijk), then offset by r on the material side;\n"
-         "  --surface fits the surface points x y z instead.\n"
+         "  messd's hits, as messcap -o FILE.hits writes them) are fitted probe-compensated:\n"
+         "  plane, circle, sphere, cylinder and cone to the ball centres (xyz - r*ijk),\n"
+         "  then offset by r on the material side; --surface fits the surface points x y z\n"
+         "  instead.\n"
          "messcap convert IN OUT: reads IN like fit does and writes OUT in the format of\n"
-         "  its extension (--decimals D: 0..12, default 6).\n"
+         "  its extension (--decimals D: 0..12, default 6). Hits to a format of plain\n"
+         "  points keep their surface points; OUT .hits needs IN of 7-column hits.\n"
          "messcap inspect PLAN: measures (or reads) a part's points and reports every\n"
          "  characteristic of the inspection plan (messcap inspect --help).\n"
          "messcap qualify: touches a reference sphere and sets messd's tip radius and probe\n"

@@ -1,4 +1,6 @@
 // messcap convert: read IN, transform into --frame, fit (--fit), write OUT whole and atomically.
+// Hits (7 columns) keep their approach and tip radius into .hits and give their surface points
+// to the other formats; plain points cannot become .hits.
 #include "convert_command.hpp"
 
 #include <sys/stat.h>
@@ -84,14 +86,24 @@ int run_convert_command(int argc, const char* const argv[]) {
     exchange::ExportData data;
     data.decimals = o.decimals;
     data.outer = o.out.outer;
-    data.points = read_point_input(o.input);
+    PointInput in = read_point_or_hit_input(o.input);
+    if (exchange::export_format_for(out_path).needs_approach() && !in.probed) {
+      std::cerr << "messcap: convert: " << out_path << " needs each hit's approach direction and tip radius, but "
+                << input_name(o.input) << " holds plain points (x y z); a .hits file is made from hits, 7 numbers "
+                << "per line (x y z i j k r), or captured with messcap -o FILE.hits (nothing written)\n";
+      return client::kExitFailure;
+    }
+    data.points = std::move(in.points);
+    if (in.probed) data.hits = std::move(in.hits);
     if (o.out.frame) {
       const auto frame = load_named_frame(*o.out.frames_file, *o.out.frame);
       for (auto& p : data.points) p = frame.point_from_parent(p);
+      for (auto& h : data.hits) h = hit_from_parent(frame, h);
       data.frame = *o.out.frame;
     }
     if (o.out.fit) {
-      auto fit = exchange::fit_points(*o.out.fit, data.points);
+      // Like messcap fit IN: hits probe-compensated, plain points as they are.
+      auto fit = in.probed ? exchange::fit_probed_points(*o.out.fit, data.hits) : exchange::fit_points(*o.out.fit, data.points);
       if (!fit) {
         std::cerr << "messcap: " << fit_failure_message(*o.out.fit, data.points.size(), input_name(o.input), fit.error())
                   << " (nothing written)\n";

@@ -1,5 +1,5 @@
 // load_named_frame(): FrameStore errors passed on as they are (they name file and key), a
-// missing frame named together with the frames that are there.
+// missing frame named together with the frames that are there; hit_from_parent().
 #include "frame_option.hpp"
 
 #include <stdexcept>
@@ -20,6 +20,13 @@ metrology::Frame load_named_frame(const std::string& frames_file, const std::str
   for (const auto& n : store.names()) names += (names.empty() ? "" : ", ") + n;
   throw std::runtime_error("--frame: no frame '" + name + "' in '" + frames_file + "'; it holds: " +
                            (names.empty() ? std::string("no frames") : names));
+}
+
+metrology::ProbedPoint hit_from_parent(const metrology::Frame& frame, const metrology::ProbedPoint& hit) {
+  metrology::ProbedPoint out = hit;
+  out.surface = frame.point_from_parent(hit.surface);
+  out.approach = frame.direction_from_parent(hit.approach);
+  return out;
 }
 
 }  // namespace imess::messcap

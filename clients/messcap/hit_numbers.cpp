@@ -1,4 +1,4 @@
-// Reading and writing the "# hit N" comments of .xyz/.asc capture files.
+// Reading and writing the "# hit N" comments of .xyz/.asc/.hits capture files.
 #include "hit_numbers.hpp"
 
 #include <algorithm>
@@ -17,7 +17,7 @@ bool keeps_hit_numbers(const std::string& path) {
   if (dot == std::string::npos) return false;
   std::string ext = path.substr(dot);
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext == ".xyz" || ext == ".asc";
+  return ext == ".xyz" || ext == ".asc" || ext == ".hits";
 }
 
 std::string hit_comment(std::uint64_t seq) { return " # hit " + std::to_string(seq); }

@@ -1,6 +1,6 @@
-// Hit numbers in capture files: the line formats .xyz and .asc carry each point's journal
-// number as a trailing comment, "430.000 330.000 80.000 # hit 17", which every reader of
-// those files (messcap fit/convert, FreeCAD's ASC import) skips as a comment.
+// Hit numbers in capture files: the line formats .xyz, .asc and .hits carry each point's
+// journal number as a trailing comment, "430.000 330.000 80.000 # hit 17", which every reader
+// of those files (messcap fit/convert, FreeCAD's ASC import) skips as a comment.
 #pragma once
 #include <cstdint>
 #include <optional>
@@ -8,7 +8,7 @@
 
 namespace imess::messcap {
 
-// Whether the file's format carries hit numbers (by extension: .xyz, .asc).
+// Whether the file's format carries hit numbers (by extension: .xyz, .asc, .hits).
 bool keeps_hit_numbers(const std::string& path);
 
 // " # hit 17" (without "\n"), to follow a point's coordinates.

@@ -60,8 +60,8 @@ PointFile::PointFile(std::string path, OpenMode mode, exchange::ExportData base)
   struct stat st {};
   const bool existed = ::stat(path_.c_str(), &st) == 0;
   if (mode == OpenMode::Append && !format_->appendable())
-    throw std::runtime_error("'" + path_ + "' is written whole and cannot be continued; --append works with "
-                             ".csv, .xyz and .asc");
+    throw std::runtime_error("'" + path_ + "' is written whole and cannot be continued; --append works with " +
+                             exchange::appendable_extensions());
   int flags = O_WRONLY | O_CREAT | O_CLOEXEC | (format_->appendable() ? O_APPEND : 0);
   if (mode == OpenMode::New) flags |= O_EXCL;
   if (mode == OpenMode::Overwrite) flags |= O_TRUNC;
@@ -92,8 +92,17 @@ void PointFile::append_text(const std::string& text) {
 void PointFile::rewrite() { write_file_atomically(path_, format_->write(data_)); }
 
 void PointFile::append(const Eigen::Vector3d& p, std::optional<std::uint64_t> hit) {
+  if (needs_approach())
+    throw std::logic_error("'" + path_ + "' holds hits with approach direction and tip radius; a point without them "
+                           "cannot be written to it");
+  add(p, nullptr, hit);
+}
+
+void PointFile::append(const metrology::ProbedPoint& h, std::optional<std::uint64_t> hit) { add(h.surface, &h, hit); }
+
+void PointFile::add(const Eigen::Vector3d& p, const metrology::ProbedPoint* h, std::optional<std::uint64_t> hit) {
   if (format_->appendable()) {
-    std::string line = format_->point_line(p, data_.decimals);
+    std::string line = needs_approach() ? format_->hit_line(*h, data_.decimals) : format_->point_line(p, data_.decimals);
     if (hit && keeps_hit_numbers(path_)) line.insert(line.size() - 1, hit_comment(*hit));
     append_text(line);
   } else {

@@ -1,5 +1,5 @@
 // PointFile: the capture file, in the format of its extension. Every point is on disk the
-// moment it arrives: line formats (.csv .xyz .asc) get one appended line plus fdatasync; the
+// moment it arrives: line formats (.csv .xyz .asc .hits) get one appended line plus fdatasync; the
 // others are rewritten whole into FILE.tmp, synced and renamed over FILE, so FILE is always a
 // complete, valid document holding every point so far.
 #pragma once
@@ -29,8 +29,12 @@ class PointFile {
   PointFile& operator=(const PointFile&) = delete;
 
   // Writes one point and forces it to disk; `hit` (its journal number) goes into the formats
-  // that keep it (.xyz, .asc: hit_numbers.hpp). Throws std::runtime_error on a write error.
+  // that keep it (.xyz, .asc, .hits: hit_numbers.hpp). Throws std::runtime_error on a write
+  // error; std::logic_error for a .hits file, which never takes a point without its approach.
   void append(const Eigen::Vector3d& p, std::optional<std::uint64_t> hit = std::nullopt);
+  // The same for a hit: all of it (approach, tip radius) into .hits, its surface point into
+  // the formats of plain points.
+  void append(const metrology::ProbedPoint& h, std::optional<std::uint64_t> hit = std::nullopt);
   // Adds the fitted feature to the formats that hold one (.json, .dmi) and rewrites them.
   void set_fit(const exchange::FitReport& fit);
 
@@ -40,9 +44,12 @@ class PointFile {
 
   const std::string& path() const { return path_; }
   int points() const { return points_; }
+  // .hits: every point needs the approach and tip radius of its hit.
+  bool needs_approach() const { return format_->needs_approach(); }
 
  private:
   void append_text(const std::string& text);
+  void add(const Eigen::Vector3d& p, const metrology::ProbedPoint* h, std::optional<std::uint64_t> hit);
   void rewrite();
 
   std::string path_;

@@ -1,5 +1,5 @@
-// read_point_input(): whole input read, a leading "x,y,z"-style header turned into a comment
-// (line numbers stay right), then metrology::parse_points.
+// read_point_or_hit_input(): whole input read, a leading "x,y,z"-style header turned into a
+// comment (line numbers stay right), then metrology::parse_probed_points or parse_points.
 #include "point_input.hpp"
 
 #include <cctype>
@@ -35,10 +35,6 @@ std::string read_text(const std::string& path) {
 }
 
 }  // namespace
-
-std::vector<Eigen::Vector3d> read_point_input(const std::string& path) {
-  return metrology::parse_points(read_text(path), input_name(path));
-}
 
 PointInput read_point_or_hit_input(const std::string& path) {
   const std::string s = read_text(path);

@@ -10,17 +10,15 @@
 
 namespace imess::messcap {
 
-// path "-" = stdin. Throws std::runtime_error / metrology::PointFileError naming the source
-// and line ("pts.xyz:4: ...").
-std::vector<Eigen::Vector3d> read_point_input(const std::string& path);
-
-// A point file as `messcap fit` reads it: probed hits when its lines hold 7 numbers
-// (x y z i j k r, see metrology::parse_probed_points), plain points when they hold 3.
+// A point file as `messcap fit` and `convert` read it: probed hits when its lines hold 7
+// numbers (x y z i j k r, see metrology::parse_probed_points), plain points when they hold 3.
 struct PointInput {
   std::vector<Eigen::Vector3d> points;             // the surface points (both layouts)
   std::vector<metrology::ProbedPoint> hits;        // only for the 7-column layout
   bool probed = false;
 };
+// path "-" = stdin. Throws std::runtime_error / metrology::PointFileError naming the source
+// and line ("pts.xyz:4: ...").
 PointInput read_point_or_hit_input(const std::string& path);
 
 // The name errors use for `path` ("<stdin>" for "-").

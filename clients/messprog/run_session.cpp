@@ -1,9 +1,8 @@
 // messprog run's conversation with messd.
 #include "run_session.hpp"
 
-#include <algorithm>
-
 #include "check_report.hpp"
+#include "imess/client/hello_caps.hpp"
 #include "imess/protocol/messages.hpp"
 
 namespace imess::messprog {
@@ -12,11 +11,6 @@ namespace {
 namespace p = protocol;
 
 std::string err_text(const p::ErrMsg& e) { return "Err " + std::to_string(e.code) + " " + e.text; }
-
-bool lists_programs(const std::vector<std::string>& hello_args) {
-  const auto caps = std::find(hello_args.begin(), hello_args.end(), "Caps");
-  return caps != hello_args.end() && std::find(caps, hello_args.end(), "programs") != hello_args.end();
-}
 
 }  // namespace
 
@@ -68,7 +62,7 @@ RunOutput RunSession::on_reply(std::string_view line) {
         return finish(out, 1);
       }
       if (ok->verb != "Hello") return out;
-      if (!lists_programs(ok->args)) {
+      if (!client::hello_has_cap(ok->args, "programs")) {
         out.errors.push_back("messprog: messd at " + settings_.where +
                              " does not run programs (its Hello names no 'programs' among its Caps: " +
                              std::string(line) + "); a newer messd is needed");

@@ -12,7 +12,6 @@
 namespace imess::app {
 
 namespace {
-constexpr int kBasePriority = 85;  // above the motion loop (80)
 std::int64_t now_ns() {
   timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -26,9 +25,9 @@ std::string BaseThread::start(bool want_realtime) {
   pthread_setname_np(thread_.native_handle(), "messd-base");
   if (!want_realtime) return "base thread time-shared (real time not requested)";
   sched_param sp{};
-  sp.sched_priority = kBasePriority;
+  sp.sched_priority = kPriority;
   int rc = pthread_setschedparam(thread_.native_handle(), SCHED_FIFO, &sp);
-  return rc == 0 ? "base thread on SCHED_FIFO priority " + std::to_string(kBasePriority)
+  return rc == 0 ? "base thread on SCHED_FIFO priority " + std::to_string(kPriority)
                  : std::string("base thread: SCHED_FIFO not permitted (") + std::strerror(rc) +
                        "): step timing will jitter; run as root or grant CAP_SYS_NICE";
 }
@@ -44,11 +43,14 @@ void BaseThread::run() noexcept {
   while (running_.load(std::memory_order_relaxed)) {
     timespec ts{static_cast<time_t>(deadline / 1'000'000'000), static_cast<long>(deadline % 1'000'000'000)};
     while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {}
+    const std::int64_t woke = observer_ ? now_ns() : 0;
     driver_.base_tick();
     ticks_.fetch_add(1, std::memory_order_relaxed);
+    const std::int64_t done = now_ns();
+    const bool overrun = done > deadline + period;
+    if (observer_) observer_->tick(woke - deadline, done - deadline, overrun);
     deadline += period;
-    std::int64_t done = now_ns();
-    if (done > deadline) {
+    if (overrun) {
       overruns_.fetch_add(1, std::memory_order_relaxed);
       deadline = done + period;
     }

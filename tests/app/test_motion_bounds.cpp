@@ -22,10 +22,14 @@ namespace {
 
 constexpr int kWindow = 10;  // cycles over which a speed is measured (10 ms): a stepper's step is 0.5 mm/s here
 // A servo card streamed over a serial line reports positions in status frames every 5 ms,
-// each read up to 2 ms later than the one before (a frame with latched positions is longer
-// on the line): measured over 40 ms, with those 2 ms of uncertainty in the interval.
+// each arriving up to 2 ms after it was sampled (a frame with latched positions is longer on
+// the line), so a position seen at a cycle may be one frame old. Speeds there are measured
+// between the cycles at which two frames arrived, at least 40 ms apart, with those 2 ms of
+// uncertainty at either end.
 constexpr int kStreamedWindow = 40;
 constexpr double kStreamedJitter = 0.002;  // s
+constexpr int kFrameAge = 7;  // cycles: a frame period plus its delay
+constexpr int kHistory = kStreamedWindow + kFrameAge + 1;  // cycles kept
 // Measured speeds are encoder positions, so they include the servo's tracking overshoot
 // (up to 3 % seen on the drive kits' PID) and quantisation; the commanded path is within 1.
 constexpr double kSpeedTolerance = 1.04;
@@ -56,8 +60,12 @@ class BoundsWatch {
   void observe(const core::Snapshot& s, Mode mode) {
     ++cycle_;
     mode_ = mode;
-    const hal::AxisVec step = s.position - history_[(cycle_ - 1) % (window_ + 1)].p;
-    history_[cycle_ % (window_ + 1)] = {s.position, loops_moving(mode)};
+    const Sample& before = at(cycle_ - 1);
+    const hal::AxisVec step = s.position - before.p;
+    // A cycle measures a speed where a position arrived: every cycle on a machine read each
+    // cycle, a changed position on a streamed card (an unchanged one may be a frame old).
+    const bool arrived = !cfg_.sim.streamed || step != hal::AxisVec::Zero();
+    history_[cycle_ % kHistory] = {s.position, loops_moving(mode), arrived ? cycle_ : before.arrival};
     if ((mode == Mode::Home || homing_) && redefined(step))  // homing gave an axis its coordinate: not motion
       for (auto& h : history_) h.motor = false;
     since_hands_ = loops_moving(mode) ? since_hands_ + 1 : 0;
@@ -90,7 +98,9 @@ class BoundsWatch {
   struct Sample {
     hal::AxisVec p = hal::AxisVec::Zero();
     bool motor = false;  // the loops drive the machine (not pushed by hand, not coasting in a fault)
+    long arrival = 0;    // the cycle at which this position arrived
   };
+  const Sample& at(long cycle) const { return history_[static_cast<std::size_t>(cycle % kHistory)]; }
   static bool loops_moving(Mode m) { return m != Mode::Free && m != Mode::Fault; }
   double resolution(int a) const {
     return cfg_.backend == "sim-portio-drive" ? cfg_.ports.drive.axes[a].position_unit_mm : 0.0;
@@ -106,12 +116,14 @@ class BoundsWatch {
   }
 
   void check_speed() {
-    if (cycle_ <= window_) return;
-    const Sample& now = history_[cycle_ % (window_ + 1)];
-    const Sample& then = history_[(cycle_ - window_) % (window_ + 1)];
-    for (int i = 0; i <= window_; ++i)
-      if (!history_[i].motor) return;
-    const double dt = window_ * 1e-3, tolerance = kSpeedTolerance + jitter_ / dt;
+    const Sample& now = at(cycle_);
+    if (now.arrival != cycle_ || cycle_ <= window_) return;
+    const long start = at(cycle_ - window_).arrival;  // the position shown a window ago arrived here
+    if (cycle_ - start > window_ + kFrameAge) return;  // held over several frames: the machine stood there
+    for (long c = start; c <= cycle_; ++c)
+      if (!at(c).motor) return;
+    const Sample& then = at(start);
+    const double dt = static_cast<double>(cycle_ - start) * 1e-3, tolerance = kSpeedTolerance + jitter_ / dt;
     hal::AxisVec v = (now.p - then.p) / dt;
     for (int a = 0; a < n(); ++a) {
       const double limit = cfg_.core.axes[a].max_velocity;
@@ -171,7 +183,7 @@ class BoundsWatch {
   const app::DaemonConfig& cfg_;
   int window_;
   double jitter_;
-  std::array<Sample, kStreamedWindow + 1> history_{};
+  std::array<Sample, kHistory> history_{};
   long cycle_ = 0;
   Mode mode_ = Mode::Free;
   long since_hands_ = 0;  // cycles since the loops last held the machine

@@ -144,13 +144,6 @@ TEST_CASE("the shipped simulated tables are the built-in one: the worked example
     ConfigRig rig(kRoot + "/" + rel);
     const auto& scene = rig.config().sim.scene;
     if (rig.config().backend.rfind("sim-", 0) != 0 || scene.solids().empty()) continue;  // no simulated table
-    // The serial-line variant keeps the worked example alone for now: with the sphere in its
-    // scene the bounded-motion property (test_motion_bounds.cpp, seed 6) meets a retract
-    // measured at 1.098 of max_velocity on the streamed card, a finding of its own.
-    if (rel == "config/sim-servo-card-serial.json") {
-      CHECK(scene.solids().size() == sim::worked_example_scene().solids().size());
-      continue;
-    }
     INFO(rel);
     CHECK(scene.solids().size() == built_in.solids().size());
     for (const auto& p : probes) CHECK(scene.distance(p) == Approx(built_in.distance(p)).margin(1e-9));

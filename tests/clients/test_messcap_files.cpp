@@ -272,7 +272,7 @@ TEST_CASE("messcap convert: csv, xyz, asc, json and dmi read back point by point
   CHECK_THAT(r.err, Catch::Contains("exists; add --force"));
   r = run_program({client_binary("messcap"), "convert", dir.file("in.ds"), dir.file("out.step")});
   CHECK(r.status == 2);
-  CHECK_THAT(r.err, Catch::Contains("unknown extension '.step'; accepted: .csv, .xyz, .asc, .json, .ply, .dxf, .igs, "
+  CHECK_THAT(r.err, Catch::Contains("unknown extension '.step'; accepted: .csv, .xyz, .asc, .hits, .json, .ply, .dxf, .igs, "
                                     ".stp, .dmi"));
 }
 
@@ -336,5 +336,5 @@ TEST_CASE("messcap capture into .dxf: a complete file after every point, nothing
 
   auto again = run_program({client_binary("messcap"), daemon.address(), "-o", dxf, "--append"});
   CHECK(again.status == 2);
-  CHECK_THAT(again.err, Catch::Contains("written whole") && Catch::Contains(".csv, .xyz and .asc"));
+  CHECK_THAT(again.err, Catch::Contains("written whole") && Catch::Contains(".csv, .xyz, .asc and .hits"));
 }

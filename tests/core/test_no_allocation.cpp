@@ -5,6 +5,7 @@
 #include "core_rig.hpp"
 #include "ideal_follower.hpp"
 #include "imess/core/event_fd.hpp"
+#include "imess/core/interval_stats.hpp"
 #include "imess/planner/probe.hpp"
 
 #include "allocation_counter.hpp"
@@ -121,4 +122,16 @@ TEST_CASE("no motion cycle allocates in a Probe cycle: approach, search, hit, re
   rig.hw.tip = false;
   CHECK(allocations_over_cycles(rig, 600) == 0);
   CHECK(rig.mode() == Mode::Idle);
+}
+
+TEST_CASE("the loop's interval statistics record and restart without allocating") {
+  auto stats = std::make_unique<imess::core::IntervalStats>();
+  g_allocations = 0;
+  g_counting = true;
+  for (int i = 0; i < 20000; ++i) {
+    if (i % 1000 == 0) stats->request_restart();  // another thread's Stats Reset, seen by the next record
+    stats->record(i % 50 * 0.7, i % 333 == 0);
+  }
+  g_counting = false;
+  CHECK(g_allocations.load() == 0);
 }

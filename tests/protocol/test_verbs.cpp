@@ -238,3 +238,15 @@ TEST_CASE("ArcTo: end, centre offsets I J K, the plane's normal N i j k, turns P
   CHECK(failed("ArcTo 1 up X5").text ==
         "ArcTo turns CW or CCW (seen from the tip of the plane's normal), got 'up'; " + usage);
 }
+
+TEST_CASE("Stats alone is since the start, Reset Interval Hist are the measuring interval") {
+  using Form = Stats::Form;
+  CHECK(parsed<Stats>("Stats").form == Form::SinceStart);
+  CHECK(parsed<Stats>("Stats Reset").form == Form::Reset);
+  CHECK(parsed<Stats>("stats interval").form == Form::Interval);
+  CHECK(parsed<Stats>("Stats HIST").form == Form::Hist);
+  const auto bad = failed("Stats Clear");
+  CHECK(bad.code == ErrorCode::BadValue);
+  CHECK(bad.text == "Stats takes nothing, Reset, Interval or Hist, got 'Clear'; usage: Stats [form]");
+  CHECK(failed("Stats Reset now").code == ErrorCode::BadArguments);
+}

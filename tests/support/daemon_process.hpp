@@ -29,9 +29,10 @@ namespace imess::test {
 // In a forked child: becomes messd on an ephemeral loopback port, with the test's extra
 // arguments; never returns. Without real-time scheduling unless asked for (then messd takes
 // SCHED_FIFO and locked memory where it is permitted, as scripts/run does, and runs without
-// them where not).
-[[noreturn]] inline void exec_messd(const std::vector<std::string>& args, bool realtime = false) {
-  std::string bin = std::string(IMESS_BIN_DIR) + "/messd";
+// them where not). `binary`: another messd than the build's (a benchmark's --messd).
+[[noreturn]] inline void exec_messd(const std::vector<std::string>& args, bool realtime = false,
+                                    const std::string& binary = "") {
+  std::string bin = binary.empty() ? std::string(IMESS_BIN_DIR) + "/messd" : binary;
   std::vector<std::string> all{bin, "--port", "0", "--listen", "127.0.0.1"};
   if (!realtime) all.push_back("--no-rt");
   all.insert(all.end(), args.begin(), args.end());
@@ -45,7 +46,8 @@ namespace imess::test {
 class DaemonProcess {
  public:
   enum class Scheduling { Plain, RealtimeIfPermitted };
-  explicit DaemonProcess(std::vector<std::string> args = {}, Scheduling sched = Scheduling::Plain) {
+  explicit DaemonProcess(std::vector<std::string> args = {}, Scheduling sched = Scheduling::Plain,
+                         const std::string& binary = "") {
     // Parallel tests never share a journal: each daemon gets a new one, removed afterwards.
     if (std::find(args.begin(), args.end(), "--journal") == args.end()) {
       std::string dir = (std::filesystem::temp_directory_path() / "imess-test-journal-XXXXXX").string();
@@ -66,7 +68,7 @@ class DaemonProcess {
       int devnull = open("/dev/null", O_WRONLY);
       if (!std::getenv("IMESS_TEST_DAEMON_LOG")) dup2(devnull, STDERR_FILENO);
       close(out[0]);
-      exec_messd(args, sched == Scheduling::RealtimeIfPermitted);
+      exec_messd(args, sched == Scheduling::RealtimeIfPermitted, binary);
     }
     close(out[1]);
     out_ = fdopen(out[0], "r");

@@ -14,6 +14,8 @@ const std::vector<ExportFormat>& export_formats() {
       {".csv", "header 'x,y,z', then one 'x,y,z' line per point", csv, csv_header, csv_line},
       {".xyz", "one 'x y z' line per point", xyz, xyz_header, xyz_line},
       {".asc", "one 'x y z' line per point (FreeCAD's ASCII point cloud)", xyz, xyz_header, xyz_line},
+      {".hits", "one 'x y z i j k r' line per hit: surface point, approach, tip radius", hits, hits_header, nullptr,
+       hits_line},
       {".json", "{\"units\":\"mm\",\"points\":[[x,y,z],...]} plus \"fit\" with --fit", json, nullptr, nullptr},
       {".ply", "ASCII PLY, one vertex (double x y z) per point", ply, nullptr, nullptr},
       {".dxf", "DXF R12 (AC1009), POINT entities on layer IMESS_POINTS", dxf, nullptr, nullptr},
@@ -31,6 +33,16 @@ std::string accepted_extensions() {
     if (!out.empty()) out += ", ";
     out += f.extension;
   }
+  return out;
+}
+
+std::string appendable_extensions() {
+  std::vector<std::string_view> line_formats;
+  for (const auto& f : export_formats())
+    if (f.appendable()) line_formats.push_back(f.extension);
+  std::string out;
+  for (std::size_t i = 0; i < line_formats.size(); ++i)
+    out += std::string(i == 0 ? "" : i + 1 == line_formats.size() ? " and " : ", ") + std::string(line_formats[i]);
   return out;
 }
 

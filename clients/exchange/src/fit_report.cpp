@@ -216,7 +216,7 @@ Fit<FitReport> fit_probed_points(FitKind kind, std::span<const metrology::Probed
     if (!hits[i].has_approach())
       return FitError{FitErrorCode::InvalidArgument,
                       name + ": hit " + std::to_string(i) + " has no approach direction (a forced point, 0 0 0); "
-                      "probe compensation needs one for every hit (fit the surface points with --surface)"};
+                      "probe compensation needs one for every hit (messcap fit --surface fits the surface points)"};
     if (hits[i].radius != hits[0].radius)
       return FitError{FitErrorCode::InvalidArgument,
                       name + ": hit " + std::to_string(i) + " has tip radius " + std::to_string(hits[i].radius) +

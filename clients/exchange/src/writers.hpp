@@ -14,6 +14,10 @@ std::string xyz_header();
 std::string xyz_line(const Eigen::Vector3d& p, int decimals);
 std::string xyz(const ExportData& d);
 
+std::string hits_header();
+std::string hits_line(const metrology::ProbedPoint& h, int decimals);
+std::string hits(const ExportData& d);  // throws FormatError when d.hits does not match d.points
+
 std::string json(const ExportData& d);
 std::string ply(const ExportData& d);
 std::string dxf(const ExportData& d);

@@ -1,5 +1,6 @@
 // The real-time thread. Statistics are summarised inside the loop once a second (a bounded
-// walk over the histogram, no allocation) and published through a triple buffer.
+// walk over the histogram, no allocation) and published through a triple buffer; the
+// measuring interval is counted every cycle into lock-free atomics (IntervalStats).
 #include "imess/core/loop_runner.hpp"
 
 #include <pthread.h>
@@ -19,32 +20,12 @@ timespec to_timespec(Nanos t) {
   ts.tv_nsec = static_cast<long>(t.count() % 1'000'000'000);
   return ts;
 }
-constexpr int kRtPriority = 80;
 }  // namespace
 
 Nanos MonotonicClock::now() const noexcept {
   timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return Nanos(std::int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec);
-}
-
-void LatencyHistogram::add(double us) noexcept {
-  std::size_t b = us <= 0 ? 0 : static_cast<std::size_t>(us);
-  if (b >= kBuckets) b = kBuckets - 1;
-  ++buckets_[b];
-  ++count_;
-  if (us > max_) max_ = us;
-}
-
-double LatencyHistogram::percentile(double p) const noexcept {
-  if (count_ == 0) return 0;
-  auto rank = static_cast<std::uint64_t>(p * static_cast<double>(count_ - 1));
-  std::uint64_t seen = 0;
-  for (std::size_t b = 0; b < kBuckets; ++b) {
-    seen += buckets_[b];
-    if (seen > rank) return static_cast<double>(b) + 0.5 < max_ ? static_cast<double>(b) + 0.5 : max_;
-  }
-  return max_;
 }
 
 LoopRunner::LoopRunner(MotionCore& core, const MonotonicClock& clock, Nanos period)
@@ -66,10 +47,10 @@ std::string LoopRunner::start(bool want_realtime) {
   thread_ = std::thread([this] { run(); });
   if (want_realtime) {
     sched_param sp{};
-    sp.sched_priority = kRtPriority;
+    sp.sched_priority = kPriority;
     int rc = pthread_setschedparam(thread_.native_handle(), SCHED_FIFO, &sp);
     realtime_ = rc == 0;
-    report += realtime_ ? "; motion loop on SCHED_FIFO priority " + std::to_string(kRtPriority)
+    report += realtime_ ? "; motion loop on SCHED_FIFO priority " + std::to_string(kPriority)
                         : std::string("; SCHED_FIFO not permitted (") + std::strerror(rc) +
                               "): the motion loop runs time-shared, expect larger latency (run as root or grant CAP_SYS_NICE)";
   }
@@ -90,16 +71,19 @@ void LoopRunner::run() noexcept {
     timespec ts = to_timespec(deadline);
     while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {}
     Nanos woke = clock_.now();
-    latency_.add(std::chrono::duration<double, std::micro>(woke - deadline).count());
+    const double late_us = std::chrono::duration<double, std::micro>(woke - deadline).count();
+    latency_.add(late_us);
     core_.cycle(loop_time_ ? loop_time_->advance(period_) : woke);
     Nanos done = clock_.now();
     cycle_time_.add(std::chrono::duration<double, std::micro>(done - woke).count());
     ++cycles;
     deadline += period_;
-    if (done > deadline) {  // missed the next deadline: count it and do not try to catch up
+    const bool overrun = done > deadline;
+    if (overrun) {  // missed the next deadline: count it and do not try to catch up
       ++overruns_;
       deadline = done + period_;
     }
+    interval_.record(late_us, overrun);
     if (done - last_summary >= std::chrono::seconds(1)) {
       last_summary = done;
       LoopStats& s = stats_.back();

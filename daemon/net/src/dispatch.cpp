@@ -125,7 +125,7 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Hello& c) { hello(s, slot, c); },
           [&](const protocol::Help&) { help(s, slot); },
           [&](const protocol::Status&) { reply(s, slot, format_ok("Status", status_line())); },
-          [&](const protocol::Stats&) { reply(s, slot, format_ok("Stats", stats_line())); },
+          [&](const protocol::Stats& c) { stats(s, slot, c); },
           [&](const protocol::Get& c) { get_param(s, slot, c); },
           [&](const protocol::Set& c) { set_param(s, slot, c); },
           [&](const protocol::Replay& c) { on_replay(s, slot, c.from); },
@@ -169,6 +169,7 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Align& c) { align(s, slot, c); },
           [&](const protocol::DelFrame& c) { del_frame(s, slot, c.name); },
           [&](const protocol::Qualify& c) { qualify(s, slot, c); },
+          [&](const protocol::Stream& c) { reply(s, slot, set_stream_rate(s, c.hz)); },
       },
       cmd);
 }
@@ -273,16 +274,6 @@ std::string Server::status_line() {
   line += " Clients " + std::to_string(sessions_.size());
   line += " Control " + status_value(control_.owner());  // appended last: the 1996-era prefix stays as it was
   return line;
-}
-
-std::string Server::stats_line() {
-  core::LoopStats st;
-  if (runner_) st = runner_->stats();
-  return "Period " + fixed(st.period_us, 0) + " Cycles " + std::to_string(st.cycles) + " LatP50 " +
-         fixed(st.latency_p50_us, 1) + " LatP99 " + fixed(st.latency_p99_us, 1) + " LatP999 " +
-         fixed(st.latency_p999_us, 1) + " LatMax " + fixed(st.latency_max_us, 1) + " CycleP99 " +
-         fixed(st.cycle_p99_us, 1) + " CycleMax " + fixed(st.cycle_max_us, 1) + " Overruns " +
-         std::to_string(st.overruns) + " Realtime " + (st.realtime ? "yes" : "no");
 }
 
 }  // namespace imess::net

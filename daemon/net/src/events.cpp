@@ -1,4 +1,4 @@
-// Motion-loop events -> replies and broadcasts; the CurrCor reporter; periodic debug logs.
+// Motion-loop events -> replies and broadcasts; periodic debug logs.
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -104,23 +104,6 @@ void Server::pump_events() {
         break;
     }
   }
-}
-
-void Server::report_position() {
-  show_block(false);
-  move_reports();
-  const auto& snap = core_.snapshot();
-  const hal::Vec3 p = layout().cartesian(snap.position);
-  std::string line = protocol::format_curr_cor({p.x(), p.y(), p.z()});
-  if (line != last_curr_cor_) {  // only when it changed
-    last_curr_cor_ = line;
-    broadcast(line);
-  }
-  if (layout().is_xyz()) return;
-  std::string ax = ax_pos_line();  // every axis by its letter, at the same rate, when it changed
-  if (ax == last_ax_pos_) return;
-  last_ax_pos_ = ax;
-  broadcast(ax);
 }
 
 void Server::log_periodic() {

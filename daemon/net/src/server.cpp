@@ -101,11 +101,12 @@ void Server::stop() {
   for (auto& [id, s] : sessions) s->close();
 }
 
-// The owner's dead-man, and the journal's fdatasync once its oldest unsynced hit is
+// The owner's dead-man, the first position after rest, and the journal's fdatasync once its oldest unsynced hit is
 // journal.fsync_ms old (nothing else calls it: a hit must not wait for the next hit's append).
 void Server::every_millisecond() {
   check_watch();
   journal_.sync_if_due();
+  report_start_of_motion();
 }
 
 void Server::schedule(asio::steady_timer& t, std::chrono::microseconds every, void (Server::*fn)()) {
@@ -121,7 +122,8 @@ void Server::rearm(asio::steady_timer& t, std::chrono::microseconds every, void 
     if (ec || !running_) return;
     (this->*fn)();
     // The report rate may change at run time (Set ReportHz).
-    auto period = &t == &report_timer_ ? std::chrono::microseconds(static_cast<long>(1e6 / config_.report_hz)) : every;
+    // The report timer runs at the fastest rate a client needs (ReportHz, Stream).
+    auto period = &t == &report_timer_ ? std::chrono::microseconds(static_cast<long>(1e6 / report_timer_hz())) : every;
     auto next = t.expiry() + period;
     const auto now = asio::steady_timer::clock_type::now();
     if (next + period < now) next = now + period;
@@ -199,10 +201,7 @@ void Server::admit(tcp::socket socket) {
   log_limited(spdlog::level::info, "connect",
               "client " + std::to_string(id) + " connected from " + session->peer() + (may_control ? "" : " (observer host)"));
   session->start();
-  const auto& snap = core_.snapshot();
-  const hal::Vec3 p = layout().cartesian(snap.position);
-  send(*session, protocol::format_curr_cor({p.x(), p.y(), p.z()}));
-  if (!layout().is_xyz()) send(*session, ax_pos_line());
+  send_position(*session, position_lines());  // the position on connect; changes only from then on
 }
 
 void Server::closed(Session& s) {

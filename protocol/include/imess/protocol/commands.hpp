@@ -27,7 +27,8 @@ struct Free {};                                             // open the position
 struct Reset {};                                            // clear a fault
 struct Set { std::string name; std::string value; };
 struct Get { std::string name; };                           // empty name: list all
-struct Stats {};
+// Stats: since the start; Reset: a new measuring interval; Interval, Hist: that interval.
+struct Stats { enum class Form { SinceStart, Reset, Interval, Hist } form = Form::SinceStart; };
 struct HandMv { Xyz delta; std::optional<double> speed; };  // simulator: push the carriage by hand
 struct Quit {};
 struct Replay { std::uint64_t from = 0; };                  // re-send journaled hits from this seq
@@ -36,6 +37,7 @@ inline constexpr std::uint64_t kMaxReplayHits = 1000;       // per Replay reques
 struct Take { bool force = false; };                        // force: stop the machine, take over
 struct Release {};                                          // stop the machine, give up control
 struct Watch { int ms = 0; };                               // dead-man interval; 0 = off
+struct Stream { double hz = 0; };                           // this client's position rate; 0 = ReportHz
 
 struct Version {};                                          // the daemon's version
 
@@ -111,11 +113,13 @@ inline constexpr int kMaxArcTurns = 1000;  // ArcTo P: 1 (the arc alone) ... thi
 
 inline constexpr int kWatchMinMs = 50;     // below this, io jitter alone would stop the machine
 inline constexpr int kWatchMaxMs = 60000;
+inline constexpr double kStreamMinHz = 0.1;      // as ReportHz
+inline constexpr double kStreamMaxHz = 10000;    // the fastest motion loop (Period 100 us)
 
 using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo, Home, Free,
                              Reset, Set, Get, Stats, HandMv, Quit, Replay, Take, Release, Watch, Version,
                              MoveTo, ArcTo, Dwell, Queue, Pause, Resume, Probe, JogAx, SetOut, Outputs,
                              Programs, Load, Upload, Run, Abort, Program, Key, Frames, Frame, PartPos, UseFrame,
-                             SetFrame, Align, DelFrame, Qualify>;
+                             SetFrame, Align, DelFrame, Qualify, Stream>;
 
 }  // namespace imess::protocol

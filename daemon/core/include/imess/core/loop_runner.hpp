@@ -1,12 +1,14 @@
 // LoopRunner: runs MotionCore::cycle in its own thread at a fixed period with absolute
 // deadlines (clock_nanosleep TIMER_ABSTIME), SCHED_FIFO and mlockall when permitted, and
-// measures its own wake-up latency, cycle time and overruns.
+// measures its own wake-up latency, cycle time and overruns: since the start (summarised once
+// a second) and over a measuring interval that clients restart (IntervalStats).
 #pragma once
-#include <array>
 #include <atomic>
 #include <string>
 #include <thread>
 
+#include "imess/core/interval_stats.hpp"
+#include "imess/core/latency_histogram.hpp"
 #include "imess/core/motion_core.hpp"
 
 namespace imess::core {
@@ -41,23 +43,9 @@ struct LoopStats {
   bool realtime = false;                       // SCHED_FIFO granted
 };
 
-// Latency histogram with 1 µs buckets; the last bucket collects everything longer.
-class LatencyHistogram {
- public:
-  static constexpr std::size_t kBuckets = 5001;
-  void add(double us) noexcept;
-  double percentile(double p) const noexcept;  // p in [0, 1]
-  double max() const noexcept { return max_; }
-  std::uint64_t count() const noexcept { return count_; }
-
- private:
-  std::array<std::uint32_t, kBuckets> buckets_{};
-  std::uint64_t count_ = 0;
-  double max_ = 0;
-};
-
 class LoopRunner {
  public:
+  static constexpr int kPriority = 80;  // SCHED_FIFO priority of the motion loop, when granted
   LoopRunner(MotionCore& core, const MonotonicClock& clock, Nanos period);
   ~LoopRunner();
   LoopRunner(const LoopRunner&) = delete;
@@ -68,7 +56,14 @@ class LoopRunner {
   // Before start(): each cycle runs at loop time (LoopClock) instead of its wake-up time.
   void use_loop_time(LoopClock* clock) noexcept { loop_time_ = clock; }
   void stop();
+  // Since the start, summarised once a second (Stats).
   const LoopStats& stats() noexcept { return stats_.read(); }
+  // The measuring interval (Stats Reset, Stats Interval, Stats Hist): any thread.
+  void restart_interval() noexcept { interval_.request_restart(); }
+  bool interval_restarted() const noexcept { return interval_.restarted(); }  // the loop has begun it
+  void interval(IntervalSnapshot& out) const noexcept { interval_.snapshot(out); }
+  double period_us() const noexcept { return std::chrono::duration<double, std::micro>(period_).count(); }
+  bool realtime() const noexcept { return realtime_.load(std::memory_order_relaxed); }
 
  private:
   void run() noexcept;
@@ -82,6 +77,7 @@ class LoopRunner {
   std::atomic<bool> realtime_{false};
   LatencyHistogram latency_, cycle_time_;
   std::uint64_t overruns_ = 0;
+  IntervalStats interval_;
   TripleBuffer<LoopStats> stats_;
 };
 

@@ -144,6 +144,9 @@ class Server {
   void set_param(Session& s, std::uint32_t slot, const protocol::Set& c);
   void qualify(Session& s, std::uint32_t slot, const protocol::Qualify& c);
   std::string status_line();
+  // stats.cpp: the motion loop's timing (Stats, Stats Reset, Stats Interval, Stats Hist)
+  void stats(Session& s, std::uint32_t slot, const protocol::Stats& c);
+  void reply_when_restarted(std::weak_ptr<Session> s, std::uint32_t slot, int waited);
   std::string stats_line();
   // hits.cpp, replay.cpp
   void send_hit(const core::Event& e);
@@ -219,7 +222,16 @@ class Server {
   void wait_for_events();  // re-arms the wait on the EventFd
   void pump_events();
   void backstop_events();  // the slow timer: counts the events only it found
-  void report_position();
+  // position_stream.cpp
+  struct PositionLines {
+    std::shared_ptr<const std::string> curr_cor, ax_pos;  // ax_pos: only when the axes are not X Y Z
+  };
+  PositionLines position_lines() const;
+  bool send_position(Session& s, const PositionLines& lines);  // what changed since s last got it
+  void report_position();         // the report timer, at the fastest rate a client needs
+  void report_start_of_motion();  // every millisecond: the first change after rest, at once
+  double report_timer_hz() const;
+  std::string set_stream_rate(Session& s, double hz);  // the reply to Stream
   void log_periodic();
 
   boost::asio::io_context& io_;
@@ -235,6 +247,8 @@ class Server {
   std::uint32_t next_id_ = 1;
   std::uint16_t port_ = 0;
   std::string last_curr_cor_;
+  bool at_rest_ = false;  // the last shared report period changed no position
+  std::chrono::steady_clock::time_point shared_report_due_{};  // the next ReportHz tick
   std::string last_ax_pos_;  // AxPos: only on a machine whose axes are not exactly X Y Z
   std::uint64_t points_ = 0;
   std::uint64_t woken_ = 0, backstop_found_ = 0;  // drains by wake-up / events only the backstop found

@@ -25,6 +25,9 @@ struct ClientInfo {
   std::chrono::steady_clock::time_point watch_fired_for{};  // last_received() when the dead-man last fired
   std::uint32_t in_flight = 0;   // commands in the motion loop's ring, not yet answered
   std::optional<ProgramUpload> upload;  // Upload: the program's lines until a line '.'
+  double stream_hz = 0;          // Stream: this client's position rate; 0 = the shared ReportHz
+  std::chrono::steady_clock::time_point stream_due{};  // its next position report at that rate
+  std::string sent_curr_cor, sent_ax_pos;  // the position lines it last got
 };
 
 class Session : public std::enable_shared_from_this<Session> {

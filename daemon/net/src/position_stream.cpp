@@ -1,0 +1,127 @@
+// The position stream: CurrCor (and AxPos on a machine whose axes are not exactly X Y Z) to
+// every client whenever its printed position changed since that client last got it — at the
+// shared ReportHz, or at the client's own Stream rate up to the motion loop's — and the first
+// change after rest at once. Each line is formatted once per tick and shared by every queue.
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+
+#include "imess/net/server.hpp"
+#include "imess/protocol/messages.hpp"
+
+namespace imess::net {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+Clock::duration period_of(double hz) {
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / hz));
+}
+
+// The next deadline on a fixed schedule; more than a whole period late, it skips ahead.
+Clock::time_point next_due(Clock::time_point due, Clock::duration period, Clock::time_point now) {
+  due += period;
+  return due + period < now ? now + period : due;
+}
+
+std::string hz_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+}  // namespace
+
+Server::PositionLines Server::position_lines() const {
+  const hal::Vec3 p = layout().cartesian(core_.snapshot().position);
+  PositionLines lines;
+  lines.curr_cor = std::make_shared<const std::string>(protocol::format_curr_cor({p.x(), p.y(), p.z()}));
+  if (!layout().is_xyz()) lines.ax_pos = std::make_shared<const std::string>(ax_pos_line());
+  return lines;
+}
+
+bool Server::send_position(Session& s, const PositionLines& lines) {
+  auto& info = s.info();
+  bool sent = false;
+  if (info.sent_curr_cor != *lines.curr_cor) {
+    info.sent_curr_cor = *lines.curr_cor;
+    s.send(lines.curr_cor);
+    sent = true;
+  }
+  if (lines.ax_pos && info.sent_ax_pos != *lines.ax_pos) {
+    info.sent_ax_pos = *lines.ax_pos;
+    s.send(lines.ax_pos);
+    sent = true;
+  }
+  return sent;
+}
+
+void Server::report_position() {
+  const auto now = Clock::now();
+  const bool shared_due = now >= shared_report_due_;
+  if (shared_due) {
+    shared_report_due_ = next_due(shared_report_due_, period_of(config_.report_hz), now);
+    show_block(false);
+    move_reports();
+  }
+  const PositionLines lines = position_lines();
+  if (config_.log_traffic && *lines.curr_cor != last_curr_cor_) spdlog::info("[stream] < {}", *lines.curr_cor);
+  auto sessions = sessions_;  // a send may drop a slow client and erase it
+  for (auto& [id, s] : sessions) {
+    auto& info = s->info();
+    if (info.stream_hz > 0) {
+      if (now < info.stream_due) continue;
+      info.stream_due = next_due(info.stream_due, period_of(info.stream_hz), now);
+    } else if (!shared_due) {
+      continue;
+    }
+    send_position(*s, lines);
+  }
+  if (shared_due) {  // at rest: no change over a whole shared report period
+    at_rest_ = *lines.curr_cor == last_curr_cor_ && (!lines.ax_pos || *lines.ax_pos == last_ax_pos_);
+    last_curr_cor_ = *lines.curr_cor;
+    if (lines.ax_pos) last_ax_pos_ = *lines.ax_pos;
+  }
+}
+
+// At rest the stream is silent; the first change after it goes out at the next millisecond,
+// not at the next report tick: a jog shows at once whatever the rate. From there on each
+// client's stream keeps its rate.
+void Server::report_start_of_motion() {
+  if (!config_.stream_position || !at_rest_) return;
+  const PositionLines lines = position_lines();
+  if (*lines.curr_cor == last_curr_cor_ && (!lines.ax_pos || *lines.ax_pos == last_ax_pos_)) return;
+  at_rest_ = false;
+  last_curr_cor_ = *lines.curr_cor;
+  if (lines.ax_pos) last_ax_pos_ = *lines.ax_pos;
+  if (config_.log_traffic) spdlog::info("[all] < {}", *lines.curr_cor);
+  auto sessions = sessions_;
+  for (auto& [id, s] : sessions) send_position(*s, lines);
+}
+
+// The report timer runs at the fastest rate any client needs.
+double Server::report_timer_hz() const {
+  double hz = config_.report_hz;
+  for (const auto& [id, s] : sessions_) hz = std::max(hz, s->info().stream_hz);
+  return hz;
+}
+
+std::string Server::set_stream_rate(Session& s, double hz) {
+  const double loop_hz = 1e6 / config_.period_us;
+  if (hz > loop_hz * (1 + 1e-9))
+    return protocol::format_err(protocol::ErrorCode::BadValue,
+                                "Stream " + hz_text(hz) + " Hz is faster than the motion loop (" + hz_text(loop_hz) +
+                                    " Hz, Period " + hz_text(config_.period_us) + " us): it takes 0.1 up to " +
+                                    hz_text(loop_hz) + ", or 0 for ReportHz");
+  s.info().stream_hz = hz;
+  s.info().stream_due = Clock::now();
+  if (hz > 0 && config_.stream_position) {  // a faster rate takes effect now, not at the next slow tick
+    report_timer_.cancel();
+    schedule(report_timer_, std::chrono::microseconds(0), &Server::report_position);
+  }
+  return protocol::format_ok("Stream", hz_text(hz > 0 ? hz : config_.report_hz));
+}
+
+}  // namespace imess::net
