@@ -72,6 +72,9 @@ inline Eigen::VectorXd damped_step(const Eigen::MatrixXd& J, const Eigen::Vector
 // cone, 200 iterations not enough; mu = 2.3 on another, every undamped step rejected and the
 // damped ones crawling). The driver then takes Newton steps.
 inline constexpr double kNewtonModelError = 0.25;
+// At rounding level: a Gauss–Newton step that leaves more than this fraction of the gradient
+// cosine converges too slowly (a rate |1 - mu| near 1); the driver then takes Newton steps.
+inline constexpr double kSlowCosine = 0.5;
 // Central-difference step of the Newton Hessian, relative to each parameter's scale.
 inline constexpr double kNewtonStep = 1e-5;
 // Smallest eigenvalue of the Newton Hessian, relative to its largest, for a Newton step.
@@ -216,8 +219,8 @@ LmOutcome levenberg_marquardt(const Problem& pb, typename Problem::State& x, con
     // Near the minimum the sum of squares stops resolving the step (its change is rounding),
     // while the step itself, computed from the residuals and J, is still accurate: take it.
     const bool change_is_rounding = std::isfinite(ssq_new) && ssq_change_is_rounding(ssq, ssq_new, sc.maxCoeff(), m);
-    const bool rounding_level =
-        change_is_rounding && (predicted_rel <= opt.ssq_tolerance || max_gradient_cosine(J_new, r_new) < cosine);
+    const double cosine_new = change_is_rounding ? max_gradient_cosine(J_new, r_new) : cosine;
+    const bool rounding_level = change_is_rounding && (predicted_rel <= opt.ssq_tolerance || cosine_new < cosine);
     // At the rounding floor: the sum of squares has not changed beyond its rounding for
     // kRoundingSteps iterations (taken or not) — no step can be verified any more.
     rounding_steps = change_is_rounding ? rounding_steps + 1 : 0;
@@ -231,6 +234,10 @@ LmOutcome levenberg_marquardt(const Problem& pb, typename Problem::State& x, con
       // step's sum of squares fell clearly more than predicted (mu < 1), also try the step
       // stretched to the minimum along it by the measured curvature, 1 / mu (kMaxStretch when
       // mu is about 0 or negative, near a saddle).
+      // At rounding level the sum of squares cannot measure the model error, but the gradient
+      // shows the convergence rate: a Gauss–Newton step that left more than kSlowCosine of the
+      // gradient cosine is converging linearly and slowly (large residuals): Newton steps too.
+      if (!newton_taken && change_is_rounding && cosine_new > kSlowCosine * cosine) newton = true;
       if (!newton_taken && predicted > 0.0 && !change_is_rounding &&
           std::abs((ssq_old - ssq_new) / predicted - 1.0) > kNewtonModelError) {
         newton = true;
