@@ -5,12 +5,16 @@
 // below 1e-6 of the size). Data with deviations must give a least-squares solution: stationary by
 // this file's own Jacobian and with a sum of squares no larger than the generator's. Minimal
 // cylinder and cone sets must be refused as ambiguous (several exact solutions). No misses are
-// tolerated except the one cone listed in docs/metrology.md 2.7. IMESS_PRINT_FITS=1 prints the worst
-// figures per feature.
+// tolerated. IMESS_PRINT_FITS=1 prints the worst figures per feature; IMESS_FIT_SEEDS=N draws N
+// instances per feature instead of 500 (a wider check, docs/metrology.md 2.7).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
+#include <iterator>
+#include <limits>
+#include <stdexcept>
 #include <string>
 
 #include <catch2/catch.hpp>
@@ -24,18 +28,36 @@ using namespace imess::metrology::test;
 
 namespace {
 
-constexpr int kSeeds = 500;
+constexpr int kDefaultSeeds = 500;
+constexpr long kMaxSeeds = 1000000;
+
+// Draws per feature: 500, or the count in IMESS_FIT_SEEDS (1 to 1000000).
+int draw_count() {
+  static const int n = [] {
+    const char* env = std::getenv("IMESS_FIT_SEEDS");
+    if (env == nullptr) return kDefaultSeeds;
+    char* end = nullptr;
+    const long v = std::strtol(env, &end, 10);
+    if (end == env || *end != '\0' || v < 1 || v > kMaxSeeds)
+      throw std::invalid_argument("IMESS_FIT_SEEDS='" + std::string(env) +
+                                  "': expected a whole number of draws per feature from 1 to 1000000");
+    return static_cast<int>(v);
+  }();
+  return n;
+}
 constexpr double kRelTol = 1e-6;  // closeness to the generator, relative to its size
 constexpr double kCosTol = 1e-6;  // stationarity with the test's own Jacobian
 
 // Worst figures of one feature, printed at the end of its test case on request.
 struct Worst {
   const char* feature;
+  int draws = draw_count();
   double error = 0.0;   // relative to size: max(location, size) / size, orientation in rad
   double cosine = 0.0;
   int ambiguous = 0;
-  int misses = 0;  // cylinder, cone: a higher minimum than the generator's, or no convergence
+  int misses = 0;  // cylinder, cone: a higher minimum than the generator's, or a refusal
   int lower = 0;   // cylinder, cone: a minimum lower than the generator's (the fit is right)
+  int cylinders = 0;  // cone: refused as a cylinder that fits no worse than the generator (right)
   void add(const Deviation& d, double size, double cos) {
     error = std::max({error, d.location / size, d.size / size, d.orientation, d.apex_angle});
     cosine = std::max(cosine, cos);
@@ -43,8 +65,10 @@ struct Worst {
   ~Worst() {
     if (std::getenv("IMESS_PRINT_FITS") == nullptr) return;
     std::printf("%-9s worst relative error %.2e  worst gradient cosine %.2e  ambiguous minimal sets %d"
-                "  lower minimum %d  missed %d  (of %d)\n",
-                feature, error, cosine, ambiguous, lower, misses, kSeeds);
+                "  lower minimum %d  missed %d  (of %d)",
+                feature, error, cosine, ambiguous, lower, misses, draws);
+    if (cylinders > 0) std::printf("  cylinder fits better %d", cylinders);
+    std::printf("\n");
   }
 };
 
@@ -66,7 +90,7 @@ std::size_t count(Rng& rng, std::size_t minimum) {
 TEST_CASE("random lines and planes are their exact least-squares fits", "[fit][random]") {
   Worst wl{"line3d"};
   Worst wp{"plane"};
-  for (int seed = 0; seed < kSeeds; ++seed) {
+  for (int seed = 0; seed < draw_count(); ++seed) {
     Rng rng(1000 + seed);
     const double size = rng.uniform(1, 200);
     const Eigen::Vector3d c = random_point(rng);
@@ -104,7 +128,7 @@ TEST_CASE("random lines and planes are their exact least-squares fits", "[fit][r
 TEST_CASE("random circles on arcs down to 30 degrees are their exact least-squares fits", "[fit][random]") {
   Worst w2{"circle2d"};
   Worst w3{"circle3d"};
-  for (int seed = 0; seed < kSeeds; ++seed) {
+  for (int seed = 0; seed < draw_count(); ++seed) {
     Rng rng(2000 + seed);
     const double radius = rng.uniform(1, 200);
     const double span = deg(rng.uniform(30, 360));
@@ -149,7 +173,7 @@ TEST_CASE("random circles on arcs down to 30 degrees are their exact least-squar
 
 TEST_CASE("random spheres on caps down to 30 degrees are their exact least-squares fits", "[fit][random]") {
   Worst w{"sphere"};
-  for (int seed = 0; seed < kSeeds; ++seed) {
+  for (int seed = 0; seed < draw_count(); ++seed) {
     Rng rng(3000 + seed);
     const double radius = rng.uniform(1, 200);
     const Eigen::Vector3d c = random_point(rng);
@@ -185,7 +209,7 @@ bool no_worse(double ssq, double ssq_truth, double amp) { return amp > 0.0 && ss
 
 TEST_CASE("random cylinders on sectors down to 30 degrees are their exact least-squares fits", "[fit][random]") {
   Worst w{"cylinder"};
-  for (int seed = 0; seed < kSeeds; ++seed) {
+  for (int seed = 0; seed < draw_count(); ++seed) {
     Rng rng(4000 + seed);
     const double radius = rng.uniform(1, 200);
     const Eigen::Vector3d c = random_point(rng);
@@ -237,52 +261,94 @@ TEST_CASE("random cylinders on sectors down to 30 degrees are their exact least-
   CHECK(w.misses == 0);
 }
 
-TEST_CASE("random cones (apex 10 to 120 degrees, sectors and height bands) are their exact fits", "[fit][random]") {
-  Worst w{"cone"};
-  for (int seed = 0; seed < kSeeds; ++seed) {
-    Rng rng(5000 + seed);
-    Cone truth;
-    truth.direction = rng.unit_vector();
-    truth.point = random_point(rng);
-    truth.apex_angle_rad = deg(rng.uniform(10, 120));
-    const double radius = rng.uniform(2, 100);
-    truth.distance = radius * std::cos(truth.half_angle());
-    const std::size_t n = count(rng, kMinPointsCone);
-    const double h0 = rng.uniform(-0.5, 0.5) * radius;
-    const double span = rng.uniform(30, 360);
-    const double h1 = h0 + rng.uniform(0.2, 1.5) * radius;
-    const double amp = amplitude(rng, radius);
-    const auto s = cone_samples(rng, truth, deg(span), h0, h1, n, amp);
-    auto f = fit_cone(s.points);
-    INFO("seed " << seed << " points " << n << " span " << span << " amplitude " << amp);
-    if (n == kMinPointsCone) {  // several cones pass through 6 points: always refused
-      REQUIRE_FALSE(f.ok());
-      CHECK(f.error().code == FitErrorCode::AmbiguousSolution);
-      ++w.ambiguous;
-      continue;
-    }
-    REQUIRE(f.ok());
-    Eigen::MatrixXd J(static_cast<Eigen::Index>(n), 8);
-    Eigen::VectorXd r(J.rows());
-    for (Eigen::Index i = 0; i < J.rows(); ++i) r(i) = cone_row(*f, s.points[static_cast<std::size_t>(i)], &J, i);
-    const Deviation d = compare(*f, truth);
-    const double cos = cosine_if_residual(J, r, radius);
-    CHECK(cos < kCosTol);  // always a least-squares stationary point
-    if (d.location < kRelTol * radius && d.size < kRelTol * radius && d.orientation < kRelTol && d.apex_angle < kRelTol) {
-      w.add(d, radius, cos);
-      continue;
-    }
-    double ssq_truth = 0.0;
-    for (const auto& p : s.points) ssq_truth += std::pow(cone_row(truth, p, nullptr, 0), 2);
-    if (no_worse(r.squaredNorm(), ssq_truth, amp)) {
-      w.cosine = std::max(w.cosine, cos);
-      if (r.squaredNorm() < ssq_truth * (1.0 - 1e-9)) ++w.lower;
-      continue;
+namespace {
+
+// One cone of the generator: apex 10 to 120 degrees, a sector of 30 to 360 degrees and a band of
+// 0.2 to 1.5 radii, drawn from Rng(seed), fitted and judged. Minimal sets must be refused; others
+// must give the generator, or (data with deviations) a stationary point no worse than it, or be
+// refused as a cylinder that fits no worse than it.
+void check_random_cone(std::uint64_t seed, Worst& w) {
+  Rng rng(seed);
+  Cone truth;
+  truth.direction = rng.unit_vector();
+  truth.point = random_point(rng);
+  truth.apex_angle_rad = deg(rng.uniform(10, 120));
+  const double radius = rng.uniform(2, 100);
+  truth.distance = radius * std::cos(truth.half_angle());
+  const std::size_t n = count(rng, kMinPointsCone);
+  const double h0 = rng.uniform(-0.5, 0.5) * radius;
+  const double span = rng.uniform(30, 360);
+  const double h1 = h0 + rng.uniform(0.2, 1.5) * radius;
+  const double amp = amplitude(rng, radius);
+  const auto s = cone_samples(rng, truth, deg(span), h0, h1, n, amp);
+  auto f = fit_cone(s.points);
+  INFO("seed " << seed << " points " << n << " span " << span << " amplitude " << amp);
+  if (n == kMinPointsCone) {  // several cones pass through 6 points: always refused
+    REQUIRE_FALSE(f.ok());
+    CHECK(f.error().code == FitErrorCode::AmbiguousSolution);
+    ++w.ambiguous;
+    return;
+  }
+  double ssq_truth = 0.0;
+  for (const auto& p : s.points) ssq_truth += std::pow(cone_row(truth, p, nullptr, 0), 2);
+  if (!f.ok()) {
+    // Refusing a cone as a cylinder is right when a cylinder fits the points at least as well as
+    // the generator (a narrow band with deviations); every other refusal is a miss.
+    if (f.error().code == FitErrorCode::ConeIsCylinder) {
+      const auto cyl = fit_cylinder(s.points);
+      double ssq_cyl = std::numeric_limits<double>::infinity();
+      if (cyl.ok()) {
+        ssq_cyl = 0.0;
+        for (const auto& p : s.points) ssq_cyl += std::pow(cyl->distance_from_axis(p) - cyl->radius(), 2);
+      }
+      if (no_worse(ssq_cyl, ssq_truth, amp)) {
+        ++w.cylinders;
+        return;
+      }
     }
     ++w.misses;
-    WARN("cone seed " << seed << " (" << n << " points): a worse minimum, rms " << f->stats.rms);
+    WARN("cone seed " << seed << " (" << n << " points): refused, " << f.error().message);
+    return;
   }
-  // Known (docs/metrology.md 2.7): seed 328, 9 points with deviations, ends in a minimum above the
-  // generator's from every start. Any further miss fails.
-  CHECK(w.misses <= 1);
+  Eigen::MatrixXd J(static_cast<Eigen::Index>(n), 8);
+  Eigen::VectorXd r(J.rows());
+  for (Eigen::Index i = 0; i < J.rows(); ++i) r(i) = cone_row(*f, s.points[static_cast<std::size_t>(i)], &J, i);
+  const Deviation d = compare(*f, truth);
+  const double cos = cosine_if_residual(J, r, radius);
+  CHECK(cos < kCosTol);  // always a least-squares stationary point
+  if (d.location < kRelTol * radius && d.size < kRelTol * radius && d.orientation < kRelTol && d.apex_angle < kRelTol) {
+    w.add(d, radius, cos);
+    return;
+  }
+  if (no_worse(r.squaredNorm(), ssq_truth, amp)) {
+    w.cosine = std::max(w.cosine, cos);
+    if (r.squaredNorm() < ssq_truth * (1.0 - 1e-9)) ++w.lower;
+    return;
+  }
+  ++w.misses;
+  WARN("cone seed " << seed << " (" << n << " points): a worse minimum, rms " << f->stats.rms);
+}
+
+}  // namespace
+
+TEST_CASE("random cones (apex 10 to 120 degrees, sectors and height bands) are their exact fits", "[fit][random]") {
+  Worst w{"cone"};
+  for (int i = 0; i < draw_count(); ++i) check_random_cone(5000 + static_cast<std::uint64_t>(i), w);
+  CHECK(w.misses == 0);
+}
+
+TEST_CASE("cones of the wider random check that were once missed or not converged are their exact fits",
+          "[fit][random]") {
+  // Draws of the same generator beyond the 500 above (docs/metrology.md 2.7), each one a failure of
+  // an earlier state: the grid search missing the generator's basin (5583 6165 6304 6682 7275 7573
+  // 101687 103834 103969; 100047 and 304845 by trial versions of the screened search),
+  // Gauss–Newton crawling at large residuals until the iteration cap (6387 100015 101877 102199
+  // 104004 203921 204324 304669 504436), the last step at the rounding floor refused (101617),
+  // minimal sets on which no start converged (8588 102158 504596).
+  const std::uint64_t seeds[] = {5583,   6165,   6304,   6682,   7275,   7573,   100047, 101687, 103834, 103969,
+                                 304845, 6387,   100015, 101877, 102199, 104004, 203921, 204324, 304669, 504436,
+                                 101617, 8588,   102158, 504596};
+  Worst w{"cone+", static_cast<int>(std::size(seeds))};
+  for (const std::uint64_t seed : seeds) check_random_cone(seed, w);
+  CHECK(w.misses == 0);
 }
