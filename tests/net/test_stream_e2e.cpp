@@ -2,6 +2,9 @@
 // ReportHz, its bounds, and the first change after rest pushed at once whatever the rate.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+#include <fstream>
+
 #include <chrono>
 #include <optional>
 #include <string>
@@ -80,4 +83,43 @@ TEST_CASE("the first position change after rest arrives at once, not at the next
   INFO("the first CurrCor after " << ms << " ms");
   CHECK(ms < 1000);
   REQUIRE(owner.request("StopMv") == std::optional<std::string>("Ok StopMv"));
+}
+
+namespace {
+// Sleeps that ended in a wake-up, summed over messd's threads except the motion loop's.
+long io_wakeups(pid_t pid) {
+  long sum = 0;
+  const std::string dir = "/proc/" + std::to_string(pid) + "/task";
+  for (const auto& task : std::filesystem::directory_iterator(dir)) {
+    std::ifstream comm(task.path() / "comm");
+    std::string name;
+    std::getline(comm, name);
+    if (name == "messd-motion") continue;
+    std::ifstream status(task.path() / "status");
+    for (std::string line; std::getline(status, line);)
+      if (line.rfind("voluntary_ctxt_switches:", 0) == 0) sum += std::stol(line.substr(24));
+  }
+  return sum;
+}
+}  // namespace
+
+TEST_CASE("standing messd's io thread sleeps between events (no millisecond polling) and a hand push still shows at once") {
+  DaemonProcess messd;
+  LineClient owner(messd.port());
+  REQUIRE(owner.until_prefix("CurrCor", 2.0));
+  REQUIRE(owner.request("Set ReportHz 0.1") == std::optional<std::string>("Ok Set"));
+  REQUIRE(owner.request("Take") == std::optional<std::string>("Ok Take"));
+  REQUIRE(owner.request("Watch 5000") == std::optional<std::string>("Ok Watch"));  // the dead-man has a deadline, not a poll
+  usleep(300'000);
+  const long before = io_wakeups(messd.pid());
+  usleep(2'000'000);
+  const double per_s = (io_wakeups(messd.pid()) - before) / 2.0;
+  INFO("io wake-ups a second, standing: " << per_s);
+  CHECK(per_s < 200);  // timers at 20 Hz and below; polling each millisecond would be 1000
+  const auto t0 = Clock::now();
+  REQUIRE(owner.request("HandMv 0 0 -5") == std::optional<std::string>("Ok HandMv"));  // loops open, pushed by hand
+  REQUIRE(owner.until_prefix("CurrCor", 5.0));
+  const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  INFO("the first CurrCor of the hand push after " << ms << " ms");
+  CHECK(ms < 1000);  // the next report tick is 10 s away
 }

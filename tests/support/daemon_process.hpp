@@ -97,6 +97,7 @@ class DaemonProcess {
   DaemonProcess& operator=(const DaemonProcess&) = delete;
 
   int port() const { return port_; }
+  pid_t pid() const { return pid_; }
   int ipp_port() const { return ipp_port_; }  // 0: the I++ DME server is off
   bool running() const { return pid_ > 0 && waitpid(pid_, nullptr, WNOHANG) == 0; }
   const std::string& journal_dir() const { return own_journal_; }  // empty when the test gave --journal

@@ -190,6 +190,10 @@ void MotionCore::cycle(Nanos now) noexcept {
   config_.params = params_in_.read();
   check_limits(now);
   update_mode(now);
+  if (rest_watch_.left_rest(ms_.position, n_)) {
+    ++rest_departures_;
+    pushed_ = true;  // no event, but the io side shows the first change after rest at once
+  }
   publish(now);
   if (pushed_) {  // after publish: the io side sees the snapshot of this cycle too
     pushed_ = false;
@@ -1004,6 +1008,7 @@ void MotionCore::publish(Nanos now) noexcept {
   s.path_held = sampler_.holding();
   s.outputs = outputs_on_;
   s.probe_armed = probe_armed(now);
+  s.rest_departures = rest_departures_;
   snapshot_.publish();
 }
 

@@ -104,6 +104,11 @@ void Server::pump_events() {
         break;
     }
   }
+  const std::uint64_t departures = core_.snapshot().rest_departures;
+  if (departures != rest_departures_seen_) {  // the position left a rest: show it at once
+    rest_departures_seen_ = departures;
+    watch_start_of_motion();
+  }
 }
 
 void Server::log_periodic() {

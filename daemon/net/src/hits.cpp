@@ -22,6 +22,7 @@ void Server::send_hit(const core::Event& e) {
   broadcast(line);
   broadcast(protocol::format_meas_pt(hit.p));
   send_part_point(hit);
+  arm_housekeeping();  // the journal's fdatasync when it falls due
 }
 
 // Qualify radius form dx dy dz: TipRadius through the parameter lane (as Set does, so the

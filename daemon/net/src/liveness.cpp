@@ -23,6 +23,48 @@ bool moving(core::Mode m) {
 }
 }  // namespace
 
+std::optional<Clock::time_point> Server::watch_deadline() const {
+  const auto& owner = control_.owner();
+  if (!owner) return std::nullopt;
+  auto it = sessions_.find(owner->session);
+  if (it == sessions_.end()) return std::nullopt;
+  const Session& s = *it->second;
+  const auto& info = s.info();
+  if (info.watch_ms <= 0) return std::nullopt;
+  const auto ms = std::chrono::milliseconds(info.watch_ms);
+  // Fired for this silence: look again one period on; bytes arriving meanwhile give a later
+  // deadline than that, so none is missed.
+  if (info.watch_fired_for == s.last_received()) return Clock::now() + ms;
+  return s.last_received() + ms;
+}
+
+void Server::arm_housekeeping() {
+  if (!running_) return;
+  std::optional<Clock::time_point> next;
+  auto earliest = [&](std::optional<Clock::time_point> t) {
+    if (t && (!next || *t < *next)) next = t;
+  };
+  earliest(watch_deadline());
+  earliest(journal_.sync_due());
+  if (start_watch_until_)
+    earliest(Clock::now() + std::chrono::microseconds(static_cast<long>(config_.period_us)));
+  if (!next || (housekeeping_at_ && *housekeeping_at_ <= *next)) return;  // nothing waits, or armed earlier
+  housekeeping_at_ = next;
+  housekeeping_timer_.expires_at(*next);  // cancels a later wait, whose handler then does nothing
+  housekeeping_timer_.async_wait([this](boost::system::error_code ec) {
+    if (ec || !running_) return;
+    housekeeping();
+  });
+}
+
+void Server::housekeeping() {
+  housekeeping_at_.reset();
+  check_watch();
+  journal_.sync_if_due();
+  if (start_watch_until_) report_start_of_motion();
+  arm_housekeeping();
+}
+
 void Server::check_watch() {
   const auto& owner = control_.owner();
   if (!owner) return;

@@ -86,13 +86,29 @@ void Server::report_position() {
   }
 }
 
-// At rest the stream is silent; the first change after it goes out at the next millisecond,
-// not at the next report tick: a jog shows at once whatever the rate. From there on each
-// client's stream keeps its rate.
-void Server::report_start_of_motion() {
+// At rest the stream is silent; the first change after it goes out at once, not at the next
+// report tick: a jog shows at once whatever the rate. The motion loop wakes us when the
+// position leaves a rest (RestWatch, a tenth of the printed digit); from then on the position
+// is looked at every loop period until its printed form changes (or 100 ms pass: a creep that
+// never reaches a digit is left to the stream). From there on each client's stream keeps its rate.
+void Server::watch_start_of_motion() {
   if (!config_.stream_position || !at_rest_) return;
+  start_watch_until_ = Clock::now() + std::chrono::milliseconds(100);
+  report_start_of_motion();
+  arm_housekeeping();
+}
+
+void Server::report_start_of_motion() {
+  if (!config_.stream_position || !at_rest_) {
+    start_watch_until_.reset();
+    return;
+  }
   const PositionLines lines = position_lines();
-  if (*lines.curr_cor == last_curr_cor_ && (!lines.ax_pos || *lines.ax_pos == last_ax_pos_)) return;
+  if (*lines.curr_cor == last_curr_cor_ && (!lines.ax_pos || *lines.ax_pos == last_ax_pos_)) {
+    if (start_watch_until_ && Clock::now() >= *start_watch_until_) start_watch_until_.reset();
+    return;
+  }
+  start_watch_until_.reset();
   at_rest_ = false;
   last_curr_cor_ = *lines.curr_cor;
   if (lines.ax_pos) last_ax_pos_ = *lines.ax_pos;

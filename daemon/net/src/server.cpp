@@ -26,7 +26,7 @@ Server::Server(asio::io_context& io, ServerConfig config, core::MotionCore& core
       acceptor_(io),
       wake_(wake),
       event_timer_(io),
-      watch_timer_(io),
+      housekeeping_timer_(io),
       report_timer_(io),
       log_timer_(io),
       clients_timer_(io),
@@ -78,7 +78,6 @@ void Server::start() {
   // Without an EventFd the timer is the only drain, so it keeps the old millisecond.
   const double drain_ms = wake_ ? config_.event_backstop_ms : 1.0;
   schedule(event_timer_, std::chrono::microseconds(static_cast<long>(drain_ms * 1000)), &Server::backstop_events);
-  schedule(watch_timer_, std::chrono::microseconds(1000), &Server::every_millisecond);
   schedule(clients_timer_, std::chrono::microseconds(250000), &Server::check_clients);
   if (config_.stream_position)
     schedule(report_timer_, std::chrono::microseconds(static_cast<long>(1e6 / config_.report_hz)), &Server::report_position);
@@ -91,7 +90,7 @@ void Server::stop() {
   acceptor_.close(ec);
   if (ipp_) ipp_->stop();
   event_timer_.cancel();
-  watch_timer_.cancel();
+  housekeeping_timer_.cancel();
   if (wake_wait_) wake_wait_->close(ec);
   report_timer_.cancel();
   log_timer_.cancel();
@@ -99,14 +98,6 @@ void Server::stop() {
   accept_timer_.cancel();
   auto sessions = sessions_;
   for (auto& [id, s] : sessions) s->close();
-}
-
-// The owner's dead-man, the first position after rest, and the journal's fdatasync once its oldest unsynced hit is
-// journal.fsync_ms old (nothing else calls it: a hit must not wait for the next hit's append).
-void Server::every_millisecond() {
-  check_watch();
-  journal_.sync_if_due();
-  report_start_of_motion();
 }
 
 void Server::schedule(asio::steady_timer& t, std::chrono::microseconds every, void (Server::*fn)()) {
@@ -193,7 +184,11 @@ void Server::admit(tcp::socket socket) {
   }
   auto id = next_id_++;
   auto session = std::make_shared<Session>(
-      std::move(socket), id, config_.max_queue_bytes, [this](Session& s, const protocol::FramedLine& l) { on_line(s, l); },
+      std::move(socket), id, config_.max_queue_bytes,
+      [this](Session& s, const protocol::FramedLine& l) {
+        on_line(s, l);
+        arm_housekeeping();  // a Watch, a new owner, a hit to sync: each may bring a deadline
+      },
       [this](Session& s) { closed(s); });
   session->info().may_control = may_control;
   session->info().may_force = may_control && rules.force_hosts.contains(address);

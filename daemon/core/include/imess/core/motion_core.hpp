@@ -10,6 +10,7 @@
 #include "imess/core/hand_travel.hpp"
 #include "imess/core/homing.hpp"
 #include "imess/core/queues.hpp"
+#include "imess/core/rest_watch.hpp"
 #include "imess/core/triple_buffer.hpp"
 #include "imess/hal/motion_backend.hpp"
 #include "imess/planner/sampler.hpp"
@@ -142,6 +143,8 @@ class MotionCore {
   EventSignal no_signal_;
   EventSignal* signal_ = &no_signal_;
   bool pushed_ = false;                      // this cycle pushed an event: notify at its end
+  RestWatch rest_watch_;                     // the position leaving a rest also wakes the io side
+  std::uint64_t rest_departures_ = 0;
   TripleBuffer<Snapshot> snapshot_;
 
   int n_ = 3;  // the machine's axes (config_.layout.count)

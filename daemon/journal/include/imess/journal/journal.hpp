@@ -41,6 +41,12 @@ class Journal {
 
   // fdatasync when the oldest unsynced hit is fsync_interval old. Call often (every ms).
   void sync_if_due(Clock::time_point now = Clock::now());
+  // When sync_if_due will sync: the oldest unsynced hit's time plus fsync_interval; none when
+  // everything is on disk.
+  std::optional<Clock::time_point> sync_due() const {
+    if (!unsynced_since_) return std::nullopt;
+    return *unsynced_since_ + config_.fsync_interval;
+  }
   void sync();
 
   // Up to `max` hits from `from` on (from 0 means 1). Throws JournalError on a read error.

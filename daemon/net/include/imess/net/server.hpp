@@ -128,8 +128,12 @@ class Server {
   // `who` names the stop in a running program's ProgEnd (StopMv, Abort, disconnected ...).
   void stop_machine(std::string_view who = "StopMv");
   // liveness.cpp
-  void every_millisecond();  // check_watch, journal sync when due
-  void check_watch();     // every millisecond: the owner's dead-man
+  // One timer at the earliest deadline that exists — the owner's dead-man, the journal's
+  // fdatasync, the start of motion being watched — and none at all when nothing waits.
+  void arm_housekeeping();
+  void housekeeping();
+  std::optional<std::chrono::steady_clock::time_point> watch_deadline() const;
+  void check_watch();     // the owner's dead-man, at its deadline
   void check_clients();   // every 250 ms: stalled writers, silent controllers
   void drop(Session& s, std::string_view why);
   // dispatch.cpp
@@ -229,7 +233,8 @@ class Server {
   PositionLines position_lines() const;
   bool send_position(Session& s, const PositionLines& lines);  // what changed since s last got it
   void report_position();         // the report timer, at the fastest rate a client needs
-  void report_start_of_motion();  // every millisecond: the first change after rest, at once
+  void report_start_of_motion();  // the first change after rest, at once (woken by the loop)
+  void watch_start_of_motion();   // the loop saw the position leave a rest: poll it until it shows
   double report_timer_hz() const;
   std::string set_stream_rate(Session& s, double hz);  // the reply to Stream
   void log_periodic();
@@ -242,7 +247,10 @@ class Server {
   boost::asio::ip::tcp::acceptor acceptor_;
   core::EventFd* wake_;
   std::optional<boost::asio::posix::stream_descriptor> wake_wait_;  // a dup of wake_'s fd
-  boost::asio::steady_timer event_timer_, watch_timer_, report_timer_, log_timer_, clients_timer_, accept_timer_;
+  boost::asio::steady_timer event_timer_, housekeeping_timer_, report_timer_, log_timer_, clients_timer_, accept_timer_;
+  std::optional<std::chrono::steady_clock::time_point> housekeeping_at_;  // the housekeeping timer's deadline, when armed
+  std::optional<std::chrono::steady_clock::time_point> start_watch_until_;  // polling for the first printed change
+  std::uint64_t rest_departures_seen_ = 0;
   std::map<std::uint32_t, std::shared_ptr<Session>> sessions_;
   std::uint32_t next_id_ = 1;
   std::uint16_t port_ = 0;
