@@ -3,10 +3,16 @@
 prints every figure with its value in each run, its reference and ratio, and its goal, and
 draws the plots (latency histograms and CDFs, curves) with matplotlib when it is installed.
 
-Usage: report.py --out RESULTS.json [--plots DIR] [--machine JSON] RUN_DIR [RUN_DIR...]
+Usage: report.py --out RESULTS.json [--plots DIR] [--quick] [--machine JSON] RUN_DIR [RUN_DIR...]
 Each RUN_DIR holds the *.json files of one run (bench_net.json, bench_rt.json, ...) and any
-*.txt output of the text-only benches. Exit status 0 when the report was written, 2 on bad
-input (a file that is not the benches' JSON names the file and the key).
+*.txt output of the text-only benches. --quick draws PNG only (no SVG), without the log axes'
+minor ticks, and a distribution that is another's reference (a floor) only beside it, not on
+a plot of its own.
+Without matplotlib the figures and the results file are written all the same, and a line on
+stderr and the results' "plots_unavailable" say why there are no plots.
+Exit status 0 when the report was written (with or without plots), 1 when a plot could not
+be drawn (the results file is written first), 2 on bad input (a file that is not the
+benches' JSON names the file and the key).
 """
 import argparse
 import glob
@@ -85,31 +91,44 @@ def clean(dist):
     return sorted(s for s in dist.get("samples", []) if isinstance(s, (int, float)) and math.isfinite(s))
 
 
-def save(plt, fig, plots_dir, name):
-    """Writes the figure as PNG and SVG; returns the paths."""
+def save(plt, fig, plots_dir, name, formats, quick):
+    """Writes the figure in each of `formats` (png, svg); returns the paths. quick: without the
+    log axes' minor ticks (laying them out is most of a plot's cost)."""
+    if quick:
+        for ax in fig.axes:
+            ax.minorticks_off()
     fig.tight_layout()
-    paths = [os.path.join(plots_dir, f"{name}.{ext}") for ext in ("png", "svg")]
+    paths = [os.path.join(plots_dir, f"{name}.{ext}") for ext in formats]
     for path in paths:
         fig.savefig(path)
     plt.close(fig)
     return paths
 
 
-def plot(runs, plots_dir):
+def load_pyplot():
+    """matplotlib's pyplot on the Agg backend, or None when matplotlib is not installed."""
     try:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:
-        print("report.py: python3-matplotlib is not installed: no plots", file=sys.stderr)
-        return []
+        return None
+    return plt
+
+
+def plot(plt, runs, plots_dir, quick):
+    """Draws every run's distributions and curves into plots_dir; returns the paths written.
+    quick: PNG only, no minor ticks, and a distribution another one shows as its reference is
+    not drawn alone."""
+    formats = ("png",) if quick else ("png", "svg")
     os.makedirs(plots_dir, exist_ok=True)
     written = []
     for run_index, (benches, _) in enumerate(runs, start=1):
         for bench_name, bench in benches.items():
             by_id = {d["id"]: d for d in bench.get("distributions", [])}
+            shown_beside = {d.get("reference_id") for d in bench.get("distributions", []) if clean(d)}
             for dist in bench.get("distributions", []):
-                if not clean(dist):
+                if not clean(dist) or (quick and dist["id"] in shown_beside):
                     continue
                 shown = [(dist, "#4477aa")]
                 ref = by_id.get(dist.get("reference_id") or "")
@@ -128,7 +147,7 @@ def plot(runs, plots_dir):
                     samples = clean(d)
                     n = len(samples)
                     label = f"{d['id']} ({n})"
-                    hist.hist(samples, bins=bins, color=colour, alpha=0.6, label=label)
+                    hist.hist(samples, bins=bins, histtype="stepfilled", color=colour, alpha=0.6, label=label)  # one patch, not 60 bars: the same look, cheaper
                     # the tail: the fraction of samples above x, down to one sample
                     tail.step(samples, [1 - i / n for i in range(n)], where="post", color=colour, label=label)
                 hist.set_yscale("log")
@@ -141,7 +160,7 @@ def plot(runs, plots_dir):
                 tail.set_xlabel(dist.get("unit", ""))
                 tail.set_ylabel("fraction above x (p50, p99, p99.9 lines)")
                 fig.suptitle(f"{dist.get('what', dist['id'])} (run {run_index})", fontsize=9)
-                written += save(plt, fig, plots_dir, f"{dist['id']}.run{run_index}")
+                written += save(plt, fig, plots_dir, f"{dist['id']}.run{run_index}", formats, quick)
             for curve in bench.get("curves", []):
                 fig, ax = plt.subplots(figsize=(6, 4))
                 for name, points in curve.get("series", {}).items():
@@ -154,7 +173,7 @@ def plot(runs, plots_dir):
                     ax.set_xscale("log")
                 ax.legend()
                 ax.set_title(f"{curve.get('what', curve['id'])} (run {run_index})", fontsize=9)
-                written += save(plt, fig, plots_dir, f"{curve['id']}.run{run_index}")
+                written += save(plt, fig, plots_dir, f"{curve['id']}.run{run_index}", formats, quick)
     return written
 
 
@@ -162,6 +181,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--out", required=True, help="the merged results file to write")
     parser.add_argument("--plots", help="directory for the PNG/SVG plots")
+    parser.add_argument("--quick", action="store_true", help="PNG only, floors only beside what they are the reference of")
     parser.add_argument("--machine", help="JSON object describing the machine (cores, kernel, load)")
     parser.add_argument("runs", nargs="+", help="one directory per run")
     args = parser.parse_args()
@@ -174,12 +194,29 @@ def main():
             print(f"report.py: --machine: not JSON ({e})", file=sys.stderr)
             return 2
     print_summary(runs)
-    written = plot(runs, args.plots) if args.plots else []
+    written, unavailable, failed = [], None, None
+    if args.plots:
+        plt = load_pyplot()
+        if plt is None:
+            unavailable = "python3-matplotlib is not installed (Debian: apt-get install python3-matplotlib)"
+        else:
+            try:
+                written = plot(plt, runs, args.plots, args.quick)
+            except Exception as e:  # matplotlib's own errors vary by version: say which, keep the figures
+                failed = f"{type(e).__name__}: {e}"
     result = {"machine": machine, "runs": [{"benches": b, "text": t} for b, t in runs], "plots": written}
+    if unavailable or failed:
+        result["plots_unavailable"] = unavailable or f"plotting failed: {failed}"
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     with open(args.out, "w", encoding="utf-8") as f:
         json.dump(result, f, indent=1)
     print(f"\nresults: {args.out}" + (f"  plots: {args.plots} ({len(written)} files)" if written else ""))
+    if unavailable:
+        print(f"report.py: no plots: {unavailable}; the figures above and the results file are complete", file=sys.stderr)
+    if failed:
+        print(f"report.py: plotting failed after {len(written)} files ({failed}); the figures above and the results file are complete",
+              file=sys.stderr)
+        return 1
     return 0
 
 

@@ -3,13 +3,14 @@
 # (telnet: the README's tour talks to messd with it.)
 imess_packages=(cmake ninja-build g++ pkg-config libboost-dev libeigen3-dev libspdlog-dev
                 nlohmann-json3-dev catch2 libncurses-dev ccache telnet)
-# Only for scripts/test: the independent readers the export and FreeCAD plugin tests use
-# (ezdxf for DXF; freecadcmd for STEP, IGES, PLY, ASC and the plugin). Debian's python3 comes with them.
-imess_test_packages=(python3 python3-ezdxf freecad-python3)
-
 # Only for scripts/bench: cyclictest (rt-tests), the floor bench_rt measures messd against,
 # and matplotlib for the plots.
 imess_bench_packages=(rt-tests python3 python3-matplotlib)
+
+# Only for scripts/test: the independent readers the export and FreeCAD plugin tests use
+# (ezdxf for DXF; freecadcmd for STEP, IGES, PLY, ASC and the plugin; Debian's python3 comes
+# with them), and what scripts/bench needs, which the suite's smoke test runs.
+imess_test_packages=(python3-ezdxf freecad-python3 "${imess_bench_packages[@]}")  # python3 among them
 
 imess_install_deps() {   # imess_install_deps [test|bench]: the build packages, plus the test or bench ones
   local wanted=("${imess_packages[@]}")

@@ -17,7 +17,7 @@ namespace imess::bench {
 
 void run_jog(Context& ctx) {
   Report& r = ctx.report();
-  const int samples = ctx.options().samples.value_or(ctx.quick() ? 15 : 200);
+  const int samples = ctx.options().samples.value_or(ctx.quick() ? 6 : 200);
   auto messd = ctx.start_messd(4);
   ClientPool pool;
   const int owner = pool.open_ready(messd->port(), 1)[0];

@@ -53,7 +53,7 @@ const char* const kCommands[] = {"Status", "Get", "Help", "Version", "Frames", "
 
 void run_memory(Context& ctx) {
   Report& r = ctx.report();
-  const double soak = ctx.options().soak_seconds.value_or(ctx.quick() ? 20 : 600);
+  const double soak = ctx.options().soak_seconds.value_or(ctx.quick() ? 4 : 600);
   auto messd = ctx.start_messd(1000);
   if (messd->pid() <= 0) throw std::runtime_error("memory needs messd's process id: give --pid with --port");
   Footprint floor;

@@ -51,7 +51,8 @@ commands:
   all      push stream jog rtt memory
 options (all commands):
   --json FILE        write the results as JSON
-  --quick            fewer samples and clients, same figures (well under 20 s per command)
+  --quick            fewer samples, shorter windows, push without 1000 clients; the same
+                     figure ids (all: about 30 s)
   --messd PATH       the messd to start (default: messd beside this program)
   --echo PATH        the bench_echo to start (default: bench_echo beside this program)
   --port P --pid PID use a messd already running on 127.0.0.1:P (PID for CPU and memory)
@@ -59,10 +60,10 @@ options (all commands):
   --rt               let the started messd take SCHED_FIFO and mlockall (default: --no-rt)
 options of some commands:
   --samples N        samples per latency figure (push, jog, rtt)
-  --seconds S        stream: the measuring window (default 30, quick 5); load: duration (default 10)
+  --seconds S        stream: the measuring window (default 30, quick 2); load: duration (default 10)
   --clients N        stream: clients (default 200); load: idle clients (default 100)
   --lines-per-s R    load: command lines a second from the sending client (default 10000)
-  --soak-seconds T   memory: the churn run (default 600, quick 20)
+  --soak-seconds T   memory: the churn run (default 600, quick 4)
 )";
 }
 

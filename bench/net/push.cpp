@@ -122,7 +122,7 @@ void run_push(Context& ctx) {
   r.add_curve(curve);
 
   // (b) probe hits at 100 clients.
-  const int hits = ctx.options().samples.value_or(ctx.quick() ? 30 : 300);
+  const int hits = ctx.options().samples.value_or(ctx.quick() ? 10 : 300);
   LatencySet stamped{"floor.stamped.100", "floor: stamp -> line at all 100 clients",
                      "floor: bench_echo timer at 200 Hz, the CLOCK_MONOTONIC stamp in its line -> read by all 100 clients", {}};
   {

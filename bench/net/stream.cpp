@@ -136,8 +136,8 @@ Figure rate_figure(const std::string& id, const std::string& label, const std::s
 void run_stream(Context& ctx) {
   Report& r = ctx.report();
   const int n = ctx.options().clients.value_or(200);
-  const double window = ctx.options().seconds.value_or(ctx.quick() ? 3 : 30);
-  const double baseline = ctx.quick() ? 1 : 5;
+  const double window = ctx.options().seconds.value_or(ctx.quick() ? 2 : 30);
+  const double baseline = ctx.quick() ? 0.5 : 5;
   const std::string ns = std::to_string(n);
   auto messd = ctx.start_messd(n);
   if (messd->pid() <= 0) note("stream: no --pid, so no CPU figures for messd");

@@ -43,13 +43,14 @@ std::vector<double> subsample_sorted(std::vector<double> v, std::size_t limit) {
   return out;
 }
 
-void add_distribution(Report& report, const LatencySide& s, const std::string& condition) {
+void add_distribution(Report& report, const LatencySide& s, const std::string& condition, const LatencySide* reference) {
   if (!s.histogram) return;
   const bool raw = !s.raw_samples_us.empty();
   report.add_distribution(s.id, s.subject + " wake-up latency, " + condition +
                                     (raw ? " (raw samples at evenly spaced ranks)"
                                          : " (1 us buckets, bucket middles at evenly spaced ranks)"),
-                          "us", raw ? subsample_sorted(s.raw_samples_us, 20000) : s.histogram->plot_samples(20000));
+                          "us", raw ? subsample_sorted(s.raw_samples_us, 20000) : s.histogram->plot_samples(20000),
+                          reference && reference->histogram ? reference->id : "");
 }
 }  // namespace
 
@@ -63,8 +64,8 @@ void add_latency_figures(Report& report, const LatencySide& measured, const Late
     report.add(std::move(f));
   }
   for (const auto& st : kStats) report.add(figure(floor, st, condition));
-  add_distribution(report, measured, condition);
-  add_distribution(report, floor, condition);
+  add_distribution(report, measured, condition, &floor);  // plotted with the floor beside it
+  add_distribution(report, floor, condition, nullptr);
 }
 
 }  // namespace imess::bench

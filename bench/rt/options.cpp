@@ -14,9 +14,9 @@ const char* kUsage =
     "                [--load-cmd \"CMD {port} {seconds}\"] [--period-us N] [--step-len-us U] [--step-space-us U]\n"
     "                [--no-cyclictest]\n"
     "  loop  messd's motion-loop wake-up latency against cyclictest at the same period and priority,\n"
-    "        idle and while --load-cmd runs against messd (S: 60 s, --quick 5 s)\n"
+    "        idle and while --load-cmd runs against messd (S: 60 s, --quick 3 s)\n"
     "  base  the step/dir base thread's wake-up jitter at 25 and 50 us against cyclictest, the step\n"
-    "        rate it allows and the cost of a base tick (S: 60 s, --quick 3 s)\n"
+    "        rate it allows and the cost of a base tick (S: 60 s, --quick 2 s)\n"
     "  all   both\n";
 
 bool number(const char* text, double& out) {

@@ -8,7 +8,7 @@ namespace imess::bench {
 struct Options {
   bool loop = false, base = false;  // what to measure (`all`: both)
   bool quick = false;
-  std::optional<double> seconds;     // S of every part, whole seconds (default: loop 60 / quick 5, base 60 / quick 3)
+  std::optional<double> seconds;     // S of every part, whole seconds (default: loop 60 / quick 3, base 60 / quick 2)
   std::string json;                  // --json FILE
   std::string messd;                 // --messd PATH ("" the build's)
   std::optional<std::string> load_cmd;  // --load-cmd "... {port} ... {seconds}" ("" no loaded run)
@@ -16,8 +16,8 @@ struct Options {
   double step_len_us = 5, step_space_us = 5;  // the drive's minimum step length and space
   bool cyclictest = true;            // --no-cyclictest: measure messd alone (floor unavailable)
 
-  double loop_seconds() const { return seconds.value_or(quick ? 5 : 60); }
-  double base_seconds() const { return seconds.value_or(quick ? 3 : 60); }
+  double loop_seconds() const { return seconds.value_or(quick ? 3 : 60); }
+  double base_seconds() const { return seconds.value_or(quick ? 2 : 60); }
 };
 
 // Parses argv; on a bad command line prints the usage to stderr and returns nullopt.

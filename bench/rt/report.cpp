@@ -76,11 +76,12 @@ void Report::add(Figure f) {
 }
 
 void Report::add_distribution(const std::string& id, const std::string& what, const std::string& unit,
-                              std::vector<double> samples) {
+                              std::vector<double> samples, const std::string& reference_id) {
   nlohmann::ordered_json d;
   d["id"] = id;
   d["what"] = what;
   d["unit"] = unit;
+  if (!reference_id.empty()) d["reference_id"] = reference_id;
   for (auto& s : samples) s = std::round(s * 1000) / 1000;
   d["samples"] = std::move(samples);
   distributions_.push_back(std::move(d));

@@ -30,8 +30,9 @@ class Report {
  public:
   Report(std::string bench, bool quick);
   void add(Figure f);  // prints it
+  // reference_id: the distribution drawn beside this one in its plot ("" none).
   void add_distribution(const std::string& id, const std::string& what, const std::string& unit,
-                        std::vector<double> samples);
+                        std::vector<double> samples, const std::string& reference_id = "");
   void note(const std::string& text);  // a "# ..." line on stdout, kept in setup.notes
   nlohmann::ordered_json& setup() { return setup_; }
   const std::vector<Figure>& figures() const { return figures_; }

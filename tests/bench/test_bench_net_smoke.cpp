@@ -7,6 +7,7 @@
 #include <set>
 
 #include "child_process.hpp"
+#include "figure_ids.hpp"
 
 using namespace imess::test;
 
@@ -42,9 +43,10 @@ TEST_CASE("bench_net push --quick writes the contract's JSON with every push fig
     // Every figure is printed on a line of its own, starting with its id.
     CHECK(run.out.find(id + " ") != std::string::npos);
   }
-  for (const char* stem : {"floor.broadcast.1", "push.forcept.1", "floor.broadcast.10", "push.forcept.10", "floor.broadcast.100",
-                           "push.forcept.100", "floor.stamped.100", "push.probe.100"})
-    for (const char* p : {".p50", ".p99"}) CHECK(ids.count(std::string(stem) + p) == 1);
+  for (const auto& id : bench_ids::net_push(true)) {
+    INFO(id);
+    CHECK(ids.count(id) == 1);
+  }
 
   std::set<std::string> distributions;
   for (const auto& d : j.at("distributions")) {
