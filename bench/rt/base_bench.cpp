@@ -5,7 +5,6 @@
 // cyclictest, the write jitter and the step rate it allows (step_rule.hpp), the tick's cost
 // measured in the thread plus ~1 us per port access as a real port would take.
 #include <sys/mman.h>
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -18,6 +17,7 @@
 #include "counting_port.hpp"
 #include "cyclictest.hpp"
 #include "imess/core/loop_runner.hpp"
+#include "imess/core/memory_lock.hpp"
 #include "imess/hal/parport_stepper_driver.hpp"
 #include "latency_figures.hpp"
 #include "measurements.hpp"
@@ -199,35 +199,22 @@ void measure(double period_us, const Options& o, const std::string& cyclictest, 
   setup["steps_per_axis"] = steps;
   setup["cyclictest_priority_seen"] = floor.histogram ? nlohmann::ordered_json(ct.priority_seen()) : nullptr;
 }
-// mlockall(MCL_FUTURE) where every later allocation stays possible: as root, or with no
-// RLIMIT_MEMLOCK. Otherwise locking succeeds while the process is small, and the recorder's
-// buffer or the next thread's stack then fail (EAGAIN) at the limit. Returns the note.
-std::string lock_memory(bool& locked) {
-  rlimit limit{};
-  const bool unlimited = getrlimit(RLIMIT_MEMLOCK, &limit) == 0 && limit.rlim_cur == RLIM_INFINITY;
-  locked = false;
-  if (geteuid() != 0 && !unlimited)
-    return "NOT locked (not root, RLIMIT_MEMLOCK " + std::to_string(limit.rlim_cur / 1024) + " KiB: the run would outgrow it)";
-  locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
-  return locked ? "locked" : "NOT locked (mlockall refused)";
-}
 }  // namespace
 
 bool run_base(const Options& o, Report& report) {
   TempDir work("imess-bench-rt-base");
   const std::string cyclictest = o.cyclictest ? Cyclictest::find() : "";
   const std::string floor_missing = !o.cyclictest ? "--no-cyclictest" : "cyclictest not installed (Debian: rt-tests)";
-  bool locked = false;
-  const std::string memory = lock_memory(locked);
+  const core::MemoryLock memory = core::lock_memory();
   report.note(std::string("base: app::BaseThread with the parallel-port driver on the simulated port, wall clock; ") +
               "cyclictest at the same time, same period and priority: " + (cyclictest.empty() ? floor_missing : cyclictest) +
-              "; memory " + memory + "; drive minimum step " +
+              "; " + memory.note + "; drive minimum step " +
               fixed(o.step_len_us, 1) + " us, space " + fixed(o.step_space_us, 1) + " us");
   report.setup()["base"]["drive_min_step_len_us"] = o.step_len_us;
   report.setup()["base"]["drive_min_step_space_us"] = o.step_space_us;
   report.setup()["base"]["port_access_us"] = kPortAccessUs;
   for (double period : {25.0, 50.0}) measure(period, o, cyclictest, floor_missing, work.path(), report);
-  if (locked) munlockall();
+  if (memory.locked) munlockall();
   return true;
 }
 

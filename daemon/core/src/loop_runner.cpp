@@ -3,6 +3,8 @@
 // measuring interval is counted every cycle into lock-free atomics (IntervalStats).
 #include "imess/core/loop_runner.hpp"
 
+#include "imess/core/memory_lock.hpp"
+
 #include <pthread.h>
 #include <sched.h>
 #include <sys/mman.h>
@@ -36,10 +38,7 @@ LoopRunner::~LoopRunner() { stop(); }
 std::string LoopRunner::start(bool want_realtime) {
   std::string report;
   if (want_realtime) {
-    if (mlockall(MCL_CURRENT | MCL_FUTURE) == 0)
-      report = "memory locked (mlockall)";
-    else
-      report = std::string("mlockall not permitted (") + std::strerror(errno) + "): pages may fault in the loop";
+    report = lock_memory().note;
   } else {
     report = "real-time scheduling not requested";
   }
