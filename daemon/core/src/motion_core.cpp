@@ -67,6 +67,9 @@ MotionCore::MotionCore(hal::MotionBackend& hardware, CoreConfig config, hal::Sim
       referenced_(config_.referenced_at_start) {
   params_in_.back() = params_out_;
   params_in_.publish();
+  prefault_ring(commands_);  // resident from the start: no RSS creep, no page fault in the cycle
+  prefault_ring(events_);
+  prefault_ring(segments_);
 }
 
 bool MotionCore::submit(Command c) noexcept {

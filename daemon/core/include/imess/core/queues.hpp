@@ -32,4 +32,20 @@ using EventQueue = boost::lockfree::spsc_queue<Event, boost::lockfree::capacity<
 
 namespace imess::core {
 using SegmentQueue = boost::lockfree::spsc_queue<QueuedSegment, boost::lockfree::capacity<kSegmentCapacity>>;
+
+// Writes every slot of an empty ring once (a push and a pop per slot: the ring keeps one slot
+// more than its capacity) and leaves it empty. The storage is inside the object and untouched
+// until then, so without this its pages became resident one by one as the ring's write index
+// first went round: at two events a second the event ring (736 KiB) took 34 minutes, a slow
+// RSS creep, and every new page was a page fault in the motion cycle when mlockall is not in
+// effect. Call before the loop and the io thread use the ring.
+template <typename Ring>
+void prefault_ring(Ring& ring) noexcept {
+  typename Ring::value_type slot{};
+  const std::size_t slots = ring.write_available() + 1;
+  for (std::size_t i = 0; i < slots; ++i) {
+    ring.push(slot);
+    ring.pop(slot);
+  }
+}
 }  // namespace imess::core
