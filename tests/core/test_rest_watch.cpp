@@ -42,9 +42,27 @@ TEST_CASE("RestWatch: one departure per rest of at least kStillCycles, none whil
   }
 }
 
+namespace {
+struct CountingSignal : imess::core::EventSignal {
+  int count = 0;
+  void notify() noexcept override { ++count; }
+};
+}  // namespace
+
 TEST_CASE("the snapshot counts one rest departure when a jog or a hand push starts, none at rest", "[rest]") {
   CoreRig rig;
+  CountingSignal signal;
+  rig.core().set_event_signal(&signal);
   rig.run(0.5);
+  rig.clear_events();
+  signal.count = 0;
+  rig.run(1.0);
+  CHECK(signal.count == 0);  // standing: the io side is never woken
+  rig.hand({5, 0, 0}, 10);
+  rig.run(0.2);
+  CHECK(signal.count >= RestWatch::kDepartureWakes);  // the departure and the cycles after it
+  rig.core().set_event_signal(nullptr);
+  rig.run(2.0);  // the push ends
   const auto at_rest = rig.core().snapshot().rest_departures;
   rig.run(1.0);
   CHECK(rig.core().snapshot().rest_departures == at_rest);

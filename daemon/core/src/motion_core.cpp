@@ -195,7 +195,11 @@ void MotionCore::cycle(Nanos now) noexcept {
   update_mode(now);
   if (rest_watch_.left_rest(ms_.position, n_)) {
     ++rest_departures_;
-    pushed_ = true;  // no event, but the io side shows the first change after rest at once
+    departure_wakes_ = RestWatch::kDepartureWakes;
+  }
+  if (departure_wakes_ > 0) {  // no event, but the io side shows the first change after rest at once
+    --departure_wakes_;
+    pushed_ = true;
   }
   publish(now);
   if (pushed_) {  // after publish: the io side sees the snapshot of this cycle too

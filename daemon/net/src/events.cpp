@@ -108,6 +108,8 @@ void Server::pump_events() {
   if (departures != rest_departures_seen_) {  // the position left a rest: show it at once
     rest_departures_seen_ = departures;
     watch_start_of_motion();
+  } else if (start_watch_until_) {  // the loop wakes us each cycle after a departure: changed yet?
+    report_start_of_motion();
   }
 }
 

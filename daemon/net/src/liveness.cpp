@@ -46,8 +46,6 @@ void Server::arm_housekeeping() {
   };
   earliest(watch_deadline());
   earliest(journal_.sync_due());
-  if (start_watch_until_)
-    earliest(Clock::now() + std::chrono::microseconds(static_cast<long>(config_.period_us)));
   if (!next || (housekeeping_at_ && *housekeeping_at_ <= *next)) return;  // nothing waits, or armed earlier
   housekeeping_at_ = next;
   housekeeping_timer_.expires_at(*next);  // cancels a later wait, whose handler then does nothing
@@ -61,7 +59,6 @@ void Server::housekeeping() {
   housekeeping_at_.reset();
   check_watch();
   journal_.sync_if_due();
-  if (start_watch_until_) report_start_of_motion();
   arm_housekeeping();
 }
 

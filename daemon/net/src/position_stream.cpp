@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "imess/core/rest_watch.hpp"
 #include "imess/net/server.hpp"
 #include "imess/protocol/messages.hpp"
 
@@ -88,14 +89,15 @@ void Server::report_position() {
 
 // At rest the stream is silent; the first change after it goes out at once, not at the next
 // report tick: a jog shows at once whatever the rate. The motion loop wakes us when the
-// position leaves a rest (RestWatch, a tenth of the printed digit); from then on the position
-// is looked at every loop period until its printed form changes (or 100 ms pass: a creep that
-// never reaches a digit is left to the stream). From there on each client's stream keeps its rate.
+// position leaves a rest (RestWatch, a tenth of the printed digit) and on each of the next
+// cycles (RestWatch::kDepartureWakes); each time the position is looked at until its printed
+// form changes (a creep that reaches no digit within them is left to the stream). From there
+// on each client's stream keeps its rate.
 void Server::watch_start_of_motion() {
   if (!config_.stream_position || !at_rest_) return;
-  start_watch_until_ = Clock::now() + std::chrono::milliseconds(100);
+  start_watch_until_ = Clock::now() + std::chrono::microseconds(
+                                          static_cast<long>(config_.period_us * core::RestWatch::kDepartureWakes));
   report_start_of_motion();
-  arm_housekeeping();
 }
 
 void Server::report_start_of_motion() {

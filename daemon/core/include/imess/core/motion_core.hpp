@@ -143,8 +143,9 @@ class MotionCore {
   EventSignal no_signal_;
   EventSignal* signal_ = &no_signal_;
   bool pushed_ = false;                      // this cycle pushed an event: notify at its end
-  RestWatch rest_watch_;                     // the position leaving a rest also wakes the io side
-  std::uint64_t rest_departures_ = 0;
+  RestWatch rest_watch_;                     // the position leaving a rest also wakes the io side,
+  std::uint64_t rest_departures_ = 0;        // and so do the kDepartureWakes cycles after it
+  int departure_wakes_ = 0;                  // (the io side looks for the first printed change)
   TripleBuffer<Snapshot> snapshot_;
 
   int n_ = 3;  // the machine's axes (config_.layout.count)

@@ -1,7 +1,8 @@
 // RestWatch: tells the motion loop when the position leaves a rest — still (every axis within
 // kEpsilon of where the rest began) for kStillCycles cycles, then moved. The loop counts these
-// departures into the snapshot and wakes the io side, which then shows the first changed
-// position at once instead of polling every millisecond (docs/architecture.md, "The position
+// departures into the snapshot and wakes the io side on that cycle and the kDepartureWakes
+// after it, so the io side shows the first changed position right after the cycle that
+// measured it instead of polling every millisecond (docs/architecture.md, "The position
 // stream"). Real-time: no allocation, no branch on anything but the positions.
 #pragma once
 
@@ -15,6 +16,9 @@ class RestWatch {
  public:
   static constexpr double kEpsilon = 1e-4;  // mm or degrees: a tenth of the last printed digit
   static constexpr int kStillCycles = 5;    // shorter than the fastest shared report period (10 ms)
+  // Cycles after a departure on which the loop wakes the io side, which looks each time
+  // whether the printed position changed (a tenth of a digit is not yet a printed change).
+  static constexpr int kDepartureWakes = 20;
 
   // One call per cycle with the measured position; true on the cycle it leaves a rest.
   bool left_rest(const AxisVec& p, int axes) noexcept {

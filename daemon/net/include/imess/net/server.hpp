@@ -129,7 +129,7 @@ class Server {
   void stop_machine(std::string_view who = "StopMv");
   // liveness.cpp
   // One timer at the earliest deadline that exists — the owner's dead-man, the journal's
-  // fdatasync, the start of motion being watched — and none at all when nothing waits.
+  // fdatasync — and none at all when nothing waits.
   void arm_housekeeping();
   void housekeeping();
   std::optional<std::chrono::steady_clock::time_point> watch_deadline() const;
@@ -249,7 +249,7 @@ class Server {
   std::optional<boost::asio::posix::stream_descriptor> wake_wait_;  // a dup of wake_'s fd
   boost::asio::steady_timer event_timer_, housekeeping_timer_, report_timer_, log_timer_, clients_timer_, accept_timer_;
   std::optional<std::chrono::steady_clock::time_point> housekeeping_at_;  // the housekeeping timer's deadline, when armed
-  std::optional<std::chrono::steady_clock::time_point> start_watch_until_;  // polling for the first printed change
+  std::optional<std::chrono::steady_clock::time_point> start_watch_until_;  // looking for the first printed change after a rest, until then
   std::uint64_t rest_departures_seen_ = 0;
   std::map<std::uint32_t, std::shared_ptr<Session>> sessions_;
   std::uint32_t next_id_ = 1;
