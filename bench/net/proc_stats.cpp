@@ -40,7 +40,11 @@ std::optional<double> process_cpu_s(int pid) {
   return stat_cpu_s("/proc/" + std::to_string(pid) + "/stat");
 }
 
-std::optional<double> threads_cpu_s(int pid, const std::string& name, bool except) {
+namespace {
+// Sums `value(task directory)` over the threads of `pid` named `name` (or, with `except`, all
+// the others); nullopt when the process is gone.
+template <typename Value>
+std::optional<double> sum_over_threads(int pid, const std::string& name, bool except, Value value) {
   if (pid <= 0) return std::nullopt;
   std::error_code ec;
   std::filesystem::directory_iterator it("/proc/" + std::to_string(pid) + "/task", ec);
@@ -49,25 +53,23 @@ std::optional<double> threads_cpu_s(int pid, const std::string& name, bool excep
   for (const auto& task : it) {
     const bool named = first_line(task.path().string() + "/comm") == name;
     if (named == except) continue;
-    if (auto s = stat_cpu_s(task.path().string() + "/stat")) sum += *s;
+    if (auto v = value(task.path().string())) sum += *v;
   }
   return sum;
 }
+}  // namespace
+
+std::optional<double> threads_cpu_s(int pid, const std::string& name, bool except) {
+  return sum_over_threads(pid, name, except, [](const std::string& task) { return stat_cpu_s(task + "/stat"); });
+}
 
 std::optional<double> threads_wakeups(int pid, const std::string& name, bool except) {
-  if (pid <= 0) return std::nullopt;
-  std::error_code ec;
-  std::filesystem::directory_iterator it("/proc/" + std::to_string(pid) + "/task", ec);
-  if (ec) return std::nullopt;
-  double sum = 0;
-  for (const auto& task : it) {
-    const bool named = first_line(task.path().string() + "/comm") == name;
-    if (named == except) continue;
-    std::ifstream f(task.path().string() + "/status");
+  return sum_over_threads(pid, name, except, [](const std::string& task) -> std::optional<double> {
+    std::ifstream f(task + "/status");
     for (std::string line; std::getline(f, line);)
-      if (line.rfind("voluntary_ctxt_switches:", 0) == 0) sum += std::stod(line.substr(24));
-  }
-  return sum;
+      if (line.rfind("voluntary_ctxt_switches:", 0) == 0) return std::stod(line.substr(24));
+    return std::nullopt;
+  });
 }
 
 std::optional<double> rss_kib(int pid) {

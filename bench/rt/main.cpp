@@ -4,28 +4,12 @@
 // Wall clock throughout. Prints one line per figure; --json writes them (bench contract).
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <stdexcept>
 #include <string>
 
 #include "measurements.hpp"
 #include "options.hpp"
 #include "report.hpp"
-
-namespace imess::bench {
-
-TempDir::TempDir(const std::string& prefix) {
-  std::string dir = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
-  if (!mkdtemp(dir.data())) throw std::runtime_error("mkdtemp failed for " + dir);
-  path_ = dir;
-}
-
-TempDir::~TempDir() {
-  std::error_code ec;
-  std::filesystem::remove_all(path_, ec);
-}
-
-}  // namespace imess::bench
 
 int main(int argc, char** argv) {
   using namespace imess::bench;

@@ -3,23 +3,11 @@
 #pragma once
 #include "options.hpp"
 #include "report.hpp"
+#include "temp_dir.hpp"
 
 namespace imess::bench {
 
 bool run_loop(const Options& options, Report& report);  // loop_bench.cpp
 bool run_base(const Options& options, Report& report);  // base_bench.cpp
-
-// A temporary directory, removed with everything in it when the object dies.
-class TempDir {
- public:
-  explicit TempDir(const std::string& prefix);
-  ~TempDir();
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
 
 }  // namespace imess::bench
