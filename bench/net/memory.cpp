@@ -4,6 +4,8 @@
 // point every second, RSS sampled every second -> start, max, end and the slope.
 #include <deque>
 #include <stdexcept>
+#include <string>
+#include <tuple>
 
 #include "client_pool.hpp"
 #include "clock.hpp"
@@ -80,18 +82,16 @@ void run_memory(Context& ctx) {
     r.add({std::string("memory.") + k.stem, std::string("messd ") + k.label, std::string("messd's VmRSS ") + k.when, k.messd, "KiB",
            floor_id, k.floor, std::nullopt});
   }
-  r.add({"floor.memory.per_client.100", "floor: bench_echo RSS per client, 100",
-         "floor: (bench_echo's VmRSS with 100 clients - with none) / 100", per_client(floor.rss100, floor.rss0, 100), "KiB", "",
-         std::nullopt, std::nullopt});
-  r.add({"memory.per_client.100", "messd RSS per client, 100", "(messd's VmRSS with 100 clients - with none) / 100",
-         per_client(m.rss100, m.rss0, 100), "KiB", "floor.memory.per_client.100", per_client(floor.rss100, floor.rss0, 100),
-         std::nullopt});
-  r.add({"floor.memory.per_client.1000", "floor: bench_echo RSS per client, 1000",
-         "floor: (bench_echo's VmRSS with 1000 clients - with none) / 1000", per_client(floor.rss1000, floor.rss0, 1000), "KiB", "",
-         std::nullopt, std::nullopt});
-  r.add({"memory.per_client.1000", "messd RSS per client, 1000", "(messd's VmRSS with 1000 clients - with none) / 1000",
-         per_client(m.rss1000, m.rss0, 1000), "KiB", "floor.memory.per_client.1000", per_client(floor.rss1000, floor.rss0, 1000),
-         std::nullopt});
+  for (const auto& [n, floor_rss, messd_rss] : {std::tuple{100, floor.rss100, m.rss100}, std::tuple{1000, floor.rss1000, m.rss1000}}) {
+    const std::string c = std::to_string(n);
+    const std::string floor_id = "floor.memory.per_client." + c;
+    const auto floor_per = per_client(floor_rss, floor.rss0, n);
+    r.add({floor_id, "floor: bench_echo RSS per client, " + c,
+           "floor: (bench_echo's VmRSS with " + c + " clients - with none) / " + c, floor_per, "KiB", "", std::nullopt,
+           std::nullopt});
+    r.add({"memory.per_client." + c, "messd RSS per client, " + c, "(messd's VmRSS with " + c + " clients - with none) / " + c,
+           per_client(messd_rss, m.rss0, n), "KiB", floor_id, floor_per, std::nullopt});
+  }
 
   // The soak: 50 observers and the owner stay; a client connects every 20 ms and the oldest
   // of the churning ones (50 at a time) leaves, every fourth with a reset; each new client
