@@ -34,11 +34,21 @@ imess_install_packages() {   # imess_install_packages PKG...: apt-get install th
     || { echo "scripts: could not install ${missing[*]}" >&2; return 1; }
 }
 
+imess_ccache_env() {   # the ccache settings every build of the tree uses (scripts/test, run, bench, fuzz)
+  # A rebuild (another build dir, a fresh clone at another path) reuses what compiled; the
+  # sloppiness lets ccache cache the files compiled with a precompiled header
+  # (cmake/Precompiled.cmake); 20 GB holds the Dev, sanitized, fuzz and Release builds together.
+  export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$imess_root} CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
+  export CCACHE_MAXSIZE=${CCACHE_MAXSIZE:-20G}
+  export CCACHE_SLOPPINESS=${CCACHE_SLOPPINESS:-pch_defines,time_macros,include_file_mtime,include_file_ctime}
+}
+
 imess_build() {   # imess_build <build-dir> [targets...]: configure, then build (all by default)
   local dir=$1; shift
-  # ccache: a rebuild (another build dir, a fresh clone at another path) reuses what compiled.
-  export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$imess_root} CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
-  cmake -S "$imess_root" -B "$dir" -G Ninja -DCMAKE_CXX_COMPILER_LAUNCHER=ccache >/dev/null || return 1
+  imess_ccache_env
+  # IMESS_BUILD_TYPE: Dev unless said (-O1, no debug information: see CMakeLists.txt).
+  cmake -S "$imess_root" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE="${IMESS_BUILD_TYPE:-Dev}" \
+        -DCMAKE_CXX_COMPILER_LAUNCHER=ccache >/dev/null || return 1
   if [ $# -gt 0 ]; then
     cmake --build "$dir" -j "$(nproc)" --target "$@"
   else

@@ -129,7 +129,8 @@ std::vector<State> cone_starts(const Eigen::Matrix3Xd& qs, const PrincipalAxes<3
   }
   std::stable_sort(ends.begin(), ends.end(), by_ssq);
   std::vector<State> starts;
-  for (const auto& [ssq, st] : ends) {
+  for (const auto& end : ends) {
+    const State& st = end.second;  // a named reference, not a structured binding: clang 14 cannot capture those
     const bool seen = std::any_of(starts.begin(), starts.end(),
                                   [&](const State& k) { return pb.same_solution(k, st, kConeScreenSame); });
     if (!seen) starts.push_back(st);
