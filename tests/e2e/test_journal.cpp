@@ -206,3 +206,65 @@ TEST_CASE("messcap --append against messd fetches the hits measured while it was
   for (int i = 0; i < 5; ++i) CHECK(lines[i].substr(lines[i].rfind('#')) == "# hit " + std::to_string(i + 1));
   CHECK_THAT(r.err, Catch::Contains("continuing after hit 2"));
 }
+
+// Changes one byte of hit `seq`'s record in the journal file at `path` (its checksum then fails).
+static void damage_record(const std::string& path, std::uint64_t seq) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto at = text.find("Hit " + std::to_string(seq) + " ");
+  REQUIRE(at != std::string::npos);
+  const auto digit = text.find(" 430.", at) + 2;
+  text[digit] = text[digit] == '3' ? '4' : '3';
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
+}
+
+TEST_CASE("a damaged record in the journal is named in Replay's answer as Replay Lost and counted") {
+  auto dir = temp_dir("journal-damaged");
+  std::vector<std::string> hits;
+  {
+    DaemonProcess messd({"--journal", dir});
+    LineClient c(messd.port());
+    hits = force_points(c, 10);
+  }
+  damage_record(dir + "/hits-000000000001.jnl", 5);
+  DaemonProcess messd({"--journal", dir});
+  LineClient c(messd.port());
+  c.send("Replay 3");
+  std::vector<std::string> lines;
+  REQUIRE(c.until(
+      [&](const std::string& l) {
+        if (l.rfind("Hit ", 0) == 0 || l.rfind("Replay ", 0) == 0 || l.rfind("Ok Replay", 0) == 0) lines.push_back(l);
+        return l.rfind("Ok Replay", 0) == 0 || l.rfind("Err", 0) == 0;
+      },
+      10.0));
+  std::vector<std::string> want{hits[2], hits[3], "Replay Lost 5 5 damaged in the journal"};
+  want.insert(want.end(), hits.begin() + 5, hits.end());
+  want.push_back("Ok Replay 8 10");  // 3 … 10: seven hits and one named lost
+  CHECK(lines == want);
+  auto lost = p::parse_message("Replay Lost 5 5 damaged in the journal");
+  REQUIRE(std::holds_alternative<p::DataMsg>(lost));
+  auto range = p::parse_replay_lost(std::get<p::DataMsg>(lost).text);
+  REQUIRE(range);
+  CHECK(range->first == 5);
+  CHECK(range->last == 5);
+  // New hits continue after the newest, never reusing 5.
+  auto next = force_points(c, 1);
+  REQUIRE(next.size() == 1);
+  CHECK(std::get<p::HitMsg>(p::parse_message(next[0])).seq == 11);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("a stray journal file that would restart the numbering stops messd with exit 2 naming it") {
+  auto dir = temp_dir("journal-stray");
+  {
+    DaemonProcess messd({"--journal", dir});
+    LineClient c(messd.port());
+    force_points(c, 12);
+  }
+  std::ofstream(dir + "/hits-000000000005.jnl") << "garbage\n";
+  auto r = run_messd_to_exit({"--journal", dir});
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::Contains(dir + "/hits-000000000005.jnl") && Catch::Contains("holds hits up to 12") &&
+                        Catch::Contains("move it out of"));
+  std::filesystem::remove_all(dir);
+}

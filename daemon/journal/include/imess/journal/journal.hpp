@@ -14,6 +14,7 @@
 namespace imess::journal {
 
 struct JournalFile;
+struct FileScan;
 
 // Numbers journaled whose records cannot be read back (damaged: the checksum fails, or the
 // line is gone). `before`: in ReadResult, the index in `lines` of the first hit after them.
@@ -74,6 +75,8 @@ class Journal {
   void open_file(std::uint64_t first_seq);
   void rotate(std::uint64_t first_seq);
   void drop_old_files();
+  void find_lost(const std::vector<FileScan>& scans);  // at start, all files still in files_
+  void note_lost();                                     // the log lines for what find_lost found
 
   JournalConfig config_;
   std::vector<JournalFile> files_;  // oldest first; the last one is written
