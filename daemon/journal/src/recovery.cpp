@@ -33,13 +33,13 @@ void take_line(std::string_view line, std::uint64_t end_offset, const JournalFil
 }
 
 std::string what_it_holds(const FileScan& s) {
-  if (!s.highest) return "it holds no intact hit";
-  return "it holds hits " + std::to_string(*s.lowest) + " to " + std::to_string(*s.highest);
+  if (!s.highest) return "holds no intact hit";
+  return "holds hits " + std::to_string(*s.lowest) + " to " + std::to_string(*s.highest);
 }
 
 std::string what_to_do(const std::string& dir) {
-  return "; move it out of '" + dir + "' (or delete it if its hits do not matter) and start messd again: a hit number "
-         "is never given twice";
+  return ": move it out of '" + dir + "' (or delete it if its hits do not matter) and start messd again (it does not "
+         "start rather than give hit numbers a second time)";
 }
 
 }  // namespace
@@ -86,20 +86,20 @@ void check_files_agree(const std::vector<JournalFile>& files, const std::vector<
     throw JournalError("the journal files '" + files[i].path + "' and '" + files[i + 1].path + "' in '" + dir +
                        "' cannot both belong to this journal: the first holds hits up to " +
                        std::to_string(*a.highest) + ", but the name of the second says its hits begin at " +
-                       std::to_string(files[i + 1].first) + " (continuing would give those numbers again); " +
-                       "the second file: " + what_it_holds(b) + ". The one that does not belong is probably '" +
-                       stray + "'" + what_to_do(dir));
+                       std::to_string(files[i + 1].first) + " (continuing would give those numbers again), and the " +
+                       "second " + what_it_holds(b) + ". The one that does not belong is probably '" + stray + "'" +
+                       what_to_do(dir));
   }
   for (std::size_t i = 0; i < files.size(); ++i) {
     const FileScan& s = scans[i];
     if (s.lowest && *s.lowest < files[i].first)
       throw JournalError("the journal file '" + files[i].path + "' holds hit " + std::to_string(*s.lowest) +
                          ", but its name says its hits begin at " + std::to_string(files[i].first) +
-                         " (renamed, or copied from another journal)" + what_to_do(dir));
+                         " (renamed, or copied from another journal); it does not belong here" + what_to_do(dir));
     if (s.out_of_order)
       throw JournalError("the journal file '" + files[i].path + "' holds hit " + std::to_string(*s.out_of_order) +
-                         " after hit " + std::to_string(*s.after) + " (joined or edited: a journal only grows)" +
-                         what_to_do(dir));
+                         " after hit " + std::to_string(*s.after) + " (joined or edited: a journal only grows); it " +
+                         "does not belong here" + what_to_do(dir));
   }
 }
 
