@@ -268,3 +268,35 @@ TEST_CASE("a stray journal file that would restart the numbering stops messd wit
                         Catch::Contains("move it out of"));
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("messcap -o FILE.csv killed with SIGKILL and started again with --append keeps every point") {
+  TempDir dir;
+  const std::string csv = dir.file("pts.csv");
+  DaemonProcess messd;
+  const std::string where = "127.0.0.1:" + std::to_string(messd.port());
+  LineClient c(messd.port());
+  {
+    ChildProcess cap({client_binary("messcap"), where, "-o", csv});
+    for (auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+         cap.err().find("connected to") == std::string::npos;) {
+      REQUIRE(std::chrono::steady_clock::now() < until);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    force_points(c, 5);
+    REQUIRE(cap.wait_for_output("point 5:"));
+    cap.signal(SIGKILL);
+    cap.wait();
+  }
+  force_points(c, 5);  // measured while nobody captures
+  auto r = run_program({client_binary("messcap"), where, "-n", "5", "-o", csv, "--append"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.err, Catch::Contains("continuing after hit 5"));
+  std::ifstream in(csv);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  REQUIRE(lines.size() == 11);
+  CHECK(lines[0] == "hit,x,y,z");
+  for (int i = 1; i <= 10; ++i) CHECK(lines[i].rfind(std::to_string(i) + ",430.000,330.000,", 0) == 0);
+}
