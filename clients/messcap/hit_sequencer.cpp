@@ -69,8 +69,8 @@ bool HitSequencer::skip_lost() {
   if (lost_.empty() || lost_.begin()->first > *next_) return false;
   const std::uint64_t to = lost_.begin()->second + 1;
   lost_.erase(lost_.begin());
-  skip_to(to, to - *next_ == 1 ? "messd's journal holds it damaged and cannot give it"
-                               : "messd's journal holds them damaged and cannot give them");
+  skip_to(to, to - *next_ == 1 ? "its record in messd's journal is damaged or missing"
+                               : "their records in messd's journal are damaged or missing");
   return true;
 }
 

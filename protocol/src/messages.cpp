@@ -135,7 +135,7 @@ Message parse_message(std::string_view line) {
 }
 
 std::string format_replay_lost(std::uint64_t first, std::uint64_t last) {
-  return "Replay Lost " + std::to_string(first) + " " + std::to_string(last) + " damaged in the journal\n";
+  return "Replay Lost " + std::to_string(first) + " " + std::to_string(last) + " damaged or missing in the journal\n";
 }
 
 std::optional<LostHits> parse_replay_lost(std::string_view data) {

@@ -112,7 +112,7 @@ TEST_CASE("hits messd names lost in its journal (Replay Lost) are skipped once, 
   CHECK(s.skipped() == 1);
   auto notes = s.take_notes();
   REQUIRE(notes.size() == 1);
-  CHECK(notes[0] == "hit 5 is missing: messd's journal holds it damaged and cannot give it");
+  CHECK(notes[0] == "hit 5 is missing: its record in messd's journal is damaged or missing");
   CHECK(s.lost_text() == "5");
 }
 
@@ -127,5 +127,5 @@ TEST_CASE("a lost range named before the hits ahead of it arrive is skipped when
   CHECK(seqs(s.on_hit(hit(7))) == std::vector<std::uint64_t>{7});
   CHECK(seqs(s.on_hit(hit(8))) == std::vector<std::uint64_t>{8, 9});
   CHECK(s.skipped() == 3);
-  CHECK(s.take_notes() == std::vector<std::string>{"hits 4 to 6 are missing: messd's journal holds them damaged and cannot give them"});
+  CHECK(s.take_notes() == std::vector<std::string>{"hits 4 to 6 are missing: their records in messd's journal are damaged or missing"});
 }

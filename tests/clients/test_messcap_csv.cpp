@@ -30,7 +30,7 @@ std::string hit(int seq, double x, double y, double z) {
 FakeDaemonScript journal_with_a_lost_hit() {
   return {0, {"CurrCor 0.000 0.000 0.000"}, [](const std::string& line) -> std::vector<std::string> {
             if (line == "Replay 3")
-              return {hit(3, 10, 0, 80), "Replay Lost 4 4 damaged in the journal", hit(5, 10, 10, 80),
+              return {hit(3, 10, 0, 80), "Replay Lost 4 4 damaged or missing in the journal", hit(5, 10, 10, 80),
                       "Ok Replay 3 5"};
             if (line.rfind("Replay ", 0) == 0)  // a new capture's probe: where the journal ends
               return {"Ok Replay 0 0", hit(1, 0, 0, 80), "MeasPt 0.000 0.000 80.000", hit(2, 0, 10, 80),
@@ -54,7 +54,7 @@ TEST_CASE("messcap -o FILE.csv writes a hit column, and --append resumes after i
   INFO(again.err);
   REQUIRE(again.status == 0);
   CHECK_THAT(again.err, Catch::Contains("continuing after hit 2"));
-  CHECK_THAT(again.err, Catch::Contains("hit 4 is missing: messd's journal holds it damaged"));
+  CHECK_THAT(again.err, Catch::Contains("hit 4 is missing: its record in messd's journal is damaged or missing"));
   CHECK_THAT(again.err, Catch::Contains("2 points written") && Catch::Contains("hit 4 missing"));
   CHECK(read_file(csv) ==
         "hit,x,y,z\n1,0.000,0.000,80.000\n2,0.000,10.000,80.000\n3,10.000,0.000,80.000\n5,10.000,10.000,80.000\n");

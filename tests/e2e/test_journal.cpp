@@ -237,11 +237,11 @@ TEST_CASE("a damaged record in the journal is named in Replay's answer as Replay
         return l.rfind("Ok Replay", 0) == 0 || l.rfind("Err", 0) == 0;
       },
       10.0));
-  std::vector<std::string> want{hits[2], hits[3], "Replay Lost 5 5 damaged in the journal"};
+  std::vector<std::string> want{hits[2], hits[3], "Replay Lost 5 5 damaged or missing in the journal"};
   want.insert(want.end(), hits.begin() + 5, hits.end());
   want.push_back("Ok Replay 8 10");  // 3 … 10: seven hits and one named lost
   CHECK(lines == want);
-  auto lost = p::parse_message("Replay Lost 5 5 damaged in the journal");
+  auto lost = p::parse_message("Replay Lost 5 5 damaged or missing in the journal");
   REQUIRE(std::holds_alternative<p::DataMsg>(lost));
   auto range = p::parse_replay_lost(std::get<p::DataMsg>(lost).text);
   REQUIRE(range);

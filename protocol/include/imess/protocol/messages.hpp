@@ -37,7 +37,7 @@ std::string format_event(std::string_view verb, std::string_view text);  // "Sta
 // point and radius with 4 decimals (0.1 um), direction with 6, time with 6 (1 us).
 std::string format_hit(const HitMsg& hit);
 // A data line of Replay's reply, in the place of journaled hits first … last whose records
-// cannot be read back (damaged, missing): "Replay Lost 5 5 damaged in the journal\n".
+// cannot be read back (damaged, missing): "Replay Lost 5 5 damaged or missing in the journal\n".
 std::string format_replay_lost(std::uint64_t first, std::uint64_t last);
 
 // ---- parsing (client side) ----
