@@ -300,3 +300,28 @@ TEST_CASE("messcap -o FILE.csv killed with SIGKILL and started again with --appe
   CHECK(lines[0] == "hit,x,y,z");
   for (int i = 1; i <= 10; ++i) CHECK(lines[i].rfind(std::to_string(i) + ",430.000,330.000,", 0) == 0);
 }
+
+TEST_CASE("messcap --append over a damaged journal record reports the lost hit and keeps all the others") {
+  auto dir = temp_dir("journal-damaged-messcap");
+  {
+    DaemonProcess messd({"--journal", dir});
+    LineClient c(messd.port());
+    force_points(c, 10);
+  }
+  damage_record(dir + "/hits-000000000001.jnl", 5);
+  TempDir out;
+  const std::string csv = out.file("pts.csv");
+  std::ofstream(csv) << "hit,x,y,z\n1,430.000,330.000,100.000\n2,430.000,330.000,100.000\n";
+  DaemonProcess messd({"--journal", dir});
+  const std::string where = "127.0.0.1:" + std::to_string(messd.port());
+  auto r = run_program({client_binary("messcap"), where, "-n", "7", "-o", csv, "--append"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.err, Catch::Contains("hit 5 is missing: its record in messd's journal is damaged or missing"));
+  CHECK_THAT(r.err, Catch::Contains("7 points written") && Catch::Contains("hit 5 missing"));
+  std::ifstream in(csv);
+  std::vector<std::string> numbers;
+  for (std::string l; std::getline(in, l);) numbers.push_back(l.substr(0, l.find(',')));
+  CHECK(numbers == std::vector<std::string>{"hit", "1", "2", "3", "4", "6", "7", "8", "9", "10"});
+  std::filesystem::remove_all(dir);
+}

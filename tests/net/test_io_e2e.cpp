@@ -1,7 +1,6 @@
-// The io path against a real messd: events leave on the motion loop's wake-up (not the
-// backstop timer), replies keep request order under load, pipelined requests are all answered,
-// a client that stops reading is dropped without holding up the others, and disconnects
-// during writes are harmless.
+// The io path against a real messd: events leave on the loop's wake-up (not the backstop timer),
+// replies keep request order under load, pipelined requests are all answered, a client that stops
+// reading is dropped without holding up the others, disconnects during writes are harmless.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
