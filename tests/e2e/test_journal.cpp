@@ -247,6 +247,11 @@ TEST_CASE("a damaged record in the journal is named in Replay's answer as Replay
   REQUIRE(range);
   CHECK(range->first == 5);
   CHECK(range->last == 5);
+  // Align names it too, rather than "not in the journal".
+  auto align = c.request("Align cube 321 1-3 4,5 6");
+  REQUIRE(align);
+  CHECK(*align == "Err 105 Align cube: hit 5 of the line is lost: its record in the journal is damaged or missing; "
+                  "measure the point again and use its new number");
   // New hits continue after the newest, never reusing 5.
   auto next = force_points(c, 1);
   REQUIRE(next.size() == 1);
