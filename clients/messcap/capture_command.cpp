@@ -1,7 +1,6 @@
-// The capture loop: connect, say Hello, take Hit (or, from a messd without a journal, MeasPt)
-// until N points, Ctrl-C or the link closes (--reconnect: until N or Ctrl-C, catching up with
-// Replay after each reconnect); then the optional fit. The file is written before the screen.
-// A .hits file takes only Hit lines: a messd that sends none is refused.
+// The capture loop: connect, Hello, take Hit (or MeasPt from a messd without a journal) until N
+// points, Ctrl-C or the link closes (--reconnect: Replay after each reconnect; hits messd cannot
+// give are reported); the optional fit. The file before the screen; .hits takes only Hit lines.
 #include "capture_command.hpp"
 
 #include <csignal>
@@ -181,6 +180,10 @@ class Capture {
         refuse("sends only MeasPt points (its Hello lists no 'journal' among its Caps)");
     } else if (auto* err = std::get_if<protocol::ErrMsg>(&message)) {
       on_replay_err(*err, line);
+    } else if (auto* data = std::get_if<protocol::DataMsg>(&message)) {
+      // `Replay Lost first last`: journaled hits messd cannot give; the sequencer notes them.
+      if (auto lost = data->verb == "Replay" ? protocol::parse_replay_lost(data->text) : std::nullopt)
+        take_all(sequencer_.on_replay_lost(lost->first, lost->last));
     }
   }
 
@@ -255,6 +258,9 @@ class Capture {
     std::cerr << "messcap: " << received_ << (received_ == 1 ? " point" : " points");
     if (output_.file) std::cerr << " written to " << output_.file->path();
     if (!ended_by_.empty()) std::cerr << " (" << ended_by_ << ")";
+    if (sequencer_.skipped() > 0)
+      std::cerr << "; " << (sequencer_.skipped() == 1 ? "hit " : "hits ") << sequencer_.lost_text()
+                << " missing: messd could not give " << (sequencer_.skipped() == 1 ? "it" : "them");
     std::cerr << "\n";
   }
 

@@ -1,4 +1,5 @@
-// Reading and writing the "# hit N" comments of .xyz/.asc/.hits capture files.
+// Reading and writing the hit numbers of capture files: the `hit` column of .csv, the
+// "# hit N" comments of .xyz/.asc/.hits.
 #include "hit_numbers.hpp"
 
 #include <algorithm>
@@ -11,16 +12,42 @@
 #include "imess/protocol/numbers.hpp"
 
 namespace imess::messcap {
+namespace {
 
-bool keeps_hit_numbers(const std::string& path) {
+std::string extension(const std::string& path) {
   auto dot = path.rfind('.');
-  if (dot == std::string::npos) return false;
+  if (dot == std::string::npos) return {};
   std::string ext = path.substr(dot);
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext == ".xyz" || ext == ".asc" || ext == ".hits";
+  return ext;
+}
+
+bool is_csv(const std::string& path) { return extension(path) == ".csv"; }
+
+std::string trimmed(std::string s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+  const auto first = s.find_first_not_of(" \t");
+  return first == std::string::npos ? std::string() : s.substr(first);
+}
+
+}  // namespace
+
+bool keeps_hit_numbers(const std::string& path) {
+  const std::string ext = extension(path);
+  return ext == ".csv" || ext == ".xyz" || ext == ".asc" || ext == ".hits";
 }
 
 std::string hit_comment(std::uint64_t seq) { return " # hit " + std::to_string(seq); }
+
+std::string capture_header(const std::string& path, const std::string& format_header) {
+  return is_csv(path) ? "hit,x,y,z\n" : format_header;
+}
+
+std::string with_hit_number(const std::string& path, std::string line, std::optional<std::uint64_t> seq) {
+  if (is_csv(path)) return (seq ? std::to_string(*seq) : std::string()) + "," + line;
+  if (seq && keeps_hit_numbers(path)) line.insert(line.size() - 1, hit_comment(*seq));
+  return line;
+}
 
 std::optional<std::uint64_t> last_hit_number(const std::string& path) {
   std::ifstream in(path);
@@ -28,9 +55,28 @@ std::optional<std::uint64_t> last_hit_number(const std::string& path) {
     if (errno == ENOENT) return std::nullopt;
     throw std::runtime_error("cannot read '" + path + "': " + std::strerror(errno));
   }
+  const bool csv = is_csv(path);
+  bool header_seen = false;
   std::optional<std::uint64_t> last;
   std::string line;
   while (std::getline(in, line)) {
+    if (csv) {
+      line = trimmed(line);
+      if (line.empty() || line[0] == '#') continue;
+      if (!header_seen) {
+        header_seen = true;
+        if (line.rfind("hit,", 0) != 0)
+          throw std::runtime_error(
+              "'" + path + "' has no 'hit' column (its header is '" + line +
+              "': written by messcap convert or an older messcap), so a capture cannot continue it without losing "
+              "the points measured since; capture into a new .csv (its header is 'hit,x,y,z'), or continue a file "
+              "that keeps hit numbers: a .csv with the header 'hit,x,y,z', .xyz, .asc or .hits");
+        continue;
+      }
+      if (auto n = protocol::parse_sequence_number(std::string_view(line).substr(0, line.find(','))))
+        last = std::max(last.value_or(0), *n);
+      continue;
+    }
     auto at = line.rfind("# hit ");
     if (at == std::string::npos) continue;
     if (auto n = protocol::parse_sequence_number(std::string_view(line).substr(at + 6)))

@@ -30,7 +30,10 @@ std::vector<protocol::HitMsg> HitSequencer::on_hit(const protocol::HitMsg& hit) 
 
 std::vector<protocol::HitMsg> HitSequencer::drain() {
   std::vector<protocol::HitMsg> due;
-  while (!ahead_.empty()) {
+  for (;;) {
+    while (skip_lost()) {
+    }
+    if (ahead_.empty()) break;
     auto first = ahead_.begin();
     if (first->first < *next_) {
       ahead_.erase(first);
@@ -53,8 +56,40 @@ void HitSequencer::on_connected() {
 
 void HitSequencer::skip_to(std::uint64_t seq, const std::string& why) {
   skipped_ += seq - *next_;
-  notes_.push_back("hits " + std::to_string(*next_) + " to " + std::to_string(seq - 1) + " are missing: " + why);
+  skipped_ranges_.emplace_back(*next_, seq - 1);
+  notes_.push_back((seq - 1 == *next_ ? "hit " + std::to_string(*next_) + " is"
+                                      : "hits " + std::to_string(*next_) + " to " + std::to_string(seq - 1) + " are") +
+                   " missing: " + why);
   next_ = seq;
+}
+
+bool HitSequencer::skip_lost() {
+  if (!next_) return false;
+  while (!lost_.empty() && lost_.begin()->second < *next_) lost_.erase(lost_.begin());  // passed already
+  if (lost_.empty() || lost_.begin()->first > *next_) return false;
+  const std::uint64_t to = lost_.begin()->second + 1;
+  lost_.erase(lost_.begin());
+  skip_to(to, to - *next_ == 1 ? "its record in messd's journal is damaged or missing"
+                               : "their records in messd's journal are damaged or missing");
+  return true;
+}
+
+std::vector<protocol::HitMsg> HitSequencer::on_replay_lost(std::uint64_t first, std::uint64_t last) {
+  if (next_ && last < *next_) return {};
+  auto [it, added] = lost_.emplace(first, last);
+  if (!added) it->second = std::max(it->second, last);
+  if (!next_) return {};
+  return drain();
+}
+
+std::string HitSequencer::lost_text() const {
+  std::string text;
+  for (std::size_t i = 0; i < skipped_ranges_.size() && i <= 5; ++i) {
+    const auto [a, b] = skipped_ranges_[i];
+    text += (i ? ", " : "") + (i == 5 ? std::string("...")
+                                      : a == b ? std::to_string(a) : std::to_string(a) + " to " + std::to_string(b));
+  }
+  return text;
 }
 
 std::vector<protocol::HitMsg> HitSequencer::on_replay_ok(std::uint64_t count, std::uint64_t newest) {

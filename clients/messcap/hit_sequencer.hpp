@@ -33,23 +33,30 @@ class HitSequencer {
   std::vector<protocol::HitMsg> on_replay_gone(std::uint64_t oldest);
   // Any other Err to a Replay (an older messd without a journal): no more Replay requests.
   std::vector<protocol::HitMsg> on_replay_refused();
+  // `Replay Lost first last`: messd journaled those numbers but cannot give them (damaged
+  // records); they are skipped, with a note, when the capture reaches them.
+  std::vector<protocol::HitMsg> on_replay_lost(std::uint64_t first, std::uint64_t last);
 
   // The number to send `Replay` from now, if one is needed and none is outstanding.
   std::optional<std::uint64_t> take_replay_request();
 
   std::optional<std::uint64_t> next() const { return next_; }  // the number expected next
   std::uint64_t skipped() const { return skipped_; }            // hits that could not be had
+  // Their numbers for the user, "5, 11 to 49" (at most 5 ranges, then "..."); empty when none.
+  std::string lost_text() const;
   // Notes for the user (hits skipped, a journal that starts again); taken once.
   std::vector<std::string> take_notes();
 
  private:
   std::vector<protocol::HitMsg> drain();
   void skip_to(std::uint64_t seq, const std::string& why);
-
+  bool skip_lost();  // next_ is in a range messd named lost: skip past it
   std::optional<std::uint64_t> next_;
   std::map<std::uint64_t, protocol::HitMsg> ahead_;  // arrived before the ones missing in between
   bool want_replay_ = false, outstanding_ = false, refused_ = false, probe_sent_ = false;
   std::uint64_t skipped_ = 0;
+  std::map<std::uint64_t, std::uint64_t> lost_;  // first -> last, named by Replay Lost, not yet reached
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> skipped_ranges_;
   std::vector<std::string> notes_;
 };
 

@@ -73,7 +73,7 @@ PointFile::PointFile(std::string path, OpenMode mode, exchange::ExportData base)
   }
   created_ = !existed;
   if (format_->appendable()) {
-    if (::lseek(fd_, 0, SEEK_END) == 0) append_text(format_->header());
+    if (::lseek(fd_, 0, SEEK_END) == 0) append_text(capture_header(path_, format_->header()));
   } else {
     ::close(fd_);  // the name is claimed; from now on the file is replaced whole
     fd_ = -1;
@@ -103,8 +103,7 @@ void PointFile::append(const metrology::ProbedPoint& h, std::optional<std::uint6
 void PointFile::add(const Eigen::Vector3d& p, const metrology::ProbedPoint* h, std::optional<std::uint64_t> hit) {
   if (format_->appendable()) {
     std::string line = needs_approach() ? format_->hit_line(*h, data_.decimals) : format_->point_line(p, data_.decimals);
-    if (hit && keeps_hit_numbers(path_)) line.insert(line.size() - 1, hit_comment(*hit));
-    append_text(line);
+    append_text(with_hit_number(path_, std::move(line), hit));
   } else {
     data_.points.push_back(p);
     rewrite();

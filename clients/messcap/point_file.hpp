@@ -20,7 +20,7 @@ enum class OpenMode {
 
 class PointFile {
  public:
-  // Creates/opens the file and writes its empty document (CSV: the header). `base` carries
+  // Creates/opens the file and writes its empty document (CSV: the header "hit,x,y,z"). `base` carries
   // the decimals, frame name, ... (its points are ignored). Throws std::runtime_error naming
   // the file and the reason; exchange::FormatError for an unknown extension.
   PointFile(std::string path, OpenMode mode, exchange::ExportData base = {});
@@ -29,7 +29,7 @@ class PointFile {
   PointFile& operator=(const PointFile&) = delete;
 
   // Writes one point and forces it to disk; `hit` (its journal number) goes into the formats
-  // that keep it (.xyz, .asc, .hits: hit_numbers.hpp). Throws std::runtime_error on a write
+  // that keep it (.csv's first column, a comment in .xyz, .asc, .hits: hit_numbers.hpp). Throws std::runtime_error on a write
   // error; std::logic_error for a .hits file, which never takes a point without its approach.
   void append(const Eigen::Vector3d& p, std::optional<std::uint64_t> hit = std::nullopt);
   // The same for a hit: all of it (approach, tip radius) into .hits, its surface point into

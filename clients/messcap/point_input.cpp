@@ -1,5 +1,6 @@
 // read_point_or_hit_input(): whole input read, a leading "x,y,z"-style header turned into a
-// comment (line numbers stay right), then metrology::parse_probed_points or parse_points.
+// comment and a capture's `hit` column blanked (line and column numbers stay right), then
+// metrology::parse_probed_points or parse_points.
 #include "point_input.hpp"
 
 #include <cctype>
@@ -18,6 +19,27 @@ std::string input_name(const std::string& path) { return path == "-" ? "<stdin>"
 
 namespace {
 
+// After a "hit,x,y,z" header (messcap's capture .csv): the hit number and its comma on every
+// point line become blanks, so x y z are read as the points.
+void blank_hit_column(std::string& s, std::size_t from) {
+  for (std::size_t at = from; at < s.size();) {
+    std::size_t end = s.find('\n', at);
+    if (end == std::string::npos) end = s.size();
+    const std::size_t first = s.find_first_not_of(" \t\r", at);
+    const std::size_t comma = s.find(',', at);
+    if (first < end && s[first] != '#' && comma < end)
+      for (std::size_t i = at; i <= comma; ++i) s[i] = ' ';
+    at = end + 1;
+  }
+}
+
+bool starts_with_hit_column(std::string_view header) {
+  if (header.size() < 4) return false;
+  for (std::size_t i = 0; i < 3; ++i)
+    if (std::tolower(static_cast<unsigned char>(header[i])) != "hit"[i]) return false;
+  return header[3] == ',';
+}
+
 std::string read_text(const std::string& path) {
   std::ostringstream text;
   if (path == "-") {
@@ -30,7 +52,13 @@ std::string read_text(const std::string& path) {
   std::string s = text.str();
   // A header of names ("x,y,z" from messcap's .csv) is a comment, not a point.
   auto first = s.find_first_not_of(" \t\r\n");
-  if (first != std::string::npos && std::isalpha(static_cast<unsigned char>(s[first]))) s.insert(first, "#");
+  if (first != std::string::npos && std::isalpha(static_cast<unsigned char>(s[first]))) {
+    const std::size_t end = s.find('\n', first);
+    if (starts_with_hit_column(std::string_view(s).substr(first, end == std::string::npos ? std::string::npos : end - first)) &&
+        end != std::string::npos)
+      blank_hit_column(s, end + 1);
+    s.insert(first, "#");
+  }
   return s;
 }
 

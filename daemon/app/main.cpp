@@ -131,6 +131,7 @@ std::unique_ptr<journal::Journal> open_journal(const journal::JournalConfig& con
     return nullptr;
   }
   for (const auto& n : hits->notes()) spdlog::info("{}", n);
+  for (const auto& w : hits->warnings()) spdlog::warn("{}", w);
   return hits;
 }
 

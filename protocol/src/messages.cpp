@@ -130,8 +130,20 @@ Message parse_message(std::string_view line) {
       return e;
     }
   }
-  if (verb == "Help") return DataMsg{"Help", rest_after(line, 1)};
+  if (verb == "Help" || verb == "Replay") return DataMsg{std::string(verb), rest_after(line, 1)};
   return OtherMsg{std::string(line)};
+}
+
+std::string format_replay_lost(std::uint64_t first, std::uint64_t last) {
+  return "Replay Lost " + std::to_string(first) + " " + std::to_string(last) + " damaged or missing in the journal\n";
+}
+
+std::optional<LostHits> parse_replay_lost(std::string_view data) {
+  auto w = words(data);
+  if (w.size() < 3 || w[0] != "Lost") return std::nullopt;
+  auto first = parse_sequence_number(w[1]), last = parse_sequence_number(w[2]);
+  if (!first || !last || *last < *first) return std::nullopt;
+  return LostHits{*first, *last};
 }
 
 }  // namespace imess::protocol

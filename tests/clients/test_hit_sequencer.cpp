@@ -96,3 +96,36 @@ TEST_CASE("a new capture from a messd without Replay starts with the first hit")
   CHECK(seqs(s.on_hit(hit(8))) == std::vector<std::uint64_t>{8});
   CHECK(s.skipped() == 0);
 }
+
+TEST_CASE("hits messd names lost in its journal (Replay Lost) are skipped once, counted and reported") {
+  HitSequencer s(2);
+  s.on_connected();
+  CHECK(s.take_replay_request() == std::optional<std::uint64_t>(3));
+  // Replay 3's answer: Hit 3, Hit 4, Replay Lost 5 5, Hit 6 … 10, Ok Replay 8 10.
+  CHECK(seqs(s.on_hit(hit(3))) == std::vector<std::uint64_t>{3});
+  CHECK(seqs(s.on_hit(hit(4))) == std::vector<std::uint64_t>{4});
+  CHECK(s.on_replay_lost(5, 5).empty());
+  CHECK(seqs(s.on_hit(hit(6))) == std::vector<std::uint64_t>{6});
+  for (std::uint64_t n = 7; n <= 10; ++n) REQUIRE(s.on_hit(hit(n)).size() == 1);
+  CHECK(s.on_replay_ok(8, 10).empty());
+  CHECK_FALSE(s.take_replay_request());  // nothing left to ask: no endless Replay 5
+  CHECK(s.skipped() == 1);
+  auto notes = s.take_notes();
+  REQUIRE(notes.size() == 1);
+  CHECK(notes[0] == "hit 5 is missing: its record in messd's journal is damaged or missing");
+  CHECK(s.lost_text() == "5");
+}
+
+TEST_CASE("a lost range named before the hits ahead of it arrive is skipped when the capture reaches it") {
+  HitSequencer s(0);
+  s.take_replay_request();
+  CHECK(s.on_hit(hit(1)).size() == 1);
+  CHECK(s.on_hit(hit(9)).empty());   // live, while hits 2 … 8 are being replayed
+  CHECK(s.on_replay_lost(4, 6).empty());  // named before hits 2 and 3 came
+  CHECK(seqs(s.on_hit(hit(2))) == std::vector<std::uint64_t>{2});
+  CHECK(seqs(s.on_hit(hit(3))) == std::vector<std::uint64_t>{3});
+  CHECK(seqs(s.on_hit(hit(7))) == std::vector<std::uint64_t>{7});
+  CHECK(seqs(s.on_hit(hit(8))) == std::vector<std::uint64_t>{8, 9});
+  CHECK(s.skipped() == 3);
+  CHECK(s.take_notes() == std::vector<std::string>{"hits 4 to 6 are missing: their records in messd's journal are damaged or missing"});
+}

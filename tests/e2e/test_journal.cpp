@@ -206,3 +206,127 @@ TEST_CASE("messcap --append against messd fetches the hits measured while it was
   for (int i = 0; i < 5; ++i) CHECK(lines[i].substr(lines[i].rfind('#')) == "# hit " + std::to_string(i + 1));
   CHECK_THAT(r.err, Catch::Contains("continuing after hit 2"));
 }
+
+// Changes one byte of hit `seq`'s record in the journal file at `path` (its checksum then fails).
+static void damage_record(const std::string& path, std::uint64_t seq) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto at = text.find("Hit " + std::to_string(seq) + " ");
+  REQUIRE(at != std::string::npos);
+  const auto digit = text.find(" 430.", at) + 2;
+  text[digit] = text[digit] == '3' ? '4' : '3';
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
+}
+
+TEST_CASE("a damaged record in the journal is named in Replay's answer as Replay Lost and counted") {
+  auto dir = temp_dir("journal-damaged");
+  std::vector<std::string> hits;
+  {
+    DaemonProcess messd({"--journal", dir});
+    LineClient c(messd.port());
+    hits = force_points(c, 10);
+  }
+  damage_record(dir + "/hits-000000000001.jnl", 5);
+  DaemonProcess messd({"--journal", dir});
+  LineClient c(messd.port());
+  c.send("Replay 3");
+  std::vector<std::string> lines;
+  REQUIRE(c.until(
+      [&](const std::string& l) {
+        if (l.rfind("Hit ", 0) == 0 || l.rfind("Replay ", 0) == 0 || l.rfind("Ok Replay", 0) == 0) lines.push_back(l);
+        return l.rfind("Ok Replay", 0) == 0 || l.rfind("Err", 0) == 0;
+      },
+      10.0));
+  std::vector<std::string> want{hits[2], hits[3], "Replay Lost 5 5 damaged or missing in the journal"};
+  want.insert(want.end(), hits.begin() + 5, hits.end());
+  want.push_back("Ok Replay 8 10");  // 3 … 10: seven hits and one named lost
+  CHECK(lines == want);
+  auto lost = p::parse_message("Replay Lost 5 5 damaged or missing in the journal");
+  REQUIRE(std::holds_alternative<p::DataMsg>(lost));
+  auto range = p::parse_replay_lost(std::get<p::DataMsg>(lost).text);
+  REQUIRE(range);
+  CHECK(range->first == 5);
+  CHECK(range->last == 5);
+  // Align names it too, rather than "not in the journal".
+  auto align = c.request("Align cube 321 1-3 4,5 6");
+  REQUIRE(align);
+  CHECK(*align == "Err 105 Align cube: hit 5 of the line is lost: its record in the journal is damaged or missing; "
+                  "measure the point again and use its new number");
+  // New hits continue after the newest, never reusing 5.
+  auto next = force_points(c, 1);
+  REQUIRE(next.size() == 1);
+  CHECK(std::get<p::HitMsg>(p::parse_message(next[0])).seq == 11);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("a stray journal file that would restart the numbering stops messd with exit 2 naming it") {
+  auto dir = temp_dir("journal-stray");
+  {
+    DaemonProcess messd({"--journal", dir});
+    LineClient c(messd.port());
+    force_points(c, 12);
+  }
+  std::ofstream(dir + "/hits-000000000005.jnl") << "garbage\n";
+  auto r = run_messd_to_exit({"--journal", dir});
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::Contains(dir + "/hits-000000000005.jnl") && Catch::Contains("holds hits up to 12") &&
+                        Catch::Contains("move it out of"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("messcap -o FILE.csv killed with SIGKILL and started again with --append keeps every point") {
+  TempDir dir;
+  const std::string csv = dir.file("pts.csv");
+  DaemonProcess messd;
+  const std::string where = "127.0.0.1:" + std::to_string(messd.port());
+  LineClient c(messd.port());
+  {
+    ChildProcess cap({client_binary("messcap"), where, "-o", csv});
+    for (auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+         cap.err().find("connected to") == std::string::npos;) {
+      REQUIRE(std::chrono::steady_clock::now() < until);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    force_points(c, 5);
+    REQUIRE(cap.wait_for_output("point 5:"));
+    cap.signal(SIGKILL);
+    cap.wait();
+  }
+  force_points(c, 5);  // measured while nobody captures
+  auto r = run_program({client_binary("messcap"), where, "-n", "5", "-o", csv, "--append"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.err, Catch::Contains("continuing after hit 5"));
+  std::ifstream in(csv);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  REQUIRE(lines.size() == 11);
+  CHECK(lines[0] == "hit,x,y,z");
+  for (int i = 1; i <= 10; ++i) CHECK(lines[i].rfind(std::to_string(i) + ",430.000,330.000,", 0) == 0);
+}
+
+TEST_CASE("messcap --append over a damaged journal record reports the lost hit and keeps all the others") {
+  auto dir = temp_dir("journal-damaged-messcap");
+  {
+    DaemonProcess messd({"--journal", dir});
+    LineClient c(messd.port());
+    force_points(c, 10);
+  }
+  damage_record(dir + "/hits-000000000001.jnl", 5);
+  TempDir out;
+  const std::string csv = out.file("pts.csv");
+  std::ofstream(csv) << "hit,x,y,z\n1,430.000,330.000,100.000\n2,430.000,330.000,100.000\n";
+  DaemonProcess messd({"--journal", dir});
+  const std::string where = "127.0.0.1:" + std::to_string(messd.port());
+  auto r = run_program({client_binary("messcap"), where, "-n", "7", "-o", csv, "--append"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.err, Catch::Contains("hit 5 is missing: its record in messd's journal is damaged or missing"));
+  CHECK_THAT(r.err, Catch::Contains("7 points written") && Catch::Contains("hit 5 missing"));
+  std::ifstream in(csv);
+  std::vector<std::string> numbers;
+  for (std::string l; std::getline(in, l);) numbers.push_back(l.substr(0, l.find(',')));
+  CHECK(numbers == std::vector<std::string>{"hit", "1", "2", "3", "4", "6", "7", "8", "9", "10"});
+  std::filesystem::remove_all(dir);
+}

@@ -1,6 +1,6 @@
-// The io path against a real messd: events leave on the motion loop's wake-up (not the
-// backstop timer), replies keep request order under load, a client whose output queue
-// fills is dropped without holding up the others, and disconnects during writes are harmless.
+// The io path against a real messd: events leave on the loop's wake-up (not the backstop timer),
+// replies keep request order under load, pipelined requests are all answered, a client that stops
+// reading is dropped without holding up the others, disconnects during writes are harmless.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "net_fixture.hpp"
@@ -84,8 +85,33 @@ TEST_CASE("replies keep request order under load, whether the io thread or the m
   check_order(b, sent_b);
 }
 
-TEST_CASE("a client whose output queue fills is dropped and the others get every event in order") {
-  TempConfig config(R"({"server": {"max_queue_bytes": 65536}})");
+TEST_CASE("pipelined requests sent at once are all answered in order: messd reads more slowly, never drops") {
+  DaemonProcess messd;
+  LineClient c(messd.port());
+  REQUIRE(c.next());  // CurrCor
+  const int count = GENERATE(300, 2000);  // 300 Help answers are 1.5 MiB, more than the output cap
+  std::string burst;
+  for (int i = 0; i < count; ++i) burst += i % 2 ? "Help\n" : "Status\n";
+  c.send_raw(burst);
+  int answered = 0;
+  REQUIRE(c.until(
+      [&](const std::string& l) {
+        if (l.rfind("Err ", 0) == 0) FAIL(l);
+        if (l == "Ok Help" || l.rfind("Ok Status", 0) == 0) {
+          CHECK(reply_verb(l) == (answered % 2 ? "Help" : "Status"));
+          ++answered;
+        }
+        return answered == count;
+      },
+      60.0));
+  CHECK(c.request("Version"));
+}
+
+TEST_CASE("a client that never reads the answers to its flood is dropped and the others get every event in order") {
+  // Its own requests only pause its reading (a quarter of the output cap waits at most), and the
+  // kernel takes megabytes of events: it is the stalled output that closes it (the cap itself:
+  // test_session_io.cpp).
+  TempConfig config(R"({"server": {"max_queue_bytes": 65536}, "control": {"write_stall_s": 0.5}})");
   DaemonProcess messd({"--config", config.path()});
   LineClient owner(messd.port()), watcher(messd.port());
   LineClient slow(messd.port(), "", 4096);  // small receive buffer, and it never reads below
@@ -102,6 +128,7 @@ TEST_CASE("a client whose output queue fills is dropped and the others get every
     CHECK(hit->rfind("Hit " + std::to_string(i) + " ", 0) == 0);
   }
   // The slow client was closed: reading what it was sent ends in end-of-file or a reset.
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));  // the sweeps find it stalled
   while (slow.next(5.0)) {}
   CHECK(slow.closed());
   auto status = owner.request("Status");

@@ -1,10 +1,12 @@
 // Session output without a daemon: a lost reply slot times out into Err 500 and the replies
-// behind it flow; a close while a write is in flight frees nothing the write still reads.
+// behind it flow; a close while a write is in flight frees nothing the write still reads; a
+// burst of requests with big answers is answered in full (reading pauses on bytes waiting).
 #include <catch2/catch.hpp>
 
 #include <boost/asio.hpp>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "imess/net/session.hpp"
 
@@ -90,4 +92,46 @@ TEST_CASE("one buffer queued for many sessions, and a close during a write frees
   CHECK(watch.expired());
   r.session->close("again");
   CHECK(r.closed == 1);
+}
+
+TEST_CASE("a burst of pipelined requests with big answers is answered in full, the client is never dropped") {
+  asio::io_context io;
+  tcp::acceptor acceptor(io, tcp::endpoint(asio::ip::make_address("127.0.0.1"), 0));
+  tcp::socket client(io);
+  client.connect(acceptor.local_endpoint());
+  // About Help's size; 300 of them are 1.5 MiB, more than the 1 MiB output cap.
+  const std::string answer = "Help " + std::string(5000, 'h') + "\nOk Help\n";
+  const int requests = GENERATE(300, 1000);
+  int closed = 0, seen = 0;
+  auto session = std::make_shared<Session>(
+      acceptor.accept(), 1, 1 << 20,
+      [&](Session& s, const imess::protocol::FramedLine&) {
+        ++seen;
+        s.fill_reply(s.reserve_reply(), answer);
+      },
+      [&](Session&) { ++closed; });
+  session->start();
+  std::string burst;
+  for (int i = 0; i < requests; ++i) burst += "Help\n";
+  asio::write(client, asio::buffer(burst));  // all at once, before reading any answer
+  std::thread server([&] { io.run(); });
+  const std::size_t expected = answer.size() * static_cast<std::size_t>(requests);
+  std::string got(expected, '\0');
+  boost::system::error_code ec;
+  const std::size_t n = asio::read(client, asio::buffer(got), ec);
+  asio::post(io, [&] { session->close("test over"); });
+  server.join();
+  CHECK(n == expected);
+  CHECK(seen == requests);
+  CHECK(closed == 1);  // only by the test
+  CHECK(session->close_reason() == "test over");
+}
+
+TEST_CASE("output beyond the cap to a client that does not read closes it at once, saying why") {
+  Pair p(8192);
+  p.session->send(std::string(6000, 'x') + "\n");
+  CHECK(p.closed == 0);
+  p.session->send(std::string(3000, 'y') + "\n");  // 9 KiB would wait: more than the 8 KiB cap
+  CHECK(p.closed == 1);
+  CHECK(p.session->close_reason() == "dropped: more than 8192 bytes of output waiting (not reading fast enough)");
 }

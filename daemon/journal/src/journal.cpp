@@ -23,11 +23,17 @@ Journal::Journal(JournalConfig config) : config_(std::move(config)) {
     notes_.push_back("journal: new in " + config_.dir + ", the first hit will be 1");
     return;
   }
+  // Every file is read through: the numbers must agree with the names (a stray file must not
+  // restart the numbering), and every number without an intact record is named as lost.
+  std::vector<FileScan> scans;
+  for (const auto& f : files_) scans.push_back(scan_file(f));
+  check_files_agree(files_, scans, config_.dir);
   // Numbering continues after the newest file's last intact record; a file without one
   // (begun just before a crash) continues after the number its name starts at.
   const JournalFile newest = files_.back();
-  Tail tail = find_tail(newest.path);
-  newest_ = tail.last_seq ? *tail.last_seq : newest.first - 1;
+  const FileScan& tail = scans.back();
+  newest_ = tail.highest ? *tail.highest : newest.first - 1;
+  find_lost(scans);
   if (tail.good_bytes < tail.file_bytes) {
     if (::truncate(newest.path.c_str(), static_cast<off_t>(tail.good_bytes)) != 0)
       throw JournalError("cannot cut the torn end off the journal file '" + newest.path + "': " + std::strerror(errno));
@@ -37,8 +43,7 @@ Journal::Journal(JournalConfig config) : config_(std::move(config)) {
   files_.pop_back();
   open_file(newest.first);
   drop_old_files();
-  notes_.push_back("journal: " + config_.dir + ", hits " + std::to_string(oldest()) + " to " + std::to_string(newest_) +
-                   " kept; the next hit will be " + std::to_string(newest_ + 1));
+  note_lost();
 }
 
 Journal::~Journal() {

@@ -1,5 +1,6 @@
 // Journal::read — Replay's source: from the file that holds `from`, line by line, the
-// checksums checked, across rotated files, at most `max` hits.
+// checksums checked, across rotated files, at most `max` hits; numbers without an intact
+// record among them (damaged, missing) are reported as lost ranges in their place.
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -51,6 +52,7 @@ ReadResult Journal::read(std::uint64_t from, std::size_t max) const {
         auto seq = record_seq(line);
         if (seq && *seq >= want) {  // before it: skipped without checking the checksum
           if (auto r = decode_record(line)) {
+            if (r->seq > want) out.lost.push_back({want, r->seq - 1, out.lines.size()});
             out.lines.emplace_back(std::string(r->wire) + "\n");
             want = r->seq + 1;
           }
@@ -62,6 +64,11 @@ ReadResult Journal::read(std::uint64_t from, std::size_t max) const {
     ::close(fd);
     line.clear();
   }
+  if (out.lines.size() < max && want <= newest_) {  // the journal's last numbers have no record
+    out.lost.push_back({want, newest_, out.lines.size()});
+    want = newest_ + 1;
+  }
+  out.covered = want - from;
   return out;
 }
 

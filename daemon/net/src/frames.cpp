@@ -186,14 +186,22 @@ void Server::align(Session& s, std::uint32_t slot, const protocol::Align& c) {
     auto& grp = groups[g];
     for (std::size_t i = 0; i < seqs.size(); ++i) {
       std::optional<protocol::HitMsg> hit;
+      bool lost = false;  // journaled, but its record is damaged or missing
       try {
         const auto got = journal_.read(seqs[i], 1);
+        lost = !got.lost.empty() && got.lost.front().first <= seqs[i];
         if (!got.lines.empty()) {
           auto m = protocol::parse_message(std::string_view(got.lines[0]).substr(0, got.lines[0].size() - 1));
           if (auto* h = std::get_if<protocol::HitMsg>(&m); h && h->seq == seqs[i]) hit = *h;
         }
       } catch (const journal::JournalError& e) {
         log_limited(spdlog::level::err, "journal", e.what());
+      }
+      if (!hit && lost) {
+        reply(s, slot, format_err(ErrorCode::BadValue, head + "hit " + std::to_string(seqs[i]) + " of the " + role +
+                                                          " is lost: its record in the journal is damaged or missing; "
+                                                          "measure the point again and use its new number"));
+        return;
       }
       if (!hit) {
         reply(s, slot, format_err(ErrorCode::BadValue, head + "hit " + std::to_string(seqs[i]) + " of the " + role +

@@ -1,6 +1,6 @@
-// Replay <from-seq>: journaled hits to the asking client only, as Hit lines exactly as sent
-// live, then `Ok Replay <count> <newest>`. At most kMaxReplayHits per request, so one reply
-// stays small against the session's write queue and the io thread is busy only briefly.
+// Replay <from-seq>: journaled hits to the asking client only, as Hit lines exactly as sent live,
+// `Replay Lost a b` in the place of numbers the journal cannot give, then `Ok Replay <count>
+// <newest>`. At most kMaxReplayHits hits per request: one reply stays small and quick.
 #include <spdlog/spdlog.h>
 
 #include "imess/net/server.hpp"
@@ -24,8 +24,13 @@ void Server::on_replay(Session& s, std::uint32_t slot, std::uint64_t from) {
     return;
   }
   std::string lines;
-  for (const auto& l : r.lines) lines += l;
-  reply(s, slot, lines + protocol::format_ok("Replay", std::to_string(r.lines.size()) + " " + std::to_string(r.newest)));
+  auto lost = r.lost.begin();
+  for (std::size_t i = 0; i <= r.lines.size(); ++i) {
+    for (; lost != r.lost.end() && lost->before == i; ++lost) lines += protocol::format_replay_lost(lost->first, lost->last);
+    if (i < r.lines.size()) lines += r.lines[i];
+  }
+  // count: the numbers from from-seq on that this answer covers, given or named lost.
+  reply(s, slot, lines + protocol::format_ok("Replay", std::to_string(r.covered) + " " + std::to_string(r.newest)));
 }
 
 }  // namespace imess::net

@@ -47,25 +47,51 @@ void Session::read() {
       self->read();
       return;
     }
-    self->framer_.feed(std::string_view(self->buffer_.data(), n), [&](const protocol::FramedLine& line) {
-      if (self->open_) self->on_line_(*self, line);
-    });
-    if (!self->open_) return;
-    if (self->backlogged()) {
-      self->read_paused_ = true;  // the client sends faster than it is answered: let TCP hold it back
+    if (!self->take_input(std::string_view(self->buffer_.data(), n))) {
+      if (self->open_) self->read_paused_ = true;  // the client sends faster than it is answered: let TCP hold it back
       return;
     }
     self->read();
   });
 }
 
-bool Session::backlogged() const { return replies_.size() >= kMaxOpenRequests || queued_bytes_ >= max_queue_bytes_ / 4; }
+bool Session::take_input(std::string_view bytes) {
+  // A line at a time (up to each LF), not a whole read at a time: 4 KiB of short requests with
+  // 5 KiB answers would otherwise queue 4 MiB before the first check.
+  std::size_t at = 0;
+  while (at < bytes.size()) {
+    const std::size_t nl = bytes.find('\n', at);
+    const std::size_t end = nl == std::string_view::npos ? bytes.size() : nl + 1;
+    framer_.feed(bytes.substr(at, end - at), [&](const protocol::FramedLine& line) {
+      if (open_ && !discard_input_) on_line_(*this, line);
+    });
+    at = end;
+    if (!open_ || discard_input_) {
+      unread_.clear();
+      return false;
+    }
+    if (backlogged()) break;
+  }
+  unread_.assign(bytes.substr(at));
+  return at == bytes.size() && !backlogged();
+}
+
+bool Session::backlogged() const {
+  return replies_.size() >= kMaxOpenRequests || queued_bytes_ + reply_bytes_ >= max_queue_bytes_ / 4;
+}
 
 void Session::resume_reading() {
-  if (read_paused_ && open_ && !backlogged()) {
-    read_paused_ = false;
-    read();
+  if (!read_paused_ || !open_ || backlogged()) return;
+  read_paused_ = false;
+  if (!unread_.empty()) {
+    const std::string rest = std::move(unread_);
+    unread_.clear();
+    if (!take_input(rest)) {
+      if (open_) read_paused_ = true;
+      return;
+    }
   }
+  read();
 }
 
 void Session::send(std::string line) {
@@ -96,7 +122,10 @@ std::uint32_t Session::reserve_reply() {
 
 void Session::fill_reply(std::uint32_t slot, std::string lines) {
   for (auto& r : replies_)
-    if (r.id == slot) r.text = std::move(lines);
+    if (r.id == slot) {
+      reply_bytes_ = reply_bytes_ - r.text.size() + lines.size();
+      r.text = std::move(lines);
+    }
   flush_replies();
 }
 
@@ -105,6 +134,7 @@ std::size_t Session::expire_replies(Clock::time_point now, Clock::duration after
   for (auto& r : replies_)
     if (r.text.empty() && now - r.since >= after) {
       r.text = line;
+      reply_bytes_ += line.size();
       ++expired;
     }
   if (expired > 0) flush_replies();
@@ -113,6 +143,7 @@ std::size_t Session::expire_replies(Clock::time_point now, Clock::duration after
 
 void Session::flush_replies() {
   while (!replies_.empty() && !replies_.front().text.empty()) {
+    reply_bytes_ -= replies_.front().text.size();
     send(std::move(replies_.front().text));
     replies_.pop_front();
   }
@@ -164,6 +195,8 @@ void Session::drop(std::string line) {
   if (!open_ || discard_input_) return;
   discard_input_ = true;
   replies_.clear();  // unanswered requests are void: the line below is the last word
+  reply_bytes_ = 0;
+  unread_.clear();
   send(std::move(line));
   close_after_flush();
 }
@@ -195,6 +228,7 @@ void Session::close(std::string reason) {
   socket_.close(ec);
   queue_.clear();
   queued_bytes_ = 0;
+  unread_.clear();
   if (on_close_) on_close_(*this);
 }
 

@@ -3,6 +3,7 @@
 // parsing for the clients.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -35,6 +36,9 @@ std::string format_event(std::string_view verb, std::string_view text);  // "Sta
 // "Hit 17 0 430.0000 330.0000 80.0000 0.000000 0.000000 -1.000000 2.0000 1234.567890\n":
 // point and radius with 4 decimals (0.1 um), direction with 6, time with 6 (1 us).
 std::string format_hit(const HitMsg& hit);
+// A data line of Replay's reply, in the place of journaled hits first … last whose records
+// cannot be read back (damaged, missing): "Replay Lost 5 5 damaged or missing in the journal\n".
+std::string format_replay_lost(std::uint64_t first, std::uint64_t last);
 
 // ---- parsing (client side) ----
 struct CurrCorMsg { Xyz p; };
@@ -53,5 +57,11 @@ using Message = std::variant<CurrCorMsg, MeasPtMsg, StateMsg, LimitMsg, WarnMsg,
                              OkMsg, ErrMsg, DataMsg, OtherMsg, HitMsg>;
 
 Message parse_message(std::string_view line);
+
+// The numbers a `Replay Lost first last ...` line names (data: DataMsg::text of verb Replay).
+struct LostHits {
+  std::uint64_t first = 0, last = 0;
+};
+std::optional<LostHits> parse_replay_lost(std::string_view data);
 
 }  // namespace imess::protocol

@@ -14,10 +14,20 @@
 namespace imess::journal {
 
 struct JournalFile;
+struct FileScan;
+
+// Numbers journaled whose records cannot be read back (damaged: the checksum fails, or the
+// line is gone). `before`: in ReadResult, the index in `lines` of the first hit after them.
+struct LostRange {
+  std::uint64_t first = 0, last = 0;
+  std::size_t before = 0;
+};
 
 // What Journal::read found.
 struct ReadResult {
   std::vector<std::string> lines;  // Hit lines as sent live, each with its "\n"
+  std::vector<LostRange> lost;     // numbers among them that cannot be given, in order
+  std::uint64_t covered = 0;       // from `from` on, the numbers given or named lost
   std::uint64_t newest = 0;        // the newest seq journaled
   bool rotated_away = false;       // `from` is older than the oldest file kept: nothing read
   std::uint64_t oldest = 0;        // the oldest seq still kept
@@ -57,11 +67,16 @@ class Journal {
   const std::string& dir() const { return config_.dir; }
   // What start-up found, for the log ("continuing after hit 41 in ...", "cut off a torn ...").
   const std::vector<std::string>& notes() const { return notes_; }
+  // What start-up found damaged, for the log as warnings: one line per lost range, naming it.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  const std::vector<LostRange>& lost() const { return lost_; }  // found at start, in order
 
  private:
   void open_file(std::uint64_t first_seq);
   void rotate(std::uint64_t first_seq);
   void drop_old_files();
+  void find_lost(const std::vector<FileScan>& scans);  // at start, all files still in files_
+  void note_lost();                                     // the log lines for what find_lost found
 
   JournalConfig config_;
   std::vector<JournalFile> files_;  // oldest first; the last one is written
@@ -69,7 +84,8 @@ class Journal {
   std::uint64_t size_ = 0;          // bytes in the file being written
   std::uint64_t newest_ = 0;
   std::optional<Clock::time_point> unsynced_since_;
-  std::vector<std::string> notes_;
+  std::vector<std::string> notes_, warnings_;
+  std::vector<LostRange> lost_;
 };
 
 }  // namespace imess::journal

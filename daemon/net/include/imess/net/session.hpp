@@ -74,7 +74,12 @@ class Session : public std::enable_shared_from_this<Session> {
  private:
   void read();
   void write();
-  bool backlogged() const;  // too many unanswered requests or too much output: stop reading for now
+  // Frames `bytes` and handles their lines (up to each LF) while not backlogged; what is left
+  // waits in unread_. False when it stopped early (reading then pauses) or the session closed.
+  bool take_input(std::string_view bytes);
+  // Too many unanswered requests or too many bytes of answers and events waiting (queued to
+  // write, or answered and held for order): stop reading for now. Checked after every line.
+  bool backlogged() const;
   void resume_reading();
 
   boost::asio::ip::tcp::socket socket_;
@@ -93,6 +98,8 @@ class Session : public std::enable_shared_from_this<Session> {
     Clock::time_point since;  // reserved at
   };
   std::deque<ReplySlot> replies_;
+  std::size_t reply_bytes_ = 0;  // of the answered slots held behind an unanswered one
+  std::string unread_;           // bytes read but not yet framed: they wait while backlogged
   void flush_replies();       // answered slots at the front leave, in order
   std::uint32_t next_slot_ = 1;
   std::size_t queued_bytes_ = 0;
