@@ -19,7 +19,6 @@ using protocol::ErrorCode;
 using protocol::format_err;
 using protocol::format_ok;
 using Vec = Eigen::Vector3d;
-constexpr double kMaxFrameOrigin = 1e6;  // mm: a kilometre; beyond it a typo, not a part
 
 void append_vector(std::string& out, std::string_view label, const Vec& v, int decimals) {
   out += ' ';
@@ -254,6 +253,10 @@ void Server::align(Session& s, std::uint32_t slot, const protocol::Align& c) {
         form(h == 0 ? "Hole1Dia" : "Hole2Dia", hole->diameter);
       }
       frame = metrology::align_plane_two_holes(*plane, centres[0], centres[1]);
+    }
+    if (!(frame.translation().cwiseAbs().maxCoeff() <= kMaxFrameOrigin)) {  // as SetFrame's bound
+      reply(s, slot, format_err(ErrorCode::BadValue, head + "the frame's origin lies beyond -1000000 to 1000000 mm; probe other features"));
+      return;
     }
     store_frame(s, slot, "Align", c.name, frame, extra);
   } catch (const std::exception& e) {  // AlignmentError, FrameError
