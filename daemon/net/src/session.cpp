@@ -48,7 +48,7 @@ void Session::read() {
       return;
     }
     self->framer_.feed(std::string_view(self->buffer_.data(), n), [&](const protocol::FramedLine& line) {
-      if (self->open_) self->on_line_(*self, line);
+      if (self->open_) self->handle(line);
     });
     if (!self->open_) return;
     if (self->backlogged()) {
@@ -57,6 +57,20 @@ void Session::read() {
     }
     self->read();
   });
+}
+
+// The last resort: whatever a line's handling throws ends this session, never the daemon
+// (the exception would leave io_context::run and messd with it).
+void Session::handle(const protocol::FramedLine& line) {
+  try {
+    on_line_(*this, line);
+  } catch (const std::exception& e) {
+    failed_ = true;
+    close(std::string("ended by an unexpected error while handling its line: ") + e.what());
+  } catch (...) {
+    failed_ = true;
+    close("ended by an unexpected error of unknown type while handling its line");
+  }
 }
 
 bool Session::backlogged() const { return replies_.size() >= kMaxOpenRequests || queued_bytes_ >= max_queue_bytes_ / 4; }

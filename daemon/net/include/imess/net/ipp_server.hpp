@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -93,6 +94,9 @@ class IppServer {
   void send(std::string bytes);
   void closed();
   void on_line(const ippdme::FramedLine& line);
+  // The last resort: an exception from `f` (a line, a queued command) ends the session — logged,
+  // E0000 0511, the connection closed — never the daemon. False when it did.
+  bool guarded(std::string_view what, const std::function<void()>& f);
   void pump();                                  // runs the normal queue's front while it can
   void finish(const ippdme::Tag& tag);          // the `%`, the tag closed
   void fail(const ippdme::Tag& tag, ippdme::ErrorCode code, std::string_view cause);  // `!` + `%`
@@ -147,7 +151,9 @@ class IppServer {
   std::optional<MoveDaemon> daemon_;
   ippdme::ToolBox tools_;
   ippdme::CsyChain csy_;
-  void store_part_csy();  // PartCsy as the session set it becomes the controller's frame "PartCsy"
+  // PartCsy as the session set it becomes the controller's frame "PartCsy"; false (nothing
+  // stored) when the chain gives no usable frame.
+  bool store_part_csy();
   bool own_part_csy_ = false;  // this session's SetCsyTransformation(PartCsy) is being stored
   // The motion step of the queue's front.
   Step step_ = Step::None;

@@ -59,6 +59,7 @@ class Session : public std::enable_shared_from_this<Session> {
 
   std::uint32_t id() const { return id_; }
   const std::string& close_reason() const { return close_reason_; }  // for the log
+  bool failed() const { return failed_; }  // closed because handling its line threw
   const std::string& peer() const { return peer_; }        // "address:port"
   const boost::asio::ip::address& address() const { return address_; }
   std::string host() const { return address_.to_string(); }
@@ -73,6 +74,7 @@ class Session : public std::enable_shared_from_this<Session> {
 
  private:
   void read();
+  void handle(const protocol::FramedLine& line);  // on_line_, an exception ending only this session
   void write();
   bool backlogged() const;  // too many unanswered requests or too much output: stop reading for now
   void resume_reading();
@@ -97,6 +99,7 @@ class Session : public std::enable_shared_from_this<Session> {
   std::uint32_t next_slot_ = 1;
   std::size_t queued_bytes_ = 0;
   bool writing_ = false, open_ = true, close_when_flushed_ = false, discard_input_ = false, read_paused_ = false;
+  bool failed_ = false;
   std::string peer_, close_reason_;
   boost::asio::ip::address address_;
   Clock::time_point last_received_ = Clock::now();
