@@ -192,6 +192,7 @@ void Server::admit(tcp::socket socket) {
       [this](Session& s) { closed(s); });
   session->info().may_control = may_control;
   session->info().may_force = may_control && rules.force_hosts.contains(address);
+  session->info().connected_at = Session::Clock::now();
   sessions_[id] = session;
   log_limited(spdlog::level::info, "connect",
               "client " + std::to_string(id) + " connected from " + session->peer() + (may_control ? "" : " (observer host)"));

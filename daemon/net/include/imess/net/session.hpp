@@ -21,6 +21,8 @@ struct ClientInfo {
   std::string name;              // from Hello; empty: "client<N>"
   bool may_control = false;      // host in control.hosts
   bool may_force = false;        // host in control.force_hosts
+  bool commanded = false;        // has sent a command (any verb; blank lines are none)
+  std::chrono::steady_clock::time_point connected_at{};  // admitted at
   int watch_ms = 0;              // Watch: dead-man interval, 0 = off
   std::chrono::steady_clock::time_point watch_fired_for{};  // last_received() when the dead-man last fired
   std::uint32_t in_flight = 0;   // commands in the motion loop's ring, not yet answered
