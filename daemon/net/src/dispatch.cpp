@@ -182,7 +182,7 @@ void Server::press_key(Session& s, std::uint32_t slot, const std::string& name) 
     reply(s, slot, format_err(ErrorCode::BadValue, "Key " + name + ": no I++ DME session has enabled the user; keys go to it only then"));
     return;
   }
-  ipp_->key(name);
+  to_ipp("KeyPress", [&] { ipp_->key(name); });
   reply(s, slot, format_ok("Key"));
 }
 

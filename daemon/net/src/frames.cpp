@@ -278,7 +278,7 @@ void Server::del_frame(Session& s, std::uint32_t slot, const std::string& name) 
 
 void Server::frame_changed() {
   broadcast(protocol::format_event("Frame", frames_.active()));
-  if (ipp_) ipp_->part_frame_changed();
+  to_ipp("PartFrameChanged", [&] { ipp_->part_frame_changed(); });
 }
 
 // After a hit's Hit and MeasPt: the same point in the active part frame.

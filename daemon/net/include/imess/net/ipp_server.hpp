@@ -69,6 +69,10 @@ class IppServer {
   bool listening_for_keys() const { return conn_ && in_session_ && user_enabled_; }
   // The controller's active part frame changed (UseFrame, SetFrame, Align ...): PartCsy follows.
   void part_frame_changed();
+  // The last resort: an exception from `f` (a line, a queued command, a hook above called by
+  // the Server) ends the session — logged, E0000 0511, the connection closed — never the
+  // daemon. False when it did.
+  bool guarded(std::string_view what, const std::function<void()>& f);
 
  private:
   struct Connection;
@@ -94,9 +98,6 @@ class IppServer {
   void send(std::string bytes);
   void closed();
   void on_line(const ippdme::FramedLine& line);
-  // The last resort: an exception from `f` (a line, a queued command) ends the session — logged,
-  // E0000 0511, the connection closed — never the daemon. False when it did.
-  bool guarded(std::string_view what, const std::function<void()>& f);
   void pump();                                  // runs the normal queue's front while it can
   void finish(const ippdme::Tag& tag);          // the `%`, the tag closed
   void fail(const ippdme::Tag& tag, ippdme::ErrorCode code, std::string_view cause);  // `!` + `%`

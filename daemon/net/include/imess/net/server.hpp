@@ -11,6 +11,8 @@
 #include <optional>
 #include <variant>
 #include <string>
+#include <string_view>
+#include <utility>
 
 #include "imess/core/event_fd.hpp"
 #include "imess/core/loop_runner.hpp"
@@ -99,7 +101,7 @@ class Server {
   // The I++ move reports (OnMoveReportE): the report timer calls it; the golden harness,
   // whose position stream is off, every motion cycle in virtual time.
   void move_reports() {
-    if (ipp_) ipp_->tick();
+    to_ipp("MoveReport", [&] { ipp_->tick(); });
   }
 
  private:
@@ -279,6 +281,12 @@ class Server {
   // The I++ DME server: a second way in, driving this planner under this control (ipp_*.cpp).
   friend class IppServer;
   std::unique_ptr<IppServer> ipp_;
+  // Every call into it from the event drain and the MESSD side: an exception there ends the I++
+  // session (IppServer::guarded), never the io thread and messd with it.
+  template <class F>
+  void to_ipp(std::string_view what, F&& f) {
+    if (ipp_) ipp_->guarded(what, std::forward<F>(f));
+  }
 };
 
 }  // namespace imess::net
