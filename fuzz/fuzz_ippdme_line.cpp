@@ -1,12 +1,16 @@
 // Fuzz target: I++ DME client bytes -> LineFramer -> parse_framed, as the server's session
 // reads them; every error is formatted, every request formatted and parsed back; the
-// property paths of GetProp / SetProp / EnumProp go through a ToolBox as the server's do. The first byte
+// property paths of GetProp / SetProp / EnumProp go through a ToolBox as the server's do, and a
+// SetCsyTransformation through a CsyChain (the origin and axes must stay finite). The first byte
 // chooses the read size, so lines are split across reads at every place.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <string_view>
 
+#include <cmath>
+
+#include "imess/ippdme/csy.hpp"
 #include "imess/ippdme/format.hpp"
 #include "imess/ippdme/line_framer.hpp"
 #include "imess/ippdme/parser.hpp"
@@ -53,6 +57,18 @@ void exercise_properties(const Command& cmd, ToolBox& tools) {
   if (const auto* c = std::get_if<ChangeTool>(&cmd)) tools.change(c->name);
   if (const auto* f = std::get_if<FindTool>(&cmd)) tools.find_tool(f->name);
 }
+
+// A transformation the parser accepts maps the origin and the axes to finite machine
+// coordinates, as messd's PartCsy frame needs (issue 26: 1.7e308 offsets gave inf).
+void exercise_csy(const Command& cmd, CsyChain& chain) {
+  const auto* t = std::get_if<SetCsyTransformation>(&cmd);
+  if (!t) return;
+  chain.set(t->csy, t->transform);
+  chain.select(CoordSystem::PartCsy);
+  for (const Point3& p : {Point3{0, 0, 0}, Point3{1, 0, 0}, Point3{0, 1, 0}, Point3{0, 0, 1}})
+    for (double v : chain.to_machine(p))
+      if (!std::isfinite(v)) std::abort();
+}
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -62,6 +78,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   LineFramer framer(kFuzzLineLength);
   TagTracker open;
   ToolBox tools = make_tools();
+  CsyChain chain;
   for (std::size_t at = 0; at < bytes.size(); at += chunk) {
     framer.feed(bytes.substr(at, chunk), [&](const FramedLine& line) {
       if (line.text.size() > kFuzzLineLength) std::abort();
@@ -81,6 +98,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       auto* same = std::get_if<Request>(&back);
       if (!same || !(same->command == req.command) || !(same->tag == req.tag)) std::abort();
       exercise_properties(req.command, tools);
+      exercise_csy(req.command, chain);
     });
     if (framer.pending() > kFuzzLineLength) std::abort();
   }

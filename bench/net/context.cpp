@@ -17,9 +17,10 @@ std::unique_ptr<ServerProcess> Context::start_messd(int clients) {
   const std::string dir = tmp_.path() + "/messd-" + std::to_string(++started_);
   std::filesystem::create_directories(dir + "/journal");
   // Loopback clients may all control (control.hosts), so reserved_slots takes nothing from
-  // them; idle_drop_s long enough that an owner waiting between samples is never dropped.
+  // them; idle_drop_s long enough that an owner waiting between samples is never dropped, and
+  // no no_command_drop_s: the benchmark's receiving clients never send a command.
   std::ofstream(dir + "/config.json") << R"({ "server": { "max_clients": )" << clients + 16
-                                      << R"(, "ippdme_port": 0 }, "control": { "idle_drop_s": 86400 } })" << "\n";
+                                      << R"(, "ippdme_port": 0 }, "control": { "idle_drop_s": 86400, "no_command_drop_s": 0 } })" << "\n";
   std::vector<std::string> args{"--config", dir + "/config.json", "--journal", dir + "/journal", "--frames", dir + "/frames.json",
                                 "--port", "0", "--listen", "127.0.0.1"};
   if (!options_.realtime) args.push_back("--no-rt");

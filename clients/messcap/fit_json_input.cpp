@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "imess/jsontext/strict_json.hpp"
+
 namespace imess::messcap {
 namespace {
 
@@ -53,9 +55,9 @@ struct Reader {
 exchange::FitReport parse_fit_json(std::string_view text, const std::string& source) {
   json object;
   try {
-    object = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw FitJsonError(source + ": not JSON (" + e.what() + "); expected one object as messcap fit prints it");
+    object = jsontext::parse_strict(text, source);
+  } catch (const jsontext::JsonTextError& e) {
+    throw FitJsonError(std::string(e.what()) + "; expected one object as messcap fit prints it");
   }
   if (!object.is_object())
     throw FitJsonError(source + ": expected one JSON object as messcap fit prints it, not " + std::string(object.type_name()));

@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "imess/jsontext/strict_json.hpp"
+
 #include "field_checks.hpp"
 
 namespace imess::messoffs {
@@ -62,9 +64,9 @@ OffsetTable parse_table_json(std::string_view text, std::string_view source) {
   const std::string src(source);
   json doc;
   try {
-    doc = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
-    throw TableError(src + ": not valid JSON: " + e.what());
+    doc = jsontext::parse_strict(text, source);
+  } catch (const jsontext::JsonTextError& e) {
+    throw TableError(e.what());
   }
   if (!doc.is_object()) throw TableError(src + ": expected a JSON object with an \"offsets\" array");
   for (const auto& [key, value] : doc.items()) {

@@ -250,6 +250,8 @@ Step read_csy_transformation(const Value& call, Checked& out) {
     n[i] = call.args[i + 1].number;
   }
   if (n[3] < 0 || n[3] > 180) return Fail{ErrorCode::ThetaOutOfRange};
+  for (std::size_t i = 0; i < 3; ++i)
+    if (!(std::abs(n[i]) <= kMaxCsyOffset)) return Fail{ErrorCode::BadArgument};
   out.csy = *c;
   out.transform = CsyTransformation{n[0], n[1], n[2], n[3], n[4], n[5]};
   return std::nullopt;

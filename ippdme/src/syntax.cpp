@@ -2,6 +2,7 @@
 // so no input can exhaust the stack; the only allocations are the tree itself.
 #include "imess/ippdme/syntax.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -216,6 +217,10 @@ std::string format_fixed(double v, int decimals) {
   if (!std::isfinite(v)) v = 0;
   std::string out;
   imess::protocol::append_fixed(out, v, decimals);
+  // The grammar holds at most 16 digits: a value too large for these decimals is written
+  // whole in its shortest form instead (never cut short).
+  const auto digits = std::count_if(out.begin(), out.end(), [](char c) { return is_digit(c); });
+  if (digits > static_cast<std::ptrdiff_t>(kMaxNumberDigits)) return format_number(v);
   return out;
 }
 

@@ -7,10 +7,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include "imess/jsontext/strict_json.hpp"
+
 namespace imess::metrology {
 namespace {
 
 using nlohmann::json;
+
+bool name_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.';
+}
 
 [[noreturn]] void fail(std::string_view source, const std::string& key, const std::string& why) {
   std::ostringstream os;
@@ -53,8 +59,16 @@ json write_matrix(const Eigen::Matrix4d& m) {
 
 }  // namespace
 
+std::string refuse_frame_name(std::string_view name) {
+  const char* accepted = "a frame name is made of one or more letters, digits, '_', '-' or '.'";
+  if (name.empty()) return accepted;
+  for (char c : name)
+    if (!name_char(c)) return accepted;
+  return {};
+}
+
 void FrameStore::set(const std::string& name, const Eigen::Matrix4d& raw) {
-  if (name.empty()) throw FrameError("a frame needs a non-empty name");
+  if (auto why = refuse_frame_name(name); !why.empty()) throw FrameError("frame '" + name + "': " + why);
   try {
     frames_[name] = NamedFrame{raw, Frame::orthonormalised(raw)};
   } catch (const FrameError& e) {
@@ -88,9 +102,9 @@ std::vector<std::string> FrameStore::names() const {
 FrameStore parse_frame_store(std::string_view json_text, std::string_view source) {
   json doc;
   try {
-    doc = json::parse(json_text.begin(), json_text.end());
-  } catch (const json::parse_error& e) {
-    fail(source, "(document)", std::string("not valid JSON: ") + e.what());
+    doc = jsontext::parse_strict(json_text, source);
+  } catch (const jsontext::JsonTextError& e) {
+    throw FrameError(e.what());
   }
   if (!doc.is_object()) fail(source, "(document)", "expected a JSON object with a \"frames\" object");
   const auto frames = doc.find("frames");
@@ -99,7 +113,7 @@ FrameStore parse_frame_store(std::string_view json_text, std::string_view source
   FrameStore store;
   for (const auto& [name, entry] : frames->items()) {
     const std::string key = "frames." + name;
-    if (name.empty()) fail(source, key, "frame names must not be empty");
+    if (auto why = refuse_frame_name(name); !why.empty()) fail(source, key, why);
     if (!entry.is_object()) fail(source, key, "expected an object with raw, orthonormal, inverse");
     const Eigen::Matrix4d raw = read_matrix(entry, source, key, "raw");
     const Eigen::Matrix4d ortho = read_matrix(entry, source, key, "orthonormal");
@@ -145,6 +159,10 @@ std::string to_json(const FrameStore& store) {
 }
 
 FrameStore load_frame_store(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw FrameError(path.string() + ": is a directory; give the path of a frames file (JSON), e.g. " +
+                     (path / "frames.json").string());
   std::ifstream in(path, std::ios::binary);
   if (!in) throw FrameError(path.string() + ": cannot open for reading");
   std::ostringstream ss;

@@ -5,10 +5,11 @@
 #include <cmath>
 #include <initializer_list>
 #include <set>
-#include <sstream>
 
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
+
+#include "imess/jsontext/strict_json.hpp"
 
 namespace imess::metrology {
 namespace {
@@ -419,11 +420,9 @@ InspectionPlan parse_inspection_plan(std::string_view json_text, std::string_vie
   const Reader r(source);
   json doc;
   try {
-    doc = json::parse(json_text);
-  } catch (const json::parse_error& e) {
-    std::ostringstream os;
-    os << source << ": not JSON (" << e.what() << ")";
-    throw InspectionPlanError(os.str());
+    doc = jsontext::parse_strict(json_text, source);
+  } catch (const jsontext::JsonTextError& e) {
+    throw InspectionPlanError(e.what());
   }
   if (!doc.is_object()) r.fail("(top level)", "expected an object with part, features and characteristics");
   r.only_keys(doc, "", {"part", "placement", "probing", "alignment", "features", "characteristics", "_comment"});

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "imess/jsontext/strict_json.hpp"
+
 namespace imess::metrology {
 namespace {
 
@@ -79,9 +81,9 @@ std::vector<MeasuredPoint> parse_json(std::string_view text, std::string_view so
   const std::string src(source);
   json doc;
   try {
-    doc = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw MeasuredPointsError(src + ": not JSON (" + e.what() + ")");
+    doc = imess::jsontext::parse_strict(text, source);
+  } catch (const imess::jsontext::JsonTextError& e) {
+    throw MeasuredPointsError(e.what());
   }
   auto fail = [&](const std::string& path, const std::string& why) -> void {
     throw MeasuredPointsError(src + ": " + path + ": " + why);

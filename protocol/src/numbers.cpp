@@ -1,4 +1,5 @@
-// Wire numbers: strict parsing (from_chars, finite only; underflow reads as 0) and %.3f output.
+// Wire numbers: strict parsing (from_chars, finite only; underflow reads as 0) and %.3f output,
+// never cut short.
 #include "imess/protocol/numbers.hpp"
 
 #include <algorithm>
@@ -68,10 +69,19 @@ std::optional<std::uint64_t> parse_sequence_number(std::string_view token) {
 }
 
 void append_fixed(std::string& out, double value, int decimals) {
+  // Positions fit the stack buffer; anything longer (1e300 has 301 digits before the point) is
+  // written whole into the string: a number is never cut short.
   char buf[64];
-  int n = std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
+  const int n = std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
   if (n <= 0) return;
-  std::string_view text(buf, static_cast<std::size_t>(n < int(sizeof buf) ? n : int(sizeof buf) - 1));
+  std::string wide;
+  std::string_view text(buf, static_cast<std::size_t>(n));
+  if (n >= int(sizeof buf)) {
+    wide.resize(static_cast<std::size_t>(n) + 1);
+    std::snprintf(wide.data(), wide.size(), "%.*f", decimals, value);
+    wide.pop_back();  // the terminating NUL
+    text = wide;
+  }
   if (text.front() == '-' && text.find_first_not_of("-0.") == std::string_view::npos) text.remove_prefix(1);
   out.append(text);
 }

@@ -143,3 +143,13 @@ TEST_CASE("config: frames.file names the part frames' store, unknown keys in fra
   CHECK(cfg.server.frames_file == "/var/lib/messd/frames.json");
   CHECK(contains(json_error(R"({"frames": {"path": "x"}})"), "unknown key 'frames.path'"));
 }
+
+// Issue 26, 8: connections from a control host that never command are dropped after this.
+TEST_CASE("control.no_command_drop_s: 0 turns it off, a negative value is refused with its range") {
+  DaemonConfig cfg;
+  CHECK(cfg.server.control.no_command_drop_s == 300);
+  load_config_text(R"({"control":{"no_command_drop_s": 0}})", "t.json", cfg);
+  CHECK(cfg.server.control.no_command_drop_s == 0);
+  CHECK(contains(json_error(R"({"control":{"no_command_drop_s": -1}})"), "key 'control.no_command_drop_s'"));
+  CHECK(contains(json_error(R"({"control":{"no_command_drop_s": -1}})"), "from 0 to 86400"));
+}

@@ -196,6 +196,13 @@ TEST_CASE("parse_fit_json: reads what messcap fit prints, refuses what it cannot
                     Contains("'center' must be three numbers [x, y, z], not [0,0]"));
   CHECK_THROWS_WITH(parse_fit_json(R"({"type":"line","point":[0,0,0],"direction":[0,0,0]})", "f.json"),
                     Contains("'direction' must be a direction, not the zero vector"));
-  CHECK_THROWS_WITH(parse_fit_json("plane 0 0 0", "g.json"), Contains("g.json: not JSON"));
+  CHECK_THROWS_WITH(parse_fit_json("plane 0 0 0", "g.json"), Contains("g.json: not valid JSON"));
   CHECK_THROWS_WITH(parse_fit_json("[1,2]", "h.json"), Contains("expected one JSON object"));
+}
+
+// Issue 26, 7: a number beyond a double escaped as nlohmann's out_of_range.
+TEST_CASE("parse_fit_json names the key of a number beyond a double") {
+  CHECK_THROWS_AS(parse_fit_json(R"({"type":"sphere","center":[0,1e400,0]})", "s.json"), imess::messcap::FitJsonError);
+  CHECK_THROWS_WITH(parse_fit_json(R"({"type":"sphere","center":[0,1e400,0]})", "s.json"),
+                    Catch::StartsWith("s.json: key 'center[1]' holds a number too large for a double ('1e400')"));
 }

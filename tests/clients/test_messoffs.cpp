@@ -439,6 +439,9 @@ TEST_CASE("offset table parsers: each mistake named by file and line or key") {
        "t: offsets[0].x[1]: expected the correction in mm, got \"0.2\""},
       {true, "{\"offsets\": [{\"name\": \"G54\", \"x\": 1, \"y\": 2, \"z\": 3, \"a\": 0, \"b\": 0, \"p\": 0}]}",
        "t: offsets[0].p: expected the G10 L2 P number"},
+      // issue 26, 7: a number beyond a double escaped as nlohmann's out_of_range (std::terminate)
+      {true, "{\"offsets\":[{\"name\":\"G510\",\"x\":[1,1e309],\"y\":2,\"z\":3,\"a\":0,\"b\":0}]}",
+       "t: key 'offsets[0].x[1]' holds a number too large for a double ('1e309'); numbers from"},
   };
   for (const auto& c : cases) {
     INFO(c.text);

@@ -154,6 +154,11 @@ const std::vector<ErrCase> kCases{
     {"00001 GetProp(Speed())", E::BadProperty, kT1},
     {"E0001 GetPropE(Tool.Name(), Speed())", E::BadProperty, kE1},
     {"00001 SetProp(Speed(1))", E::BadProperty, kT1},
+    // 0509: a coordinate system's offset beyond ±1e6 mm (issue 26: 1.7e308 stopped messd)
+    {"00001 SetCsyTransformation(PartCsy, 1.7e308, 1.7e308, 0, 0, 45, 0)", E::BadArgument, kT1},
+    {"00001 SetCsyTransformation(PartCsy, 1e300, 0, 0, 0, 0, 0)", E::BadArgument, kT1},
+    {"00001 SetCsyTransformation(MoveableMachineCsy, 0, -1000000.001, 0, 0, 0, 0)", E::BadArgument, kT1},
+    {"00001 SetCsyTransformation(SensorCsy, 0, 0, 2e6, 0, 0, 0)", E::BadArgument, kT1},
     // 1007, 1010: values the spec gives their own numbers
     {"00001 SetCsyTransformation(PartCsy, 0, 0, 0, 181, 0, 0)", E::ThetaOutOfRange, kT1},
     {"00001 SetCsyTransformation(PartCsy, 0, 0, 0, -0.1, 0, 0)", E::ThetaOutOfRange, kT1},

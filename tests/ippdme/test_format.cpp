@@ -84,3 +84,17 @@ TEST_CASE("ippdme responses: a data payload never holds CR or LF or bytes outsid
   std::string s = format_data({TagKind::Command, 1}, {Value::of_string("a\r\nb\x01\xff")});
   CHECK(s == "00001 # \"a''b''\"\r\n");
 }
+
+// Issue 26, 2: a fixed-point value the I++ grammar cannot hold (more than 16 digits) is written
+// in its shortest exact form instead of being cut to 63 characters.
+TEST_CASE("ippdme responses: a fixed-point value beyond 16 digits is written whole, readable back") {
+  for (double v : {1e300, -2.5e20, 123456789012.5}) {
+    const Value x = Value::of_fixed(v, 4);
+    INFO(x.text);
+    auto parsed = parse_line("00001 SetProp(Tool.PtMeasPar.Speed(" + x.text + "))");
+    REQUIRE(std::holds_alternative<Request>(parsed));
+    CHECK(std::get<SetProp>(std::get<Request>(parsed).command).settings.at(0).value == v);
+  }
+  CHECK(Value::of_fixed(430.25, 4).text == "430.2500");
+  CHECK(Value::of_fixed(-999999.5, 4).text == "-999999.5000");
+}

@@ -26,6 +26,8 @@ class Gen {
       v = *parse_number_token(std::to_string(integer(-999999, 999999)) + "e" + std::to_string(integer(-300, 300)));
     return v;
   }
+  // A coordinate system's offset: within ±kMaxCsyOffset (1e6 mm), up to 9 digits.
+  double offset() { return integer(-999999999, 999999999) / std::pow(10.0, integer(3, 6)); }
   std::optional<double> maybe() { return coin() ? std::optional<double>(number()) : std::nullopt; }
   std::string name_part() {
     static const char* letters = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz";
@@ -98,7 +100,7 @@ class Gen {
       case command_index<SetCoordSystem>(): return SetCoordSystem{static_cast<CoordSystem>(integer(0, 3))};
       case command_index<SetCsyTransformation>():
         return SetCsyTransformation{static_cast<CsyTarget>(integer(0, 5)),
-                                    {number(), number(), number(), integer(0, 180000) / 1000.0, number(), number()}};
+                                    {offset(), offset(), offset(), integer(0, 180000) / 1000.0, number(), number()}};
       case command_index<GetCsyTransformation>(): return GetCsyTransformation{static_cast<CsyTarget>(integer(0, 5))};
       default: return default_of(index);
     }

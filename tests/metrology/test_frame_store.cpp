@@ -98,3 +98,29 @@ TEST_CASE("frame store errors name the file and the key", "[frames][json][errors
   FrameStore s;
   CHECK_THROWS_WITH(s.set("bad", Eigen::Matrix4d::Zero()), Catch::Contains("frame 'bad'"));
 }
+
+// Issue 26, 7 and 8: a number beyond a double escaped as nlohmann's out_of_range (and stopped
+// messd); a name such as ../../etc was taken; a directory was "not valid JSON".
+TEST_CASE("frame store refuses an overflowing number, a bad name and a directory, naming each", "[frames][json][errors]") {
+  auto with = [](const std::string& from, const std::string& to) {
+    std::string t = kGood;
+    t.replace(t.find(from), from.size(), to);
+    return t;
+  };
+  CHECK_THROWS_AS(parse_frame_store(with("[[-1, 0, 0, 10]", "[[-1, 1e400, 0, 10]"), "f.json"), FrameError);
+  CHECK_THROWS_WITH(parse_frame_store(with("[[-1, 0, 0, 10]", "[[-1, 1e400, 0, 10]"), "f.json"),
+                    Catch::StartsWith("f.json: key 'frames.design.raw[0][1]' holds a number too large for a double ('1e400')") &&
+                        Catch::Contains("are accepted"));
+  for (const char* bad : {"../../etc", "a b", "x/y", "", "caf\xc3\xa9"}) {
+    INFO(bad);
+    CHECK_THROWS_WITH(parse_frame_store(with("\"design\"", std::string("\"") + bad + "\""), "f.json"),
+                      Catch::StartsWith("f.json: frames.") && Catch::Contains("letters, digits, '_', '-' or '.'"));
+  }
+  CHECK(parse_frame_store(with("\"design\"", "\"G54_part-2.b\""), "f.json").find("G54_part-2.b"));
+  FrameStore s;
+  CHECK_THROWS_WITH(s.set("../../etc", Eigen::Matrix4d::Identity()), Catch::Contains("letters, digits, '_', '-' or '.'"));
+  const auto dir = std::filesystem::temp_directory_path() / "imess_test_frame_store_dir";
+  std::filesystem::create_directories(dir);
+  CHECK_THROWS_WITH(load_frame_store(dir), Catch::Contains(dir.string() + ": is a directory") && !Catch::Contains("not valid JSON"));
+  std::filesystem::remove_all(dir);
+}

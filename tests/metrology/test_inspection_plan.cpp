@@ -59,7 +59,7 @@ TEST_CASE("inspection plan: features, probes, placement and characteristics are 
 }
 
 TEST_CASE("inspection plan: bad plans name the key and what was expected", "[inspection][plan]") {
-  CHECK(error_of("{") .find("t.json: not JSON") != std::string::npos);
+  CHECK(error_of("{") .find("t.json: not valid JSON at line 1, column 2") != std::string::npos);
   CHECK(error_of(R"({"features": []})") == "t.json: part: missing (expected the part's name)");
   CHECK(error_of(plan_with("", "")) == "t.json: features: expected a non-empty array of features");
   CHECK(error_of(plan_with(R"({"name": "a", "type": "torus"})", "")) ==
@@ -131,4 +131,18 @@ TEST_CASE("measured points: text lines and messcap's JSON, with errors by line o
   CHECK_FALSE(js[1].approach);
   CHECK_THROWS_WITH(parse_measured_points(R"({"points": [{"feature": "top", "xyz": [1, 2, 3]}]})", "r.json"),
                     "r.json: points[0].machine: missing (the measured point in machine coordinates)");
+}
+
+// Issue 26, 7: a number beyond a double escaped from both readers as nlohmann's out_of_range.
+TEST_CASE("inspection plan and points: a number beyond a double names the file and the key", "[inspection][plan]") {
+  CHECK_THROWS_AS(parse_inspection_plan(R"({"part": 3999999999999999999999999999e999999999})", "t.json"),
+                  InspectionPlanError);
+  CHECK_THROWS_WITH(parse_inspection_plan(R"({"part": "p", "features": [{"name": "a", "type": "plane", "point": [0, -1e999, 0]}]})", "t.json"),
+                    Catch::StartsWith("t.json: key 'features[0].point[1]' holds a number too large for a double ('-1e999')"));
+  CHECK_THROWS_WITH(parse_inspection_plan("3999999999999999999999999999e999999999", "t.json"),
+                    Catch::StartsWith("t.json: the document holds a number too large for a double"));
+  CHECK_THROWS_AS(parse_measured_points(R"({"points": [{"feature": "a", "machine": [1e400, 0, 0]}]})", "m.json"),
+                  MeasuredPointsError);
+  CHECK_THROWS_WITH(parse_measured_points(R"({"points": [{"feature": "a", "machine": [1e400, 0, 0]}]})", "m.json"),
+                    Catch::StartsWith("m.json: key 'points[0].machine[0]' holds a number too large for a double"));
 }

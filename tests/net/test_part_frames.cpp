@@ -95,3 +95,28 @@ TEST_CASE("part frames: names are one word and never machine") {
     CHECK_THAT(PartFrames::refuse_name(bad), Catch::Contains("a frame name of 1 to 24"));
   }
 }
+
+// Issue 26, 7 and 8: messd's frames file with 1e400 stopped it with nlohmann's text; a name
+// such as ../../etc was loaded; a directory was "not valid JSON".
+TEST_CASE("part frames: a frames file is refused naming it, for an overflow, a bad name or a directory") {
+  const auto dir = temp_dir("refused");
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+    return dir / name;
+  };
+  const std::string matrix = "[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]";
+  auto frame = [&](const std::string& name, const std::string& raw, const std::string& inverse) {
+    return "{\"frames\": {\"" + name + "\": {\"raw\": " + raw + ", \"orthonormal\": " + raw + ", \"inverse\": " + inverse + "}}}";
+  };
+  const auto big = write("big.json", frame("cube", "[[1,0,0,1e400],[0,1,0,0],[0,0,1,0],[0,0,0,1]]", matrix));
+  CHECK_THROWS_WITH(PartFrames(big), Catch::StartsWith(big.string() + ": key 'frames.cube.raw[0][3]' holds a number too large"));
+  const auto etc = write("etc.json", frame("../../etc", matrix, matrix));
+  CHECK_THROWS_WITH(PartFrames(etc), Catch::StartsWith(etc.string() + ": frames.../../etc") &&
+                                         Catch::Contains("letters, digits, '_', '-' or '.'"));
+  const auto far = write("far.json", frame("far", "[[1,0,0,1e300],[0,1,0,0],[0,0,1,0],[0,0,0,1]]", "[[1,0,0,-1e300],[0,1,0,0],[0,0,1,0],[0,0,0,1]]"));
+  CHECK_THROWS_WITH(PartFrames(far), Catch::StartsWith(far.string() + ": frames.far") &&
+                                         Catch::Contains("from -1000000 to 1000000 mm"));
+  fs::create_directories(dir / "sub");
+  CHECK_THROWS_WITH(PartFrames(dir / "sub"), Catch::Contains((dir / "sub").string() + ": is a directory"));
+  fs::remove_all(dir);
+}

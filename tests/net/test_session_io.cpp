@@ -5,6 +5,7 @@
 
 #include <boost/asio.hpp>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
@@ -134,4 +135,40 @@ TEST_CASE("output beyond the cap to a client that does not read closes it at onc
   p.session->send(std::string(3000, 'y') + "\n");  // 9 KiB would wait: more than the 8 KiB cap
   CHECK(p.closed == 1);
   CHECK(p.session->close_reason() == "dropped: more than 8192 bytes of output waiting (not reading fast enough)");
+
+// Issue 26, 1: an exception from a line's handler escaped io_context::run and messd exited 2,
+// every client gone. It ends only the session whose line raised it.
+TEST_CASE("a line whose handler throws closes only that session, naming the error") {
+  asio::io_context io;
+  tcp::acceptor acceptor(io, tcp::endpoint(asio::ip::make_address("127.0.0.1"), 0));
+  tcp::socket bad_client(io), good_client(io);
+  bad_client.connect(acceptor.local_endpoint());
+  auto bad_end = acceptor.accept();
+  good_client.connect(acceptor.local_endpoint());
+  auto good_end = acceptor.accept();
+  int lines = 0, closed = 0;
+  auto on_line = [&](Session& s, const imess::protocol::FramedLine& l) {
+    ++lines;
+    if (l.text == "boom") throw std::runtime_error("frame has a non-finite rotation or translation element");
+    s.send("Ok " + std::string(l.text) + "\n");
+  };
+  auto bad = std::make_shared<Session>(std::move(bad_end), 1, 1 << 20, on_line, [&](Session&) { ++closed; });
+  auto good = std::make_shared<Session>(std::move(good_end), 2, 1 << 20, on_line, [&](Session&) { ++closed; });
+  bad->start();
+  good->start();
+  asio::write(bad_client, asio::buffer(std::string("boom\nafter\n")));
+  asio::write(good_client, asio::buffer(std::string("ping\n")));
+  for (int i = 0; i < 200 && (closed == 0 || good_client.available() < 8); ++i) {
+    io.restart();
+    REQUIRE_NOTHROW(io.poll());
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  CHECK(closed == 1);
+  CHECK_FALSE(bad->open());
+  CHECK(bad->close_reason().find("non-finite rotation") != std::string::npos);
+  CHECK(good->open());
+  std::string reply(8, '\0');
+  asio::read(good_client, asio::buffer(reply));
+  CHECK(reply == "Ok ping\n");
+  CHECK(lines == 2);  // "after" was never handled: the session ended at "boom"
 }

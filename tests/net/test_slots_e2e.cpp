@@ -153,6 +153,30 @@ TEST_CASE("a silent client holding control is dropped with Err 211 and the machi
   CHECK(status_field(*s, "Clients") == "1");
 }
 
+// Issue 26, 8: 100 connections from a control host that never send a command filled every
+// slot for good. control.no_command_drop_s closes them; a client that sent a command, and an
+// observer-only host (capped by reserved_slots), stay.
+TEST_CASE("a connection from a control host that sends no command is dropped after control.no_command_drop_s") {
+  TempConfig config(R"({ "control": { "hosts": ["127.0.0.1/32"], "observe_hosts": ["127.0.0.0/8"],
+                                       "no_command_drop_s": 1 } })");
+  DaemonProcess messd({"--config", config.path()});
+  LineClient silent(messd.port());
+  LineClient blank(messd.port());
+  LineClient speaker(messd.port());
+  LineClient observer(messd.port(), "127.0.0.2", 0);
+  REQUIRE(starts_with(observer.next(3.0), "CurrCor"));
+  REQUIRE(speaker.request("Hello panel"));
+  blank.send("");  // a keep-alive is no command
+  auto dropped = silent.until_prefix("Err 211 ", 4.0);
+  REQUIRE(dropped);
+  CHECK(dropped->find("no command within 1 s of connecting") != std::string::npos);
+  CHECK(blank.until_prefix("Err 211 ", 2.0));
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  auto s = speaker.request("Status");
+  REQUIRE(s);
+  CHECK(status_field(*s, "Clients") == "2");  // the speaker and the observer
+}
+
 TEST_CASE("max_clients above the descriptor limit is lowered at start with one warning") {
   TempConfig config(R"({ "server": { "max_clients": 1000 } })");
   // A hard limit of 200 descriptors: room for 200 - 64 clients; messd is stopped after 1.5 s.

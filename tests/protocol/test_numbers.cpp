@@ -64,3 +64,18 @@ TEST_CASE("append_fixed prints the asked decimals and never a negative zero") {
   CHECK_FALSE(parse_sequence_number("+1"));
   CHECK_FALSE(parse_sequence_number(""));
 }
+
+// Issue 26, 2: a 64-byte buffer cut 1e300 (301 digits before the point) to 63 characters.
+TEST_CASE("append_fixed never cuts a number short, however large") {
+  for (double v : {1e300, -1.7e308, 123456789012345678.0, 1e63}) {
+    std::string s = "x ";
+    append_fixed(s, v, 4);
+    INFO(s);
+    REQUIRE(s.size() > 7);
+    CHECK(s.compare(s.size() - 5, 5, ".0000") == 0);
+    CHECK(parse_number(std::string_view(s).substr(2)) == std::optional<double>(v));
+  }
+  std::string small;
+  append_fixed(small, 430.25, 9);
+  CHECK(small == "430.250000000");
+}

@@ -103,6 +103,7 @@ bool moves_machine(const protocol::Command& cmd) {
 
 void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command& cmd) {
   using core::CommandKind;
+  s.info().commanded = true;  // no longer a candidate for control.no_command_drop_s
   if (!allowed(s, cmd, slot)) return;
   if (moves_machine(cmd) && program_busy(s, slot, protocol::verb_name(cmd))) return;
   // StartMv, GoTo, HandMv: x y z on the machine's X Y Z axes; GoTo leaves the others where they are.
@@ -181,7 +182,7 @@ void Server::press_key(Session& s, std::uint32_t slot, const std::string& name) 
     reply(s, slot, format_err(ErrorCode::BadValue, "Key " + name + ": no I++ DME session has enabled the user; keys go to it only then"));
     return;
   }
-  ipp_->key(name);
+  to_ipp("KeyPress", [&] { ipp_->key(name); });
   reply(s, slot, format_ok("Key"));
 }
 

@@ -31,7 +31,7 @@ void Server::pump_events() {
     switch (e.kind) {
       case EventKind::Reply: {
         if (e.client == IppServer::kClientId) {  // the I++ session's Home
-          if (ipp_) ipp_->core_reply(e);
+          to_ipp("CoreReply", [&] { ipp_->core_reply(e); });
           break;
         }
         auto it = sessions_.find(e.client);
@@ -50,7 +50,7 @@ void Server::pump_events() {
         core::Event point = e;  // the probe offset (a qualification's) moves every measured point
         point.p += hal::Vec3(config_.probe_offset[0], config_.probe_offset[1], config_.probe_offset[2]);
         send_hit(point);  // journal, then Hit, then the 1996 MeasPt
-        if (ipp_) ipp_->hit(point);
+        to_ipp("Hit", [&] { ipp_->hit(point); });
         if (config_.log_motion)
           spdlog::info("point {}: {:.4f} {:.4f} {:.4f} {} dir {:.4f} {:.4f} {:.4f}", points_, point.p.x(), point.p.y(), point.p.z(),
                        e.compensated ? "compensated" : "as is (ForcePt)", e.dir.x(), e.dir.y(), e.dir.z());
@@ -64,7 +64,7 @@ void Server::pump_events() {
       case EventKind::State:
         broadcast(protocol::format_event("State", mode_name(e.mode)));
         if (config_.log_motion) spdlog::info("state {}", mode_name(e.mode));
-        if (ipp_) ipp_->retry();  // a move of the I++ session waiting for the machine to stand
+        to_ipp("Retry", [&] { ipp_->retry(); });  // a move of the I++ session waiting for the machine to stand
         break;
       case EventKind::Limit: {
         std::string text = std::string(1, layout().letters[e.axis]) + (e.side < 0 ? " neg" : " pos");
@@ -77,20 +77,20 @@ void Server::pump_events() {
         const std::string_view text = e.reason ? std::string_view(e.reason) : w.text;  // the loop's own why, when it says one
         broadcast(protocol::format_event("Warn", std::string(w.name) + " " + std::string(text)));
         spdlog::warn("{}: {} (at {:.3f} {:.3f} {:.3f})", w.name, text, e.p.x(), e.p.y(), e.p.z());
-        if (ipp_ && e.warning == core::Warning::HomingFailed) ipp_->home_failed();
+        if (e.warning == core::Warning::HomingFailed) to_ipp("HomeFailed", [&] { ipp_->home_failed(); });
         break;
       }
       case EventKind::Fault: {
         auto w = fault_wording(e.fault);
         broadcast(protocol::format_event("Fault", std::string(w.name) + " " + std::string(w.text)));
         spdlog::error("fault {}: {}", w.name, w.text);
-        if (ipp_) ipp_->home_failed();
+        to_ipp("HomeFailed", [&] { ipp_->home_failed(); });
         break;
       }
       case EventKind::Homed:
         broadcast(protocol::format_event("Homed", ""));
         spdlog::info("reference search done: machine homed");
-        if (ipp_) ipp_->homed();
+        to_ipp("Homed", [&] { ipp_->homed(); });
         break;
       case EventKind::Done:
       case EventKind::Failed: on_segment_end(e); break;

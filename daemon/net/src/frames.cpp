@@ -19,7 +19,6 @@ using protocol::ErrorCode;
 using protocol::format_err;
 using protocol::format_ok;
 using Vec = Eigen::Vector3d;
-constexpr double kMaxFrameOrigin = 1e6;  // mm: a kilometre; beyond it a typo, not a part
 
 void append_vector(std::string& out, std::string_view label, const Vec& v, int decimals) {
   out += ' ';
@@ -263,6 +262,10 @@ void Server::align(Session& s, std::uint32_t slot, const protocol::Align& c) {
       }
       frame = metrology::align_plane_two_holes(*plane, centres[0], centres[1]);
     }
+    if (!(frame.translation().cwiseAbs().maxCoeff() <= kMaxFrameOrigin)) {  // as SetFrame's bound
+      reply(s, slot, format_err(ErrorCode::BadValue, head + "the frame's origin lies beyond -1000000 to 1000000 mm; probe other features"));
+      return;
+    }
     store_frame(s, slot, "Align", c.name, frame, extra);
   } catch (const std::exception& e) {  // AlignmentError, FrameError
     reply(s, slot, format_err(ErrorCode::BadValue, head + e.what()));
@@ -283,7 +286,7 @@ void Server::del_frame(Session& s, std::uint32_t slot, const std::string& name) 
 
 void Server::frame_changed() {
   broadcast(protocol::format_event("Frame", frames_.active()));
-  if (ipp_) ipp_->part_frame_changed();
+  to_ipp("PartFrameChanged", [&] { ipp_->part_frame_changed(); });
 }
 
 // After a hit's Hit and MeasPt: the same point in the active part frame.

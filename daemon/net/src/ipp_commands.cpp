@@ -286,8 +286,15 @@ bool IppServer::execute(const Pending& p) {
             auto t = c.transform;
             t.psi = degrees_mod_360(t.psi);
             t.phi = degrees_mod_360(t.phi);
+            // The parser bounds the offsets (±1e6 mm); a chain that still gives no usable
+            // PartCsy frame is refused as a bad argument and changes nothing.
+            const ippdme::CsyChain before = csy_;
             csy_.set(c.csy, t);
-            if (c.csy == ippdme::CsyTarget::PartCsy) store_part_csy();
+            if (c.csy == ippdme::CsyTarget::PartCsy && !store_part_csy()) {
+              csy_ = before;
+              fail(tag, ErrorCode::BadArgument, name);
+              return true;
+            }
             return done();
           },
           [&](const ippdme::GetCsyTransformation& c) {

@@ -2,6 +2,7 @@
 // systems"): a SetCsyTransformation(PartCsy, ...) stores the frame "PartCsy" and makes it
 // active; UseFrame, SetFrame or Align on the MESSD port move PartCsy with them.
 #include <Eigen/Geometry>
+#include <optional>
 
 #include "imess/net/ipp_server.hpp"
 #include "imess/net/server.hpp"
@@ -14,16 +15,25 @@ ippdme::Point3 pt(const Eigen::Vector3d& v) { return {v[0], v[1], v[2]}; }
 
 }  // namespace
 
-void IppServer::store_part_csy() {
+bool IppServer::store_part_csy() {
   ippdme::CsyChain chain = csy_;
   chain.select(ippdme::CoordSystem::PartCsy);
   Eigen::Matrix3d r;
   for (int i = 0; i < 3; ++i) r.col(i) = vec(chain.vector_to_machine(pt(Eigen::Vector3d::Unit(i))));
-  const metrology::Frame frame(r, vec(chain.to_machine({0, 0, 0})), 1e-6);
+  const Eigen::Vector3d origin = vec(chain.to_machine({0, 0, 0}));
+  // Within the bound every stored frame keeps (the file is refused at start beyond it).
+  if (!r.allFinite() || !(origin.cwiseAbs().maxCoeff() <= kMaxFrameOrigin)) return false;
+  std::optional<metrology::Frame> frame;
+  try {
+    frame.emplace(r, origin, 1e-6);
+  } catch (const metrology::FrameError&) {
+    return false;
+  }
   own_part_csy_ = true;
-  server_.keep_frame("PartCsy", frame);
+  server_.keep_frame("PartCsy", *frame);
   server_.frame_changed();
   own_part_csy_ = false;
+  return true;
 }
 
 void IppServer::part_frame_changed() {

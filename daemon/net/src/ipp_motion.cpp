@@ -4,7 +4,9 @@
 // loop's events that finish them; measured points, KeyPress and the move report daemon.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "imess/net/ipp_server.hpp"
 #include "imess/net/server.hpp"
@@ -25,6 +27,19 @@ constexpr int kVectorDecimals = 6;
 constexpr double kMinReportPeriod = 0.1;  // s: at most 10 move reports a second
 
 double norm(const Point3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+// v / |v|, scaled by its largest component first so that neither IJK(1e200, 1e200, 1e200) nor
+// IJK(1e-200, 0, 0) over- or underflows; nullopt when v has no direction (zero, not finite).
+std::optional<Point3> unit(Point3 v) {
+  const double m = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
+  if (!(m > 0) || !std::isfinite(m)) return std::nullopt;
+  for (double& c : v) c /= m;
+  const double len = norm(v);
+  for (double& c : v) c /= len;
+  return v;
+}
+
+bool finite(const Point3& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 
 // Why a segment failed, as the spec numbers it (docs/ippdme.md, "Errors the server sends").
 ErrorCode error_of(core::FailReason why) {
@@ -121,7 +136,12 @@ bool IppServer::start_goto(const Pending& p, const ippdme::GoTo& c) {
   if (c.target.x) t[0] = *c.target.x;
   if (c.target.y) t[1] = *c.target.y;
   if (c.target.z) t[2] = *c.target.z;
-  const planner::Line line{next_id(), pose_at(csy_.to_machine(t)), tools_.act(Param::GoToSpeed), planner::ProbePhase::None};
+  const Point3 target = csy_.to_machine(t);
+  if (!finite(target)) {  // beyond every limit in machine coordinates: the spec's out-of-range error
+    fail(p.tag, ErrorCode::MachineLimitEncountered, name);
+    return true;
+  }
+  const planner::Line line{next_id(), pose_at(target), tools_.act(Param::GoToSpeed), planner::ProbePhase::None};
   if (const auto planned = plan_lines({line}, why); planned != Planned::Yes) {
     if (planned == Planned::Busy) return wait_for_rest();
     spdlog::info("I++ DME: GoTo refused: {}", why);
@@ -151,13 +171,14 @@ bool IppServer::start_ptmeas(const Pending& p, const ippdme::PtMeas& c) {
   if (c.nominal.y) nominal[1] = *c.nominal.y;
   if (c.nominal.z) nominal[2] = *c.nominal.z;
   // The surface normal: IJK, else from the nominal towards where the tip stands (§9).
-  Point3 n = c.ijk ? Point3{c.ijk->i, c.ijk->j, c.ijk->k} : Point3{here[0] - nominal[0], here[1] - nominal[1], here[2] - nominal[2]};
-  const double len = norm(n);
-  if (len < 1e-6) {
+  const Point3 toward = c.ijk ? Point3{c.ijk->i, c.ijk->j, c.ijk->k}
+                              : Point3{here[0] - nominal[0], here[1] - nominal[1], here[2] - nominal[2]};
+  const auto direction = unit(toward);
+  if (!direction || (!c.ijk && norm(toward) < 1e-6)) {  // without IJK: the tip must stand off the nominal
     fail(p.tag, ErrorCode::VectorHasNoNorm, name);
     return true;
   }
-  for (double& v : n) v /= len;
+  const Point3 n = *direction;
   // The nominal is a point of the surface: the ball's centre touches it at nominal + n·r;
   // the approach point and the search's end lie Approach before and Search beyond that.
   const double approach = tools_.act(Param::Approach), r = tools_.active()->radius;
@@ -165,6 +186,10 @@ bool IppServer::start_ptmeas(const Pending& p, const ippdme::PtMeas& c) {
   approach_m_ = csy_.to_machine(along(r + approach));
   normal_m_ = csy_.vector_to_machine(n);
   const Point3 nominal_m = csy_.to_machine(along(r));
+  if (!finite(approach_m_) || !finite(nominal_m)) {
+    fail(p.tag, ErrorCode::MachineLimitEncountered, name);
+    return true;
+  }
   const double feed = tools_.act(Param::GoToSpeed);
   std::vector<planner::Line> lines;
   const Point3 at = tip_machine();

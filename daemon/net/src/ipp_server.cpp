@@ -144,7 +144,7 @@ void IppServer::read() {
     // A copy: answering a line may start the next read into the same buffer.
     const std::string bytes(c->buffer.data(), n);
     c->framer.feed(bytes, [&](const ippdme::FramedLine& line) {
-      if (c == conn_ && !c->broken) on_line(line);
+      if (c == conn_ && !c->broken) guarded("IncomingLine", [&] { on_line(line); });
     });
     read();
   });
@@ -229,6 +229,27 @@ void IppServer::on_line(const ippdme::FramedLine& line) {
   pump();
 }
 
+bool IppServer::guarded(std::string_view what, const std::function<void()>& f) {
+  std::string why;
+  try {
+    f();
+    return true;
+  } catch (const std::exception& e) {
+    why = e.what();
+  } catch (...) {
+    why = "an exception of unknown type";
+  }
+  spdlog::error("I++ DME: an unexpected error in {} ended the session: {}; messd goes on", what, why);
+  if (conn_ && !conn_->broken) {
+    send(ippdme::format_error(ippdme::kServerTag, ErrorCode::ErrorProcessingMethod, what));
+    conn_->broken = true;  // nothing more is sent; closed from the io loop, not under this handler
+    asio::post(io_, [this, c = conn_] {
+      if (c == conn_) closed();
+    });
+  }
+  return false;
+}
+
 // Commands whose Ack waited for room: acknowledged and queued (all of them: `all`, before an
 // abort answers every queued command).
 void IppServer::admit_unacked(bool all) {
@@ -262,7 +283,17 @@ void IppServer::pump() {
 // started a motion step (or waits for the machine to stand).
 bool IppServer::run_front() {
   const Pending p = queue_.front();
-  if (!execute(p)) return false;
+  bool answered = true;
+  if (!guarded(ippdme::method_name(p.command), [&] { answered = execute(p); })) {
+    // The session ends (closed from the io loop); nothing of its queue runs any more.
+    queue_.clear();
+    unacked_.clear();
+    unacked_bytes_ = 0;
+    running_ = false;
+    step_ = Step::None;
+    return true;
+  }
+  if (!answered) return false;
   if (!queue_.empty() && queue_.front().tag == p.tag) queue_.pop_front();
   running_ = false;
   return true;

@@ -1,5 +1,6 @@
 // Is the client still there? The owner's dead-man (Watch), writers that stopped reading,
-// controllers that fell silent. Rules in docs/protocol.md, "Control" and "Idle clients".
+// controllers that fell silent, connections that never command. Rules in docs/protocol.md,
+// "Control" and "Connections and idle clients".
 #include <spdlog/spdlog.h>
 
 #include "imess/net/server.hpp"
@@ -115,6 +116,14 @@ void Server::check_clients() {
       drop(*s, "nothing received for " + fmt::format("{:g}", rules.idle_drop_s) + " s while " +
                    (control_.owns(id) ? "holding control" : "Watch is on") +
                    "; connection closed (a blank line now and then keeps it open)");
+    // A connection from a control host that never sends a command holds a slot — the reserved
+    // ones too — for nothing: a hundred of them lock everyone out. Observer-only hosts are
+    // capped by reserved_slots instead; a client that sent any command is never dropped here.
+    const auto& info = s->info();
+    if (rules.no_command_drop_s > 0 && info.may_control && !info.commanded && !s->dropping() &&
+        now - info.connected_at > seconds(rules.no_command_drop_s))
+      drop(*s, "no command within " + fmt::format("{:g}", rules.no_command_drop_s) +
+                   " s of connecting; connection closed (send a command, e.g. Hello, to stay connected)");
   }
 }
 

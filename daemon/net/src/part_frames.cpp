@@ -7,7 +7,15 @@ namespace imess::net {
 
 PartFrames::PartFrames(std::filesystem::path file) : file_(std::move(file)) {
   std::error_code ec;
-  if (!file_.empty() && std::filesystem::exists(file_, ec)) store_ = metrology::load_frame_store(file_);
+  if (file_.empty() || !std::filesystem::exists(file_, ec)) return;
+  store_ = metrology::load_frame_store(file_);
+  // The rules SetFrame keeps, for a file written by hand or by an older messd.
+  for (const auto& [name, f] : store_.entries()) {
+    const std::string where = file_.string() + ": frames." + name + ": ";
+    if (auto why = refuse_name(name); !why.empty()) throw metrology::FrameError(where + "accepted " + why);
+    if (!(f.frame.translation().cwiseAbs().maxCoeff() <= kMaxFrameOrigin))
+      throw metrology::FrameError(where + "the origin's coordinates go from -1000000 to 1000000 mm");
+  }
 }
 
 const metrology::Frame* PartFrames::find(std::string_view name) const {

@@ -260,7 +260,7 @@ void Server::on_segment_end(const core::Event& e) {
   if (it != in_loop_.end()) in_loop_.erase(it);
   if (IppServer::is_own_id(e.id)) {  // the I++ session's: it answers for them
     if (unsent_.empty() && in_loop_.empty() && planner_.pending() == 0 && planner_.ready() == 0) planning_ = false;
-    if (ipp_) ipp_->segment_end(e);
+    to_ipp("SegmentEnd", [&] { ipp_->segment_end(e); });
     flush_check();
     return;
   }
@@ -300,7 +300,7 @@ void Server::drop_planned(core::FailReason why) {
   planner::Pose here{};
   planner_.set_position(here);  // discards what was not taken; the next queue starts anew
   planning_ = false;
-  if (ipp_) ipp_->dropped(why);
+  to_ipp("Dropped", [&] { ipp_->dropped(why); });
   // A limit, a fault or an unexpected touch dropped the loop's queue: the program failed
   // (a stop ends it as aborted, in stop_machine).
   if (program_.running() && why != core::FailReason::Stopped) {

@@ -192,6 +192,7 @@ void Server::admit(tcp::socket socket) {
       [this](Session& s) { closed(s); });
   session->info().may_control = may_control;
   session->info().may_force = may_control && rules.force_hosts.contains(address);
+  session->info().connected_at = Session::Clock::now();
   sessions_[id] = session;
   log_limited(spdlog::level::info, "connect",
               "client " + std::to_string(id) + " connected from " + session->peer() + (may_control ? "" : " (observer host)"));
@@ -200,7 +201,11 @@ void Server::admit(tcp::socket socket) {
 }
 
 void Server::closed(Session& s) {
-  log_limited(spdlog::level::info, "disconnect", "client " + std::to_string(s.id()) + " (" + s.peer() + ") " + s.close_reason());
+  const std::string text = "client " + std::to_string(s.id()) + " (" + s.peer() + ") " + s.close_reason();
+  if (s.failed())  // a bug met by this client's line: the session ended, the daemon did not
+    log_limited(spdlog::level::err, "session-error", text + "; messd goes on");
+  else
+    log_limited(spdlog::level::info, "disconnect", text);
   auto keep = sessions_[s.id()];  // s lives until this handler returns
   sessions_.erase(s.id());
   lose_control(s, "disconnected", true);

@@ -63,7 +63,7 @@ bool Session::take_input(std::string_view bytes) {
     const std::size_t nl = bytes.find('\n', at);
     const std::size_t end = nl == std::string_view::npos ? bytes.size() : nl + 1;
     framer_.feed(bytes.substr(at, end - at), [&](const protocol::FramedLine& line) {
-      if (open_ && !discard_input_) on_line_(*this, line);
+      if (open_ && !discard_input_) handle(line);
     });
     at = end;
     if (!open_ || discard_input_) {
@@ -74,6 +74,20 @@ bool Session::take_input(std::string_view bytes) {
   }
   unread_.assign(bytes.substr(at));
   return at == bytes.size() && !backlogged();
+}
+
+// The last resort: whatever a line's handling throws ends this session, never the daemon
+// (the exception would leave io_context::run and messd with it).
+void Session::handle(const protocol::FramedLine& line) {
+  try {
+    on_line_(*this, line);
+  } catch (const std::exception& e) {
+    failed_ = true;
+    close(std::string("ended by an unexpected error while handling its line: ") + e.what());
+  } catch (...) {
+    failed_ = true;
+    close("ended by an unexpected error of unknown type while handling its line");
+  }
 }
 
 bool Session::backlogged() const {

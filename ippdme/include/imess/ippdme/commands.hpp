@@ -77,8 +77,11 @@ struct GetChangeToolAction { std::string name; IMESS_IPPDME_EQ(GetChangeToolActi
 // CartCMM
 struct SetCoordSystem { CoordSystem csy = CoordSystem::MachineCsy; IMESS_IPPDME_EQ(SetCoordSystem); };
 struct GetCoordSystem { IMESS_IPPDME_EQ(GetCoordSystem); };
+// A coordinate system's offsets stay within ±kMaxCsyOffset mm (MESSD's SetFrame bounds a
+// frame's origin the same): beyond it a typo, and the chain's products would overflow.
+inline constexpr double kMaxCsyOffset = 1e6;
 struct CsyTransformation {
-  double x0 = 0, y0 = 0, z0 = 0;        // mm
+  double x0 = 0, y0 = 0, z0 = 0;        // mm, each within ±kMaxCsyOffset
   double theta = 0, psi = 0, phi = 0;   // degrees; theta 0..180
   friend bool operator==(const CsyTransformation&, const CsyTransformation&) = default;
 };

@@ -19,10 +19,14 @@ struct NamedFrame {
   Frame frame;          // orthonormalised
 };
 
+// An empty string when `name` may name a frame (letters, digits, '_', '-' and '.'; a name is
+// a word on the wire and may become part of a path), else what is accepted.
+std::string refuse_frame_name(std::string_view name);
+
 class FrameStore {
  public:
   // Orthonormalises `raw` (Frame::orthonormalised) and stores it; replaces an existing name.
-  // Throws FrameError naming the frame when the name is empty or the matrix is unusable.
+  // Throws FrameError naming the frame when the name is refused or the matrix is unusable.
   void set(const std::string& name, const Eigen::Matrix4d& raw);
   // Throws FrameError when there is no frame of that name (the message lists the names held).
   const Frame& get(const std::string& name) const;
@@ -40,8 +44,10 @@ class FrameStore {
 //   { "frames": { "<name>": { "raw": [[4 numbers] x 4], "orthonormal": [[..] x 4],
 //                             "inverse": [[..] x 4] }, ... } }
 // Parsing throws FrameError "<source>: frames.<name>.<key>...: <what was expected>" when a key is
-// missing, a value is not a 4x4 array of finite numbers, the orthonormal matrix does not match
-// the raw one orthonormalised, or the inverse does not invert it (tolerance kFrameTolerance).
+// missing, a name is refused (refuse_frame_name), a value is not a 4x4 array of finite numbers,
+// the orthonormal matrix does not match the raw one orthonormalised, or the inverse does not
+// invert it (tolerance kFrameTolerance); the JSON text is read by imess::jsontext (a number
+// beyond a double, a duplicate key: named with its key). Loading a directory is refused as such.
 FrameStore parse_frame_store(std::string_view json_text, std::string_view source = "<json>");
 std::string to_json(const FrameStore& store);  // numbers round-trip exactly
 FrameStore load_frame_store(const std::filesystem::path& path);

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -68,6 +69,10 @@ class IppServer {
   bool listening_for_keys() const { return conn_ && in_session_ && user_enabled_; }
   // The controller's active part frame changed (UseFrame, SetFrame, Align ...): PartCsy follows.
   void part_frame_changed();
+  // The last resort: an exception from `f` (a line, a queued command, a hook above called by
+  // the Server) ends the session — logged, E0000 0511, the connection closed — never the
+  // daemon. False when it did.
+  bool guarded(std::string_view what, const std::function<void()>& f);
 
  private:
   struct Connection;
@@ -147,7 +152,9 @@ class IppServer {
   std::optional<MoveDaemon> daemon_;
   ippdme::ToolBox tools_;
   ippdme::CsyChain csy_;
-  void store_part_csy();  // PartCsy as the session set it becomes the controller's frame "PartCsy"
+  // PartCsy as the session set it becomes the controller's frame "PartCsy"; false (nothing
+  // stored) when the chain gives no usable frame.
+  bool store_part_csy();
   bool own_part_csy_ = false;  // this session's SetCsyTransformation(PartCsy) is being stored
   // The motion step of the queue's front.
   Step step_ = Step::None;

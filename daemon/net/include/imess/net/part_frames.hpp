@@ -15,11 +15,13 @@
 namespace imess::net {
 
 inline constexpr std::string_view kMachineFrame = "machine";
+inline constexpr double kMaxFrameOrigin = 1e6;  // mm: a kilometre; beyond it a typo, not a part
 
 class PartFrames {
  public:
   // file empty: the frames live for this run only. Otherwise the file is read when it exists
-  // (throws metrology::FrameError naming it and what is wrong) and written on every change.
+  // (throws metrology::FrameError naming it, the key and what is accepted — also for a name
+  // refuse_name refuses or an origin beyond kMaxFrameOrigin) and written on every change.
   explicit PartFrames(std::filesystem::path file = {});
 
   const std::string& active() const noexcept { return active_; }

@@ -11,6 +11,8 @@
 #include <optional>
 #include <variant>
 #include <string>
+#include <string_view>
+#include <utility>
 
 #include "imess/core/event_fd.hpp"
 #include "imess/core/loop_runner.hpp"
@@ -37,6 +39,7 @@ struct ControlConfig {
   HostList force_hosts = loopback_hosts();    // may Take force (must also be in hosts)
   std::size_t reserved_slots = 4;             // of max_clients, only for hosts in `hosts`
   double idle_drop_s = 300;                   // silent this long while controlling or watching: dropped
+  double no_command_drop_s = 300;             // from a control host, no command this long after connecting: dropped (0: never)
   double write_stall_s = 10;                  // one write unfinished this long (not reading): dropped
   std::uint32_t max_in_flight = 32;           // per client, commands waiting in the motion loop's ring
 };
@@ -98,7 +101,7 @@ class Server {
   // The I++ move reports (OnMoveReportE): the report timer calls it; the golden harness,
   // whose position stream is off, every motion cycle in virtual time.
   void move_reports() {
-    if (ipp_) ipp_->tick();
+    to_ipp("MoveReport", [&] { ipp_->tick(); });
   }
 
  private:
@@ -278,6 +281,12 @@ class Server {
   // The I++ DME server: a second way in, driving this planner under this control (ipp_*.cpp).
   friend class IppServer;
   std::unique_ptr<IppServer> ipp_;
+  // Every call into it from the event drain and the MESSD side: an exception there ends the I++
+  // session (IppServer::guarded), never the io thread and messd with it.
+  template <class F>
+  void to_ipp(std::string_view what, F&& f) {
+    if (ipp_) ipp_->guarded(what, std::forward<F>(f));
+  }
 };
 
 }  // namespace imess::net

@@ -21,6 +21,8 @@ struct ClientInfo {
   std::string name;              // from Hello; empty: "client<N>"
   bool may_control = false;      // host in control.hosts
   bool may_force = false;        // host in control.force_hosts
+  bool commanded = false;        // has sent a command (any verb; blank lines are none)
+  std::chrono::steady_clock::time_point connected_at{};  // admitted at
   int watch_ms = 0;              // Watch: dead-man interval, 0 = off
   std::chrono::steady_clock::time_point watch_fired_for{};  // last_received() when the dead-man last fired
   std::uint32_t in_flight = 0;   // commands in the motion loop's ring, not yet answered
@@ -59,6 +61,7 @@ class Session : public std::enable_shared_from_this<Session> {
 
   std::uint32_t id() const { return id_; }
   const std::string& close_reason() const { return close_reason_; }  // for the log
+  bool failed() const { return failed_; }  // closed because handling its line threw
   const std::string& peer() const { return peer_; }        // "address:port"
   const boost::asio::ip::address& address() const { return address_; }
   std::string host() const { return address_.to_string(); }
@@ -73,6 +76,7 @@ class Session : public std::enable_shared_from_this<Session> {
 
  private:
   void read();
+  void handle(const protocol::FramedLine& line);  // on_line_, an exception ending only this session
   void write();
   // Frames `bytes` and handles their lines (up to each LF) while not backlogged; what is left
   // waits in unread_. False when it stopped early (reading then pauses) or the session closed.
@@ -104,6 +108,7 @@ class Session : public std::enable_shared_from_this<Session> {
   std::uint32_t next_slot_ = 1;
   std::size_t queued_bytes_ = 0;
   bool writing_ = false, open_ = true, close_when_flushed_ = false, discard_input_ = false, read_paused_ = false;
+  bool failed_ = false;
   std::string peer_, close_reason_;
   boost::asio::ip::address address_;
   Clock::time_point last_received_ = Clock::now();
