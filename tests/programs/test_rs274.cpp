@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <unistd.h>
 
+#include "imess/programs/canon.hpp"
 #include "imess/programs/gcode.hpp"
 
 using namespace imess::programs;

@@ -15,6 +15,8 @@ struct GcodeOptions {
   std::array<Pose, 6> work_offsets{};  // G54 … G59: machine = program + offset (mm, deg)
   int work_offset = 0;                 // active at start: 0 = G54
   Pose home{};                         // where G28 goes (machine pose)
+  Pose g30{};                          // where G30 goes (machine pose)
+  bool block_delete = true;            // lines starting with '/' are skipped (the switch on)
   double rapid_feed = 0;               // traverse feed, planner units; 0: the fastest axis' max_velocity
   bool check_travel = true;            // refuse end points outside the axes' travel
   // Outputs (planner SetOutput numbers). M3/M4 set spindle_output to S (1 when no S was
