@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string_view>
 
 namespace imess::programs {
 
@@ -85,6 +86,7 @@ std::string canonical_program(const Translation& t, const planner::Machine& m, c
     inches = f.inches;
   };
   units(t.frames.empty() ? Frame{} : t.frames.front());
+  const char* plane = "CANON_PLANE_XY";
   for (const auto& it : t.items) {
     const Frame f = frame_of(it);
     units(f);
@@ -100,6 +102,11 @@ std::string canonical_program(const Translation& t, const planner::Machine& m, c
       const double r = feed * 60 / (lin && f.inches ? 25.4 : 1.0);
       if (std::fabs(r - rate) > 1e-9 * std::max(1.0, r)) out += "SET_FEED_RATE(" + f4(r) + ")\n";
       rate = r;
+    }
+    if (const auto* a = std::get_if<planner::Arc>(&it.step)) {
+      const char* p = a->normal[1] != 0 ? "CANON_PLANE_XZ" : a->normal[0] != 0 ? "CANON_PLANE_YZ" : "CANON_PLANE_XY";
+      if (std::string_view(p) != plane) out += std::string("SELECT_PLANE(") + p + ")\n";
+      plane = p;
     }
     if (const std::string c = canonical(it, m, f); !c.empty()) out += c + "\n";
     if (std::holds_alternative<Pause>(it.step)) out += "PROGRAM_STOP()\n";

@@ -17,10 +17,10 @@ namespace imess::programs {
 namespace {
 using namespace detail;
 
-constexpr const char* kLetters = "N G M X Y Z A B C U V W I J K R F P Q S";
+constexpr const char* kLetters = "N G M X Y Z A B C U V W I J K R F P Q S L";
 constexpr const char* kGcodes =
-    "G0 G1 G2 G3 G4 G17 G18 G19 G20 G21 G28 G30 G38.2 G38.3 G40 G49 G53 G54 G55 G56 G57 G58 G59 G61 G61.1 G64 G80 "
-    "G90 G91 G91.1 G94";
+    "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G30 G38.2 G38.3 G40 G49 G53 G54 G55 G56 G57 G58 G59 G61 G61.1 G64 "
+    "G80 G90 G91 G91.1 G92 G92.1 G92.2 G92.3 G94";
 constexpr const char* kMcodes = "M0 M1 M2 M3 M4 M5 M30 M62 M63 M64 M65";
 constexpr double kInch = 25.4;
 
@@ -37,7 +37,7 @@ enum Group {
 };
 constexpr const char* kGroupNames[kGroups] = {"motion (G0 G1 G2 G3 G38.2 G38.3)", "plane (G17 G18 G19)",
                                               "distance (G90 G91)", "units (G20 G21)", "work offset (G54-G59)",
-                                              "non-modal (G4 G28 G30 G53)", "stop (M0 M1 M2 M30)", "spindle (M3 M4 M5)",
+                                              "non-modal (G4 G10 G28 G30 G53 G92 G92.1 G92.2 G92.3)", "stop (M0 M1 M2 M30)", "spindle (M3 M4 M5)",
                                               "output (M62 M63 M64 M65)", "motion cancel (G80)",
                                               "cutter compensation (G40)", "tool length (G49)", "feed mode (G94)",
                                               "path control (G61 G61.1 G64)", "arc distance (G91.1)"};
@@ -75,7 +75,8 @@ class GcodeTranslator {
     pos_ = o.start;
     coord_ = o.work_offset;
     known_.fill(true);
-    frames_.push_back(Frame{o_.work_offsets[static_cast<std::size_t>(coord_)], false});
+    offsets_ = o.work_offsets;
+    frames_.push_back(Frame{offset(), false});
     rapid_ = o.rapid_feed;
     if (!(rapid_ > 0))
       for (int i = 0; i < m_.count; ++i) rapid_ = std::max(rapid_, m_.axes[i].max_velocity);
@@ -123,7 +124,7 @@ class GcodeTranslator {
     if (c.code >= 0) note(c.text, accepted_meaning(c.text));
   }
   void set_frame() {
-    const Frame f{o_.work_offsets[static_cast<std::size_t>(coord_)], inches_};
+    const Frame f{offset(), inches_};
     if (!(frames_.back() == f)) frames_.push_back(f);
   }
   Word& word(char letter) { return words_[static_cast<std::size_t>(letter - 'A')]; }
@@ -182,7 +183,7 @@ class GcodeTranslator {
           case 200: case 210: group = kUnits; break;
           case 900: case 910: group = kDistance; break;
           case 540: case 550: case 560: case 570: case 580: case 590: group = kCoord; break;
-          case 40: case 280: case 300: case 530: group = kNonModal; break;
+          case 40: case 100: case 280: case 300: case 530: case 920: case 921: case 922: case 923: group = kNonModal; break;
           case 800: group = kCancel; break;
           case 400: group = kComp; break;
           case 490: group = kLength; break;
@@ -214,6 +215,13 @@ class GcodeTranslator {
   }
 
   double unit() const { return inches_ ? kInch : 1.0; }
+  double scale_of(int i) const { return m_.axes[i].kind == planner::AxisKind::Linear ? unit() : 1.0; }
+  // machine = program + offset(): the selected work offset plus G92's.
+  Pose offset() const {
+    Pose p = offsets_[static_cast<std::size_t>(coord_)];
+    for (int i = 0; i < m_.count; ++i) p[i] += g92_[i];
+    return p;
+  }
 
   void line(int number, std::string_view source) {
     line_ = number;
@@ -240,6 +248,8 @@ class GcodeTranslator {
     const Code& motion_code = codes_[kMotion];
     const Code& nonmodal = codes_[kNonModal];
     const bool home_line = nonmodal.code == 280 || nonmodal.code == 300;
+    // G28, G30, G10 and G92 take the line's axis words (no motion of their own mode then).
+    const bool axis_user = home_line || nonmodal.code == 100 || nonmodal.code == 920;
     // Axis words must name machine axes.
     bool any_axis = false;
     int first_axis_col = 0;
@@ -253,7 +263,7 @@ class GcodeTranslator {
     // The motion mode this line moves in: its own code, none after G80, else the modal one.
     const int motion_now = motion_code.code >= 0 ? motion_code.code : codes_[kCancel].code >= 0 ? -1 : motion_;
     const bool any_centre = word('I').given || word('J').given || word('K').given || word('R').given;
-    const bool arc_on_line = (motion_now == 20 || motion_now == 30) && !home_line &&
+    const bool arc_on_line = (motion_now == 20 || motion_now == 30) && !axis_user &&
                              (motion_code.code >= 0 || any_axis || any_centre);
     // 1. Feed mode (G94 sets F to 0, as LinuxCNC), feed and spindle speed. F is read in the
     // units in force before this line's G20/G21 (LinuxCNC's order) and kept as a speed.
@@ -278,10 +288,11 @@ class GcodeTranslator {
     const Word& p = word('P');
     const bool g64 = codes_[kPath].code == 640;
     {
-      int users = (nonmodal.code == 40) + (codes_[kIo].code >= 0) + arc_on_line + g64;
-      if (p.given && users == 0) fail(ErrorKind::WordNotAllowed, p.column, word_text(p), "P only with G4, M62-M65, G2/G3 (turns) or G64");
-      if (p.given && users > 1) fail(ErrorKind::WordNotAllowed, p.column, word_text(p), "P for one of G4, M62-M65, G2/G3, G64 per line");
+      int users = (nonmodal.code == 40 || nonmodal.code == 100) + (codes_[kIo].code >= 0) + arc_on_line + g64;
+      if (p.given && users == 0) fail(ErrorKind::WordNotAllowed, p.column, word_text(p), "P only with G4, G10, M62-M65, G2/G3 (turns) or G64");
+      if (p.given && users > 1) fail(ErrorKind::WordNotAllowed, p.column, word_text(p), "P for one of G4, G10, M62-M65, G2/G3, G64 per line");
       if (const Word& q = word('Q'); q.given && !g64) fail(ErrorKind::WordNotAllowed, q.column, word_text(q), "Q only with G64");
+      if (const Word& l = word('L'); l.given && nonmodal.code != 100) fail(ErrorKind::WordNotAllowed, l.column, word_text(l), "L only with G10");
     }
     // 2. Spindle.
     if (const Code& sp = codes_[kSpindle]; sp.code >= 0) {
@@ -322,11 +333,16 @@ class GcodeTranslator {
       if (w.given && !arc_on_line) fail(ErrorKind::WordNotAllowed, w.column, word_text(w), std::string(1, L) + " only with G2/G3");
     }
     // 6. Home, machine coordinates, motion.
+    if (nonmodal.code >= 921 && nonmodal.code <= 923) g92_clear(nonmodal);
+    if (axis_user && motion_code.code >= 0)
+      fail(ErrorKind::WordNotAllowed, motion_code.column, motion_code.text + " with " + nonmodal.text,
+           nonmodal.text + " or a motion code on a line: both take the axis words");
     if (home_line) {
-      if (motion_code.code >= 0)
-        fail(ErrorKind::WordNotAllowed, motion_code.column, motion_code.text + " with " + nonmodal.text,
-             nonmodal.text + " or a motion code on a line: both take the axis words");
       home(nonmodal, any_axis);
+    } else if (nonmodal.code == 100) {
+      g10(nonmodal);
+    } else if (nonmodal.code == 920) {
+      g92(nonmodal, any_axis);
     } else if (nonmodal.code == 530) {
       if (!(motion_ == 0 || motion_ == 10)) fail(ErrorKind::WordNotAllowed, nonmodal.column, "G53 with " + (motion_ < 0 ? std::string("no motion mode") : g_text(motion_)), "G53 with G0 or G1");
       if (!absolute_) fail(ErrorKind::WordNotAllowed, nonmodal.column, "G53 in G91", "G53 in G90");
@@ -358,6 +374,54 @@ class GcodeTranslator {
         ended_ = true;
       }
     }
+  }
+
+  // G92 (axis words: the current position reads those values), G92.1 (offsets cleared),
+  // G92.2 (suspended), G92.3 (restored). G92.1-.3 leave the axis words to the motion mode.
+  void g92_clear(const Code& c) {
+    if (c.code == 921) g92_ = g92_kept_ = Pose{};
+    if (c.code == 922) g92_ = Pose{};
+    if (c.code == 923) g92_ = g92_kept_;
+    set_frame();
+  }
+  void g92(const Code& c, bool any_axis) {
+    if (!any_axis) fail(ErrorKind::MissingWord, c.column, "G92 without axis words", "G92 with the values the current position gets");
+    for (int i = 0; i < m_.count; ++i) {
+      const Word& w = word(m_.axes[i].letter);
+      if (!w.given) continue;
+      if (!known_[i]) fail(ErrorKind::PositionUnknown, w.column, word_text(w) + " with G92 after the probe on line " + std::to_string(probe_line_),
+                           std::string(1, w.letter) + " named in G90 (or G53) first");
+      g92_[i] = pos_[i] - offsets_[static_cast<std::size_t>(coord_)][i] - w.value * scale_of(i);
+    }
+    g92_kept_ = g92_;
+    set_frame();
+    note("G92", "offsets set by G92 last for this program (each program starts without)");
+  }
+
+  // G10 L2 P<n>: work offset n (P0: the one in force) to the axis words, machine
+  // coordinates; G10 L20 P<n>: so that the machine's position reads the axis words there.
+  void g10(const Code& c) {
+    const Word& l = word('L');
+    const Word& p = word('P');
+    if (!l.given || (l.value != 2 && l.value != 20)) fail(ErrorKind::MissingWord, c.column, "G10" + (l.given ? " " + word_text(l) : std::string(" without L")), "G10 L2 or G10 L20");
+    if (!p.given) fail(ErrorKind::MissingWord, c.column, "G10 without P", "G10 L2/L20 P0 ... P6 (P0 the offset in force, P1 ... P6 G54 ... G59)");
+    const long n = std::lround(p.value);
+    if (std::fabs(p.value - static_cast<double>(n)) > 1e-9 || n < 0 || n > 6)
+      fail(ErrorKind::BadValue, p.column, word_text(p), "P0 ... P6 (P0 the offset in force, P1 ... P6 G54 ... G59)");
+    const std::size_t k = n == 0 ? static_cast<std::size_t>(coord_) : static_cast<std::size_t>(n - 1);
+    for (int i = 0; i < m_.count; ++i) {
+      const Word& w = word(m_.axes[i].letter);
+      if (!w.given) continue;
+      if (l.value == 2) {
+        offsets_[k][i] = w.value * scale_of(i);
+      } else {
+        if (!known_[i]) fail(ErrorKind::PositionUnknown, w.column, word_text(w) + " with G10 L20 after the probe on line " + std::to_string(probe_line_),
+                             std::string(1, w.letter) + " named in G90 (or G53) first");
+        offsets_[k][i] = pos_[i] - w.value * scale_of(i) - g92_[i];
+      }
+    }
+    set_frame();
+    note("G10", "work offsets set by G10 last for this program; messd's offset table is not changed");
   }
 
   // G28 / G30: with axis words a rapid to that point (in the current G90/G91), then those
@@ -409,7 +473,7 @@ class GcodeTranslator {
         t[i] = w.value * scale;
         known_[i] = true;
       } else if (absolute_) {
-        t[i] = w.value * scale + o_.work_offsets[static_cast<std::size_t>(coord_)][i];
+        t[i] = w.value * scale + offset()[i];
         known_[i] = true;
       } else {
         if (!known_[i])
@@ -543,6 +607,8 @@ class GcodeTranslator {
   int plane_ = 17;
   bool absolute_ = true, inches_ = false;
   int coord_ = 0;
+  std::array<Pose, 6> offsets_{};  // G54 ... G59: the caller's, as G10 changes them in this program
+  Pose g92_{}, g92_kept_{};        // G92's offset in force; the one G92.2 suspended
   double feed_mm_ = 0, feed_deg_ = 0;  // the F speed: mm/min for linear moves, deg/min for rotary-only
   int feed_reset_line_ = 0;            // the last G94, which set F to 0
   bool cancel_line_ = false;           // G80 cancelled the motion mode

@@ -143,3 +143,16 @@ TEST_CASE("config: frames.file names the part frames' store, unknown keys in fra
   CHECK(cfg.server.frames_file == "/var/lib/messd/frames.json");
   CHECK(contains(json_error(R"({"frames": {"path": "x"}})"), "unknown key 'frames.path'"));
 }
+
+TEST_CASE("config: programs.g30 is G30's pose, programs.gcode.block_delete the block-delete switch (on by default)") {
+  DaemonConfig cfg;
+  load_config_text(R"({"programs": {"home": [1, 2, 3], "g30": [10, 20, 30]}})", "c.json", cfg);
+  finish_config(cfg);
+  CHECK(cfg.server.programs.home == std::vector<double>{1, 2, 3});
+  CHECK(cfg.server.programs.g30 == std::vector<double>{10, 20, 30});
+  CHECK(cfg.server.programs.block_delete);
+  DaemonConfig off;
+  load_config_text(R"({"programs": {"gcode": {"block_delete": false}}})", "c.json", off);
+  CHECK_FALSE(off.server.programs.block_delete);
+  CHECK(contains(json_error(R"({"programs": {"gcode": {"block_delete": "off"}}})"), "programs.gcode.block_delete"));
+}

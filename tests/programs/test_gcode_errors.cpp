@@ -10,7 +10,7 @@ using namespace imess::programs::test;
 
 namespace {
 std::string err(const char* text, const GcodeOptions& o = {}) { return error_text(translate_gcode(text, o)); }
-constexpr const char* kAllWords = "N G M X Y Z A B C U V W I J K R F P Q S";
+constexpr const char* kAllWords = "N G M X Y Z A B C U V W I J K R F P Q S L";
 }  // namespace
 
 TEST_CASE("gcode errors: characters, numbers, words and codes") {
@@ -20,8 +20,8 @@ TEST_CASE("gcode errors: characters, numbers, words and codes") {
   CHECK(err("G0 X1\nG0 Y1\nG0 H1") == std::string("line 3:4: unsupported word: found H, accepted words ") + kAllWords);
   CHECK(err("G0 X1 /Y1") == std::string("line 1:7: bad character: found '/', accepted words ") + kAllWords + ", '(comment)', ';comment'");
   const std::string g =
-      "G0 G1 G2 G3 G4 G17 G18 G19 G20 G21 G28 G30 G38.2 G38.3 G40 G49 G53 G54 G55 G56 G57 G58 G59 G61 G61.1 G64 G80 "
-      "G90 G91 G91.1 G94";
+      "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G30 G38.2 G38.3 G40 G49 G53 G54 G55 G56 G57 G58 G59 G61 G61.1 G64 "
+      "G80 G90 G91 G91.1 G92 G92.1 G92.2 G92.3 G94";
   CHECK(err("G81 X1") == "line 1:1: unsupported code: found G81, accepted " + g);
   CHECK(err("G38.4 Z1") == "line 1:1: unsupported code: found G38.4, accepted " + g);
   CHECK(err("G1.5") == "line 1:1: unsupported code: found G1.5, accepted " + g);
@@ -35,7 +35,7 @@ TEST_CASE("gcode errors: modal groups, repeated words, N placement") {
   CHECK(err("G90 G91") == "line 1:5: two words of one modal group: found G91 after G90 at column 1, accepted one word of group distance (G90 G91) per line");
   CHECK(err("G20 G21") == "line 1:5: two words of one modal group: found G21 after G20 at column 1, accepted one word of group units (G20 G21) per line");
   CHECK(err("G54 G55") == "line 1:5: two words of one modal group: found G55 after G54 at column 1, accepted one word of group work offset (G54-G59) per line");
-  CHECK(err("G4 P1 G28") == "line 1:7: two words of one modal group: found G28 after G4 at column 1, accepted one word of group non-modal (G4 G28 G30 G53) per line");
+  CHECK(err("G4 P1 G28") == "line 1:7: two words of one modal group: found G28 after G4 at column 1, accepted one word of group non-modal (G4 G10 G28 G30 G53 G92 G92.1 G92.2 G92.3) per line");
   CHECK(err("M0 M2") == "line 1:4: two words of one modal group: found M2 after M0 at column 1, accepted one word of group stop (M0 M1 M2 M30) per line");
   CHECK(err("M3 M5") == "line 1:4: two words of one modal group: found M5 after M3 at column 1, accepted one word of group spindle (M3 M4 M5) per line");
   CHECK(err("M62 P1 M63 P2") == "line 1:8: two words of one modal group: found M63 after M62 at column 1, accepted one word of group output (M62 M63 M64 M65) per line");
@@ -75,7 +75,7 @@ TEST_CASE("gcode errors: arcs") {
 
 TEST_CASE("gcode errors: words that do not fit the line") {
   CHECK(err("G0 X1 I5") == "line 1:7: word not allowed here: found I5, accepted I only with G2/G3");
-  CHECK(err("G0 X1 P2") == "line 1:7: word not allowed here: found P2, accepted P only with G4, M62-M65, G2/G3 (turns) or G64");
+  CHECK(err("G0 X1 P2") == "line 1:7: word not allowed here: found P2, accepted P only with G4, G10, M62-M65, G2/G3 (turns) or G64");
   CHECK(err("G0 X1 Q2") == "line 1:7: word not allowed here: found Q2, accepted Q only with G64");
   CHECK(err("G28 G1 X1") == "line 1:5: word not allowed here: found G1 with G28, accepted G28 or a motion code on a line: both take the axis words");
   CHECK(err("G91 G53 G0 X1") == "line 1:5: word not allowed here: found G53 in G91, accepted G53 in G90");

@@ -156,3 +156,22 @@ TEST_CASE("linuxcnc: canned cycles, cutter compensation and parameters stay refu
   CHECK(err("G0 X1\nG1 G41 D1 X5 F60\n").substr(0, 41) == "line 2:4: unsupported code: found G41, ac");
   CHECK(err("G0 X1 #1=5\n").substr(0, 34) == "line 1:7: bad character: found '#'");
 }
+
+TEST_CASE("linuxcnc: G92 makes the position read the axis words, G92.1 clears, G92.2 suspends, G92.3 restores") {
+  CHECK(run("G0 X10 Y10 Z10\nG92 X0 Y0\nG0 X1\nG92.2\nG0 X1\nG92.3\nG0 X2\nG92.1 X3\n") ==
+        Lines{"1 LINE rapid X10 Y10 Z10 F100", "3 LINE rapid X11 Y10 Z10 F100", "5 LINE rapid X1 Y10 Z10 F100",
+              "7 LINE rapid X12 Y10 Z10 F100", "8 LINE rapid X3 Y10 Z10 F100"});
+  CHECK(err("G0 X1\nG92\n") == "line 2:1: missing word: found G92 without axis words, accepted G92 with the values the current position gets");
+  CHECK(err("G92 G0 X1\n") == "line 1:5: word not allowed here: found G0 with G92, accepted G92 or a motion code on a line: both take the axis words");
+  CHECK(err("G38.2 Z-5 F60\nG92 Z0\n").substr(0, 74) == "line 2:5: position known only at run time: found Z0 with G92 after the pro");
+}
+
+TEST_CASE("linuxcnc: G10 L2 and L20 set a work offset for the rest of the program, noted as not stored") {
+  const auto t = translate_gcode("G0 X10 Y10\nG10 L2 P1 X5\nG0 X0\nG10 L20 P1 X1\nG0 X0\nG10 L2 P2 X100\nG55 G0 X1\n");
+  CHECK(lines(t, GcodeOptions{}.machine) == Lines{"1 LINE rapid X10 Y10 Z0 F100", "3 LINE rapid X5 Y10 Z0 F100",
+                                                  "5 LINE rapid X4 Y10 Z0 F100", "7 LINE rapid X101 Y10 Z0 F100"});
+  CHECK(notes(t) == "G10@2x3 ");
+  CHECK(err("G10 L1 P1 X1") == "line 1:1: missing word: found G10 L1, accepted G10 L2 or G10 L20");
+  CHECK(err("G10 L2 P7 X1") == "line 1:8: value out of range: found P7, accepted P0 ... P6 (P0 the offset in force, P1 ... P6 G54 ... G59)");
+  CHECK(err("G0 X1 L2") == "line 1:7: word not allowed here: found L2, accepted L only with G10");
+}

@@ -76,6 +76,8 @@ programs::Setup program_setup(const ProgramConfig& pc, const core::CoreConfig& c
   s.machine = machine;
   s.start = start;
   for (std::size_t a = 0; a < pc.home.size() && a < planner::kMaxAxes; ++a) s.gcode.home[a] = pc.home[a];
+  for (std::size_t a = 0; a < pc.g30.size() && a < planner::kMaxAxes; ++a) s.gcode.g30[a] = pc.g30[a];
+  s.gcode.block_delete = pc.block_delete;
   if (!pc.spindle.empty()) s.gcode.spindle_output = kSpindleTag;
   s.gcode.digital_output_base = kDigitalTag;
   s.gcode.digital_output_count = static_cast<std::uint16_t>(pc.outputs.size());

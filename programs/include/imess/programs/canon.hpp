@@ -14,7 +14,7 @@ namespace imess::programs {
 std::string canonical(const Item& item, const planner::Machine& machine, const Frame& frame = {});
 
 // The whole translation, one call per line: USE_LENGTH_UNITS first and at each change,
-// SET_FEED_RATE (program units per minute) before a feed move whose speed changed, the
+// SELECT_PLANE before an arc in another plane than the last (XY at start), SET_FEED_RATE (program units per minute) before a feed move whose speed changed, the
 // motion calls, PROGRAM_STOP for M0, PROGRAM_END for M2/M30. `start` is the machine pose
 // the program starts from (to tell a move of rotary axes alone, whose F is deg/min).
 std::string canonical_program(const Translation& t, const planner::Machine& machine, const Pose& start = {});
