@@ -281,6 +281,11 @@ void read_programs_section(JsonObject& p, const std::string& path, DaemonConfig&
   };
   if (auto g = p.object("gcode")) {
     pc.block_delete = g->boolean("block_delete", pc.block_delete);
+    pc.tool_change_pause = g->boolean("tool_change_pause", pc.tool_change_pause);
+    pc.mist = g->text("mist", "");
+    if (!pc.mist.empty()) output_name(*g, "mist", pc.mist);
+    pc.flood = g->text("flood", "");
+    if (!pc.flood.empty()) output_name(*g, "flood", pc.flood);
     pc.spindle = g->text("spindle", "");
     if (!pc.spindle.empty()) output_name(*g, "spindle", pc.spindle);
     if (auto outs = g->texts("outputs", "an output name")) {

@@ -109,7 +109,8 @@ std::string canonical_program(const Translation& t, const planner::Machine& m, c
       plane = p;
     }
     if (const std::string c = canonical(it, m, f); !c.empty()) out += c + "\n";
-    if (std::holds_alternative<Pause>(it.step)) out += "PROGRAM_STOP()\n";
+    if (const auto* p = std::get_if<Pause>(&it.step))
+      out += p->reason == "M0" ? std::string("PROGRAM_STOP()\n") : "COMMENT(\"" + p->reason + ": pause for the operator\")\n";
     if (std::holds_alternative<End>(it.step)) out += "PROGRAM_END()\n";
     pos = to;
   }

@@ -17,11 +17,11 @@ namespace imess::programs {
 namespace {
 using namespace detail;
 
-constexpr const char* kLetters = "N G M X Y Z A B C U V W I J K R F P Q S L";
+constexpr const char* kLetters = "N G M X Y Z A B C U V W I J K R F P Q S L T";
 constexpr const char* kGcodes =
     "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G30 G38.2 G38.3 G40 G49 G53 G54 G55 G56 G57 G58 G59 G61 G61.1 G64 "
     "G80 G90 G91 G91.1 G92 G92.1 G92.2 G92.3 G94";
-constexpr const char* kMcodes = "M0 M1 M2 M3 M4 M5 M30 M62 M63 M64 M65";
+constexpr const char* kMcodes = "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M62 M63 M64 M65";
 constexpr double kInch = 25.4;
 
 struct Word {
@@ -33,14 +33,15 @@ struct Word {
 
 enum Group {
   kMotion, kPlane, kDistance, kUnits, kCoord, kNonModal, kStop, kSpindle, kIo,
-  kCancel, kComp, kLength, kFeedMode, kPath, kArcDistance, kGroups
+  kCancel, kComp, kLength, kFeedMode, kPath, kArcDistance, kToolChange, kCoolant, kGroups
 };
 constexpr const char* kGroupNames[kGroups] = {"motion (G0 G1 G2 G3 G38.2 G38.3)", "plane (G17 G18 G19)",
                                               "distance (G90 G91)", "units (G20 G21)", "work offset (G54-G59)",
                                               "non-modal (G4 G10 G28 G30 G53 G92 G92.1 G92.2 G92.3)", "stop (M0 M1 M2 M30)", "spindle (M3 M4 M5)",
                                               "output (M62 M63 M64 M65)", "motion cancel (G80)",
                                               "cutter compensation (G40)", "tool length (G49)", "feed mode (G94)",
-                                              "path control (G61 G61.1 G64)", "arc distance (G91.1)"};
+                                              "path control (G61 G61.1 G64)", "arc distance (G91.1)",
+                                              "tool change (M6)", "coolant (M7 M8 M9)"};
 
 // Codes accepted for a state IMESS is always in: what messprog check says of them.
 const char* accepted_meaning(const std::string& code) {
@@ -202,6 +203,8 @@ class GcodeTranslator {
           case 0: case 1: case 2: case 30: group = kStop; break;
           case 3: case 4: case 5: group = kSpindle; break;
           case 62: case 63: case 64: case 65: group = kIo; break;
+          case 6: group = kToolChange; break;
+          case 7: case 8: case 9: group = kCoolant; break;
           default: break;
         }
       }
@@ -294,11 +297,33 @@ class GcodeTranslator {
       if (const Word& q = word('Q'); q.given && !g64) fail(ErrorKind::WordNotAllowed, q.column, word_text(q), "Q only with G64");
       if (const Word& l = word('L'); l.given && nonmodal.code != 100) fail(ErrorKind::WordNotAllowed, l.column, word_text(l), "L only with G10");
     }
+    // Tool select and change (LinuxCNC: the spindle stops, then the change; here a pause).
+    if (const Word& tw = word('T'); tw.given) {
+      const long n = std::lround(tw.value);
+      if (std::fabs(tw.value - static_cast<double>(n)) > 1e-9 || n < 0) fail(ErrorKind::BadValue, tw.column, word_text(tw), "T0, T1, T2 ... (a tool number)");
+      tool_ = n;
+      note("T", "tool (on a CMM: stylus) selected; M6 changes to it");
+    }
+    if (const Code& tc = codes_[kToolChange]; tc.code >= 0) {
+      if (o_.spindle_output) emit(planner::SetOutput{0, *o_.spindle_output, 0.0});
+      const std::string what = "M6 T" + std::to_string(tool_);
+      if (o_.tool_change_pause) emit(Pause{what});
+      note("M6", o_.tool_change_pause ? "tool change: the program pauses like M0 for the operator" : "tool change: recorded, no pause (configured)");
+    }
     // 2. Spindle.
     if (const Code& sp = codes_[kSpindle]; sp.code >= 0) {
       if (!o_.spindle_output) fail(ErrorKind::NotConfigured, sp.column, sp.text, "M3/M4/M5 only with a configured spindle output");
       if (sp.code != 5 && o_.spindle_ccw_output) emit(planner::SetOutput{0, *o_.spindle_ccw_output, sp.code == 4 ? 1.0 : 0.0});
       emit(planner::SetOutput{0, *o_.spindle_output, sp.code == 5 ? 0.0 : (speed_set_ ? speed_ : 1.0)});
+    }
+    // Coolant: M7 mist on, M8 flood on, M9 both off.
+    if (const Code& co = codes_[kCoolant]; co.code >= 0) {
+      const auto& out = co.code == 7 ? o_.mist_output : o_.flood_output;
+      if (co.code != 9 && !out) fail(ErrorKind::NotConfigured, co.column, co.text, co.text + (co.code == 7 ? " only with a configured mist output" : " only with a configured flood output"));
+      if (co.code == 9 && !o_.mist_output && !o_.flood_output) fail(ErrorKind::NotConfigured, co.column, co.text, "M9 only with a configured mist or flood output");
+      if (co.code != 9) emit(planner::SetOutput{0, *out, 1.0});
+      for (const auto& o : {o_.mist_output, o_.flood_output})
+        if (co.code == 9 && o) emit(planner::SetOutput{0, *o, 0.0});
     }
     // 3. Digital outputs.
     if (const Code& io = codes_[kIo]; io.code >= 0) {
@@ -607,6 +632,7 @@ class GcodeTranslator {
   int plane_ = 17;
   bool absolute_ = true, inches_ = false;
   int coord_ = 0;
+  long tool_ = 0;                  // the last T
   std::array<Pose, 6> offsets_{};  // G54 ... G59: the caller's, as G10 changes them in this program
   Pose g92_{}, g92_kept_{};        // G92's offset in force; the one G92.2 suspended
   double feed_mm_ = 0, feed_deg_ = 0;  // the F speed: mm/min for linear moves, deg/min for rotary-only

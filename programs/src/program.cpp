@@ -69,7 +69,7 @@ std::string describe(const Item& item, const planner::Machine& m) {
         } else if constexpr (std::is_same_v<T, Home>) {
           s += "HOME " + pose_text(x.target, m);
         } else if constexpr (std::is_same_v<T, Pause>) {
-          s += "PAUSE";
+          s += x.reason == "M0" ? std::string("PAUSE") : "PAUSE " + x.reason;
         } else {
           s += "END";
         }

@@ -156,3 +156,11 @@ TEST_CASE("config: programs.g30 is G30's pose, programs.gcode.block_delete the b
   CHECK_FALSE(off.server.programs.block_delete);
   CHECK(contains(json_error(R"({"programs": {"gcode": {"block_delete": "off"}}})"), "programs.gcode.block_delete"));
 }
+
+TEST_CASE("config: programs.gcode mist and flood name outputs, tool_change_pause is on by default") {
+  DaemonConfig cfg;
+  load_config_text(R"({"programs": {"gcode": {"tool_change_pause": false}}})", "c.json", cfg);
+  CHECK_FALSE(cfg.server.programs.tool_change_pause);
+  CHECK(DaemonConfig{}.server.programs.tool_change_pause);
+  CHECK(contains(json_error(R"({"programs": {"gcode": {"mist": "nozzle"}}})"), "programs.gcode.mist"));
+}

@@ -175,3 +175,25 @@ TEST_CASE("linuxcnc: G10 L2 and L20 set a work offset for the rest of the progra
   CHECK(err("G10 L2 P7 X1") == "line 1:8: value out of range: found P7, accepted P0 ... P6 (P0 the offset in force, P1 ... P6 G54 ... G59)");
   CHECK(err("G0 X1 L2") == "line 1:7: word not allowed here: found L2, accepted L only with G10");
 }
+
+TEST_CASE("linuxcnc: T selects a tool, M6 stops the spindle and pauses like M0 naming it — or only records it") {
+  GcodeOptions o;
+  o.spindle_output = 3;
+  const auto t = translate_gcode("T3 M6\nG0 X1\nT4\nM6\n", o);
+  CHECK(lines(t, o.machine) == Lines{"1 OUT 3=0", "1 PAUSE M6 T3", "2 LINE rapid X1 Y0 Z0 F100", "4 OUT 3=0", "4 PAUSE M6 T4"});
+  CHECK(notes(t) == "T@1x2 M6@1x2 ");
+  o.tool_change_pause = false;
+  o.spindle_output.reset();
+  CHECK(run("T3 M6\nG0 X1\n", o) == Lines{"2 LINE rapid X1 Y0 Z0 F100"});
+  CHECK(err("T1.5") == "line 1:1: value out of range: found T1.5, accepted T0, T1, T2 ... (a tool number)");
+}
+
+TEST_CASE("linuxcnc: M7 M8 M9 switch the configured coolant outputs, and are refused without them") {
+  GcodeOptions o;
+  o.mist_output = 5;
+  o.flood_output = 6;
+  CHECK(run("M7\nM8\nM9\n", o) == Lines{"1 OUT 5=1", "2 OUT 6=1", "3 OUT 5=0", "3 OUT 6=0"});
+  CHECK(err("M8") == "line 1:1: not configured: found M8, accepted M8 only with a configured flood output");
+  CHECK(err("M9") == "line 1:1: not configured: found M9, accepted M9 only with a configured mist or flood output");
+  CHECK(err("M7 M8", o).substr(0, 45) == "line 1:4: two words of one modal group: found");
+}

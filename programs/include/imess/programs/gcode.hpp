@@ -22,6 +22,11 @@ struct GcodeOptions {
   // Outputs (planner SetOutput numbers). M3/M4 set spindle_output to S (1 when no S was
   // given), M5 sets it 0; M3/M4 set spindle_ccw_output 0/1 when configured.
   std::optional<std::uint16_t> spindle_output, spindle_ccw_output;
+  // M7 sets mist_output 1, M8 flood_output 1, M9 both (those configured) 0.
+  std::optional<std::uint16_t> mist_output, flood_output;
+  // M6 (tool change; on a CMM the stylus): stop the spindle when configured, then pause like
+  // M0 for the operator ("M6 T<n>"); false: M6 only records the tool.
+  bool tool_change_pause = true;
   // M62/M64 P<n> set output digital_output_base + n to 1, M63/M65 to 0; n < digital_output_count.
   std::uint16_t digital_output_base = 0;
   std::uint16_t digital_output_count = 0;

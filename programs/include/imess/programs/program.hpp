@@ -31,8 +31,10 @@ struct Home {
   Pose target{};
 };
 
-// Stop and wait for the operator to resume (M0).
-struct Pause {};
+// Stop and wait for the operator to resume (M0; M6, a tool change by hand: "M6 T3").
+struct Pause {
+  std::string reason = "M0";
+};
 
 // Program end (M2, M30, MRM M02). Nothing after it is translated.
 struct End {};
@@ -109,7 +111,8 @@ const char* kind_name(ErrorKind kind);
 
 // One item as a line of text, for logs and exact test comparisons, e.g.
 // "3 LINE rapid X10 Y0 Z5 F50", "4 ARC ccw X0 Y10 Z0 C0,0,0 N0,0,1 P0,1,2 T0 F10",
-// "5 DWELL 2", "6 OUT 3=1", "7 PROBE X0 Y0 Z-5 F1 error", "8 HOME", "9 PAUSE", "10 END".
+// "5 DWELL 2", "6 OUT 3=1", "7 PROBE X0 Y0 Z-5 F1 error", "8 HOME", "9 PAUSE" (M0; else
+// "9 PAUSE M6 T3"), "10 END".
 // Numbers print with up to 6 decimals, trailing zeros removed; only machine axes print.
 std::string describe(const Item& item, const planner::Machine& machine);
 
