@@ -11,15 +11,21 @@ imess_bench_packages=(rt-tests python3 python3-matplotlib)
 # (ezdxf for DXF; freecadcmd for STEP, IGES, PLY, ASC and the plugin; Debian's python3 comes
 # with them), and what scripts/bench needs, which the suite's smoke test runs.
 imess_test_packages=(python3-ezdxf freecad-python3 "${imess_bench_packages[@]}")  # python3 among them
+# LinuxCNC's own G-code interpreter, rs274 (tests/programs/test_rs274.cpp judges ours by it);
+# without its recommendations, which would bring a real-time kernel and a desktop.
+imess_test_packages_bare=(linuxcnc-uspace)
 
 imess_install_deps() {   # imess_install_deps [test|bench]: the build packages, plus the test or bench ones
   local wanted=("${imess_packages[@]}")
   [ "${1:-}" = test ] && wanted+=("${imess_test_packages[@]}")
   [ "${1:-}" = bench ] && wanted+=("${imess_bench_packages[@]}")
-  imess_install_packages "${wanted[@]}"
+  imess_install_packages "${wanted[@]}" || return 1
+  if [ "${1:-}" = test ]; then imess_install_packages --no-install-recommends "${imess_test_packages_bare[@]}"; fi
 }
 
-imess_install_packages() {   # imess_install_packages PKG...: apt-get install those not installed
+imess_install_packages() {   # imess_install_packages [--no-install-recommends] PKG...: apt-get install those not installed
+  local apt_flags=()
+  [ "${1:-}" = --no-install-recommends ] && { apt_flags=(--no-install-recommends); shift; }
   local wanted=("$@")
   local missing=()
   for p in "${wanted[@]}"; do
@@ -30,7 +36,7 @@ imess_install_packages() {   # imess_install_packages PKG...: apt-get install th
   local sudo=""
   [ "$(id -u)" -ne 0 ] && sudo="sudo"
   $sudo apt-get update -qq || { echo "scripts: apt-get update failed" >&2; return 1; }
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" \
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${apt_flags[@]}" "${missing[@]}" \
     || { echo "scripts: could not install ${missing[*]}" >&2; return 1; }
 }
 

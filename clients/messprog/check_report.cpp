@@ -43,6 +43,12 @@ std::string check_report(std::string_view file, programs::Language lang, const p
   r += "estimated time " + duration_text(c.time) +
        " (the planner's estimate: motion profiles, dwells and output holds; a probe as its whole search, M0 as no time)\n";
   r += "machine: " + std::string(machine_text) + "\n";
+  if (!c.notes.empty()) {
+    r += "accepted without effect, or skipped:\n";
+    for (const auto& n : c.notes)
+      r += "  " + n.code + " (line " + std::to_string(n.line) + (n.count > 1 ? ", " + std::to_string(n.count) + " times" : "") +
+           "): " + n.meaning + "\n";
+  }
   if (!c.moves) return r + "bounding box: no motion\n";
   r += "bounding box:\n";
   for (int i = 0; i < machine.count; ++i) {

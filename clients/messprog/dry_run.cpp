@@ -1,6 +1,7 @@
 // The offline dry run of check and plot.
 #include "dry_run.hpp"
 
+#include <charconv>
 #include <iostream>
 #include <stdexcept>
 
@@ -18,10 +19,31 @@ OfflineSpec offline_spec(const ProgOptions& options) {
   return spec;
 }
 
+planner::Pose start_pose(std::string_view text, const planner::Machine& m) {
+  const std::string accepted = "; accepted X,Y,Z...: one number per axis of the machine (" + std::to_string(m.count) +
+                               "), each within its travel, e.g. --from 430,330,100";
+  planner::Pose p{};
+  std::size_t at = 0;
+  for (int i = 0; i < m.count; ++i) {
+    const std::size_t comma = i + 1 < m.count ? text.find(',', at) : text.size();
+    const std::string_view part = comma == std::string_view::npos ? text.substr(at) : text.substr(at, comma - at);
+    double v = 0;
+    const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), v);
+    if (part.empty() || ec != std::errc{} || end != part.data() + part.size() || comma == std::string_view::npos)
+      throw client::UsageError("--from '" + std::string(text) + "'" + accepted);
+    if (v < m.axes[i].travel_min || v > m.axes[i].travel_max)
+      throw client::UsageError("--from '" + std::string(text) + "': " + m.axes[i].letter + " outside its travel" + accepted);
+    p[i] = v;
+    at = comma + 1;
+  }
+  return p;
+}
+
 DryRun dry_run(const ProgOptions& options, const programs::SegmentVisitor& visit) {
   DryRun d;
   d.machine = offline_machine(options.lang, offline_spec(options));
   d.setup = offline_setup(d.machine);
+  if (options.from) d.setup.start = start_pose(*options.from, d.machine);
   const std::string text = read_program(options.file);
   try {
     d.check = programs::check_program(options.lang, text, d.setup, {}, visit);

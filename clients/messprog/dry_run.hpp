@@ -17,6 +17,9 @@ struct DryRun {
 
 OfflineSpec offline_spec(const ProgOptions& options);
 
+// --from "X,Y,Z": one number per machine axis, within its travel; throws client::UsageError.
+planner::Pose start_pose(std::string_view text, const planner::Machine& machine);
+
 // Throws FileError when FILE cannot be read, client::UsageError when the options do not fit
 // the program's language. A program error is check.ok == false, not an exception.
 DryRun dry_run(const ProgOptions& options, const programs::SegmentVisitor& visit = {});

@@ -24,8 +24,8 @@ const char* command_name(Command c) {
 
 const char* accepted_options(Command c) {
   switch (c) {
-    case Command::Check: return "--lang L, --axes LETTERS, --travel MIN:MAX, --help";
-    case Command::Plot: return "-o OUT.svg, --lang L, --axes LETTERS, --travel MIN:MAX, --help";
+    case Command::Check: return "--canon, --from X,Y,Z, --lang L, --axes LETTERS, --travel MIN:MAX, --help";
+    case Command::Plot: return "-o OUT.svg, --from X,Y,Z, --lang L, --axes LETTERS, --travel MIN:MAX, --help";
     case Command::Run: return "--detached, --lang L, --help";
   }
   return "";
@@ -102,6 +102,10 @@ ProgOptions parse_prog_options(int argc, const char* const argv[]) {
       o.travel_max = travel_number(t->substr(colon + 1), *t);
       if (!(*o.travel_min < *o.travel_max))
         throw UsageError("--travel '" + std::string(*t) + "': MIN must be below MAX, e.g. -500:500");
+    } else if (auto from = offline ? value_of("--from", i, argc, argv) : std::nullopt) {
+      o.from = std::string(*from);
+    } else if (a == "--canon" && o.command == Command::Check) {
+      o.canon = true;
     } else if (auto out = o.command == Command::Plot ? value_of("-o", i, argc, argv) : std::nullopt) {
       o.output = std::string(*out);
     } else if (auto out2 = o.command == Command::Plot ? value_of("--output", i, argc, argv) : std::nullopt) {
@@ -131,8 +135,8 @@ ProgOptions parse_prog_options(int argc, const char* const argv[]) {
 }
 
 std::string prog_usage() {
-  return "usage: messprog check FILE [--lang L] [--axes LETTERS] [--travel MIN:MAX]\n"
-         "       messprog plot FILE -o OUT.svg [--lang L] [--axes LETTERS] [--travel MIN:MAX]\n"
+  return "usage: messprog check FILE [--canon] [--from X,Y,Z] [--lang L] [--axes LETTERS] [--travel MIN:MAX]\n"
+         "       messprog plot FILE -o OUT.svg [--from X,Y,Z] [--lang L] [--axes LETTERS] [--travel MIN:MAX]\n"
          "       messprog run FILE [HOST[:PORT]] [--detached] [--lang L]\n"
          "Checks, draws and runs G-code, HPGL and MRM programs. The language follows FILE's\n"
          "extension: .nc .ngc .gcode .tap G-code, .plt .hpgl HPGL, .mrm MRM; or --lang.\n"
@@ -140,7 +144,9 @@ std::string prog_usage() {
          "check   translates FILE and plans every move on a generic machine, offline:\n"
          "        prints lines, blocks, segments, the path length (feed, rapid, probe),\n"
          "        the estimated time (from the planner's profiles, not a measurement) and\n"
-         "        the bounding box of every axis. An error prints FILE:LINE:COL: message.\n"
+         "        the bounding box of every axis, and the G-code accepted without effect\n"
+         "        (G40 G49 G64 ...: states IMESS is always in) or skipped (block delete '/').\n"
+         "        An error prints FILE:LINE:COL: message.\n"
          "plot    draws the planned path as SVG, two views side by side: X-Y (top) and\n"
          "        X-Z (front; without Z the third axis, e.g. C of the MRM arm). Feed moves\n"
          "        solid, rapids dashed, probing moves in green with a circle at each target.\n"
@@ -149,12 +155,16 @@ std::string prog_usage() {
          "        Ctrl-C pauses and asks 'abort or resume? [a/r]' (when stdin is a\n"
          "        terminal; otherwise Ctrl-C aborts). HOST defaults to localhost, PORT to 1066.\n"
          "\n"
+         "  --canon          check: print the program's motion as LinuxCNC's rs274 -g prints\n"
+         "                   its canonical calls (STRAIGHT_TRAVERSE, STRAIGHT_FEED, ARC_FEED,\n"
+         "                   STRAIGHT_PROBE, DWELL; program units), to diff against LinuxCNC\n"
+         "  --from X,Y,Z     check/plot: where the machine starts, one number per axis in its\n"
+         "                   order (default 0 on every axis)\n"
          "  --lang L         gcode, hpgl or mrm, whatever the extension\n"
          "  --axes LETTERS   check/plot: the machine's axes, 1-9 of X Y Z A B C U V W\n"
          "                   (default XYZ; MRM: XYCUV, its A B C words moving U V C)\n"
          "  --travel MIN:MAX check/plot: every axis' travel (default -1000:1000, mm or\n"
-         "                   degrees); the generic machine: 100 mm/s, 1000 mm/s² per axis,\n"
-         "                   starting at 0\n"
+         "                   degrees); the generic machine: 100 mm/s, 1000 mm/s² per axis\n"
          "  -o, --output OUT.svg  plot: the drawing to write\n"
          "  --detached       run: the program goes on in messd if messprog goes away\n"
          "                   (by default messd stops it when the connection closes)\n"

@@ -17,6 +17,8 @@ struct ProgOptions {
   programs::Language lang = programs::Language::Gcode;  // from --lang, else the extension
   std::optional<std::string> axes;                  // --axes LETTERS (check, plot)
   std::optional<double> travel_min, travel_max;     // --travel MIN:MAX (check, plot)
+  std::optional<std::string> from;                  // --from X,Y,Z: the start pose (check, plot)
+  bool canon = false;                               // check --canon: LinuxCNC's canonical calls
   std::string output;                               // plot: -o OUT.svg
   client::Endpoint endpoint;                        // run: HOST[:PORT]
   bool detached = false;                            // run: Run detached

@@ -255,7 +255,7 @@ void read_ippdme_section(JsonObject& i, DaemonConfig& cfg) {
   i.finish();
 }
 
-// "programs": the folder Load reads, G28's pose, and which outputs and axes program words
+// "programs": the folder Load reads, G28's and G30's poses, block delete, and which outputs and axes program words
 // switch and move (docs/configuration.md). Read after "axes" and "outputs", whose names it uses.
 void read_programs_section(JsonObject& p, const std::string& path, DaemonConfig& cfg) {
   auto& pc = cfg.server.programs;
@@ -270,6 +270,10 @@ void read_programs_section(JsonObject& p, const std::string& path, DaemonConfig&
     const hal::AxisVec home = p.axis_values("home", hal::AxisVec::Zero(), layout, 1e5);
     pc.home.assign(home.data(), home.data() + layout.count);
   }
+  if (p.has("g30")) {
+    const hal::AxisVec g30 = p.axis_values("g30", hal::AxisVec::Zero(), layout, 1e5);
+    pc.g30.assign(g30.data(), g30.data() + layout.count);
+  }
   auto output_name = [&](JsonObject& o, const std::string& key, const std::string& name) {
     if (core::find_output(cfg.core, name)) return;
     std::string names;
@@ -277,6 +281,12 @@ void read_programs_section(JsonObject& p, const std::string& path, DaemonConfig&
     o.fail(key, "the name of an output of the \"outputs\" section (" + (names.empty() ? std::string("none configured") : names) + ")");
   };
   if (auto g = p.object("gcode")) {
+    pc.block_delete = g->boolean("block_delete", pc.block_delete);
+    pc.tool_change_pause = g->boolean("tool_change_pause", pc.tool_change_pause);
+    pc.mist = g->text("mist", "");
+    if (!pc.mist.empty()) output_name(*g, "mist", pc.mist);
+    pc.flood = g->text("flood", "");
+    if (!pc.flood.empty()) output_name(*g, "flood", pc.flood);
     pc.spindle = g->text("spindle", "");
     if (!pc.spindle.empty()) output_name(*g, "spindle", pc.spindle);
     if (auto outs = g->texts("outputs", "an output name")) {

@@ -211,7 +211,7 @@ AppendResult Planner::queue_arc(const Arc& arc) {
   const double h = q.dot(n);
   const Vector3d r1v = q - h * n;
   const double r1 = r1v.norm();
-  const double tolerance = std::max(options_.arc_tolerance, 1e-3 * r0);
+  const double tolerance = std::max({options_.arc_tolerance, 1e-3 * r0, arc.radius_tolerance});
   if (arc.planar && std::fabs(h) > tolerance) return {PlanError::ArcOffPlane, arc.id, -1, std::fabs(h), tolerance};
   if (std::fabs(r1 - r0) > tolerance) return {PlanError::ArcRadiusMismatch, arc.id, -1, std::fabs(r1 - r0), tolerance};
   double phi = std::atan2(r1v.dot(e2), r1v.dot(e1));

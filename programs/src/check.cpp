@@ -29,6 +29,39 @@ const char* plan_kind(planner::PlanError e) {
   }
 }
 
+// The bounding box grows by a segment: its ends, and for an arc each plane axis' extremes,
+// where its derivative along the circle (or helix) is zero: x_k(θ) = c_k + r·m·cos(θ − α) +
+// n_k·h·θ/φ, so sin(θ − α) = n_k·h / (φ·r·m). Exact for circles and helices.
+void extend_box(Check& c, const planner::PlannedSegment& seg, const planner::Machine& machine) {
+  Pose p{}, d{};
+  auto take = [&](double s) {
+    planner::pose_at(seg, s, p, d);
+    for (int a = 0; a < machine.count; ++a) {
+      c.low[a] = std::min(c.low[a], p[a]);
+      c.high[a] = std::max(c.high[a], p[a]);
+    }
+  };
+  take(0);
+  take(seg.length);
+  if (seg.kind != planner::SegmentKind::Arc) return;
+  constexpr double kTwoPi = 6.283185307179586;
+  const auto& g = seg.arc;
+  const double r = 0.5 * (g.r0 + g.r1);
+  if (!(std::abs(g.phi) > 0) || !(r > 0)) return;
+  const double lo = std::min(0.0, g.phi), hi = std::max(0.0, g.phi);
+  for (int k = 0; k < 3; ++k) {
+    const double m = std::hypot(g.e1[k], g.e2[k]);
+    if (m < 1e-12) continue;
+    const double q = g.n[k] * g.h / (g.phi * r * m);
+    if (std::abs(q) > 1) continue;
+    const double alpha = std::atan2(g.e2[k], g.e1[k]);
+    for (double base : {alpha + std::asin(q), alpha + kTwoPi / 2 - std::asin(q)}) {
+      for (double th = base - kTwoPi * std::ceil((base - lo) / kTwoPi); th <= hi; th += kTwoPi)
+        if (th >= lo) take(th / g.phi * seg.length);
+    }
+  }
+}
+
 double fastest_axis(const planner::Machine& m) {
   double v = 0;
   for (int i = 0; i < m.count; ++i) v = std::max(v, m.axes[i].max_velocity);
@@ -132,17 +165,7 @@ Check check_items(const std::vector<Item>& items, const planner::Machine& machin
         else if (item.rapid) c.rapid_length += seg.length;
         else c.feed_length += seg.length;
         if (seg.length > 0) {
-          const int samples = seg.kind == planner::SegmentKind::Arc
-                                  ? std::max(8, static_cast<int>(std::ceil(std::abs(seg.arc.phi) / 0.05)))
-                                  : 1;
-          Pose p{}, d{};
-          for (int k = 0; k <= samples; ++k) {
-            planner::pose_at(seg, seg.length * k / samples, p, d);
-            for (int a = 0; a < machine.count; ++a) {
-              c.low[a] = std::min(c.low[a], p[a]);
-              c.high[a] = std::max(c.high[a], p[a]);
-            }
-          }
+          extend_box(c, seg, machine);
           c.moves = true;
         }
       }
@@ -203,6 +226,7 @@ Check check_program(Language lang, std::string_view text, const Setup& setup, co
   const double rapid = lang == Language::Gcode ? setup.gcode.rapid_feed : lang == Language::Hpgl ? setup.hpgl.rapid_feed : 0;
   Check r = check_items(t.items, setup.machine, options, setup.start, rapid, visit);
   r.lines = c.lines;
+  r.notes = t.notes;
   return r;
 }
 

@@ -1,4 +1,4 @@
-// Error text, the one-line description of items and their LinuxCNC canonical form.
+// Error text and the one-line description of items.
 #include "imess/programs/program.hpp"
 
 #include <cstdio>
@@ -47,22 +47,6 @@ template <class T>
 std::string triple(const std::array<T, 3>& a) {
   return num(a[0]) + "," + num(a[1]) + "," + num(a[2]);
 }
-std::string f4(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.4f", v);
-  return std::string(buf) == "-0.0000" ? "0.0000" : buf;
-}
-// Value of the machine axis with `letter`, 0 when absent.
-double axis_value(const Pose& p, const planner::Machine& m, char letter) {
-  for (int i = 0; i < m.count; ++i)
-    if (m.axes[i].letter == letter) return p[i];
-  return 0;
-}
-std::string xyzabc(const Pose& p, const planner::Machine& m) {
-  std::string s;
-  for (char c : {'X', 'Y', 'Z', 'A', 'B', 'C'}) s += std::string(c == 'X' ? "" : ", ") + f4(axis_value(p, m, c));
-  return s;
-}
 }  // namespace
 
 std::string describe(const Item& item, const planner::Machine& m) {
@@ -85,35 +69,13 @@ std::string describe(const Item& item, const planner::Machine& m) {
         } else if constexpr (std::is_same_v<T, Home>) {
           s += "HOME " + pose_text(x.target, m);
         } else if constexpr (std::is_same_v<T, Pause>) {
-          s += "PAUSE";
+          s += x.reason == "M0" ? std::string("PAUSE") : "PAUSE " + x.reason;
         } else {
           s += "END";
         }
       },
       item.step);
   return s;
-}
-
-std::string canonical(const Item& item, const planner::Machine& m) {
-  if (const auto* l = std::get_if<planner::Line>(&item.step))
-    return std::string(item.rapid ? "STRAIGHT_TRAVERSE(" : "STRAIGHT_FEED(") + xyzabc(l->target, m) + ")";
-  if (const auto* p = std::get_if<Probe>(&item.step)) return "STRAIGHT_PROBE(" + xyzabc(p->target, m) + ")";
-  if (const auto* d = std::get_if<planner::Dwell>(&item.step)) return "DWELL(" + f4(d->seconds) + ")";
-  if (const auto* a = std::get_if<planner::Arc>(&item.step)) {
-    // LinuxCNC names the plane's first and second axes and the axis along the normal:
-    // G17 X Y (Z), G18 Z X (Y), G19 Y Z (X). Our arcs from G-code keep plane_axes = X Y Z.
-    int first = 0, second = 1, normal = 2;
-    if (a->normal[1] != 0) first = 2, second = 0, normal = 1;
-    if (a->normal[0] != 0) first = 1, second = 2, normal = 0;
-    const auto& ax = a->plane_axes;
-    const int rot = a->ccw ? 1 + a->turns : -1 - a->turns;
-    std::string s = "ARC_FEED(" + f4(a->target[ax[first]]) + ", " + f4(a->target[ax[second]]) + ", " +
-                    f4(a->centre[first]) + ", " + f4(a->centre[second]) + ", " + std::to_string(rot) + ", " +
-                    f4(a->target[ax[normal]]);
-    for (char c : {'A', 'B', 'C'}) s += ", " + f4(axis_value(a->target, m, c));
-    return s + ")";
-  }
-  return {};
 }
 
 Pose end_pose(const std::vector<Item>& items, const Pose& start) {

@@ -34,6 +34,8 @@ Translation translate_with(Translator& t, std::string_view text) {
   try {
     Translation r;
     r.items = t.run(text);
+    if constexpr (requires { t.notes(); }) r.notes = t.notes();
+    if constexpr (requires { t.frames(); }) r.frames = t.frames();
     return r;
   } catch (const Failure& f) {
     return fail(f.error.kind, f.error.line, f.error.column, f.error.found, f.error.accepted);

@@ -153,3 +153,24 @@ TEST_CASE("control.no_command_drop_s: 0 turns it off, a negative value is refuse
   CHECK(contains(json_error(R"({"control":{"no_command_drop_s": -1}})"), "key 'control.no_command_drop_s'"));
   CHECK(contains(json_error(R"({"control":{"no_command_drop_s": -1}})"), "from 0 to 86400"));
 }
+
+TEST_CASE("config: programs.g30 is G30's pose, programs.gcode.block_delete the block-delete switch (on by default)") {
+  DaemonConfig cfg;
+  load_config_text(R"({"programs": {"home": [1, 2, 3], "g30": [10, 20, 30]}})", "c.json", cfg);
+  finish_config(cfg);
+  CHECK(cfg.server.programs.home == std::vector<double>{1, 2, 3});
+  CHECK(cfg.server.programs.g30 == std::vector<double>{10, 20, 30});
+  CHECK(cfg.server.programs.block_delete);
+  DaemonConfig off;
+  load_config_text(R"({"programs": {"gcode": {"block_delete": false}}})", "c.json", off);
+  CHECK_FALSE(off.server.programs.block_delete);
+  CHECK(contains(json_error(R"({"programs": {"gcode": {"block_delete": "off"}}})"), "programs.gcode.block_delete"));
+}
+
+TEST_CASE("config: programs.gcode mist and flood name outputs, tool_change_pause is on by default") {
+  DaemonConfig cfg;
+  load_config_text(R"({"programs": {"gcode": {"tool_change_pause": false}}})", "c.json", cfg);
+  CHECK_FALSE(cfg.server.programs.tool_change_pause);
+  CHECK(DaemonConfig{}.server.programs.tool_change_pause);
+  CHECK(contains(json_error(R"({"programs": {"gcode": {"mist": "nozzle"}}})"), "programs.gcode.mist"));
+}

@@ -174,7 +174,7 @@ TEST_CASE("messprog check: an unreadable file is exit 1 naming it — bad argume
   CHECK_THAT(r.err, Catch::StartsWith("messprog: --travel '5:-5': MIN must be below MAX"));
   r = run_program(messprog({"check", txt, "--lang", "gcode", "--detached"}));
   CHECK(r.status == 2);
-  CHECK_THAT(r.err, Catch::StartsWith("messprog: unknown option '--detached' for check; accepted: --lang L, --axes"));
+  CHECK_THAT(r.err, Catch::StartsWith("messprog: unknown option '--detached' for check; accepted: --canon, --from X,Y,Z, --lang L, --axes"));
   r = run_program(messprog({"check", txt, "other.nc", "--lang", "gcode"}));
   CHECK(r.status == 2);
   CHECK_THAT(r.err, Catch::StartsWith("messprog: unexpected argument 'other.nc'; check takes one program FILE"));
@@ -257,6 +257,73 @@ TEST_CASE("messprog plot: an arc is drawn as many points on its circle") {
   CHECK(hi_y - lo_y == Approx(hi_x - lo_x).margin(0.05));  // one scale for both directions
   CHECK(radius > 100);  // scaled to fill the panel
   for (auto [x, y] : points) CHECK(std::hypot(x - cx, y - cy) == Approx(radius).margin(0.03));
+}
+
+TEST_CASE("messprog check --canon: the motion as LinuxCNC's rs274 -g prints it, in program units") {
+  TempDir dir;
+  const auto file = write(dir, "canon.ngc", "%\nG20 G90\nG0 X1 Y2\nG1 Z-0.1 F10\nG2 X2 Y2 I0.5\nG38.2 Z-1\nG4 P0.5\nG91 G28 Z0\nM2\n%\n");
+  const auto r = run_program(messprog({"check", "--canon", file}));
+  INFO(r.out << r.err);
+  CHECK(r.status == 0);
+  CHECK(r.out ==
+        "USE_LENGTH_UNITS(CANON_UNITS_MM)\n"
+        "USE_LENGTH_UNITS(CANON_UNITS_INCHES)\n"
+        "STRAIGHT_TRAVERSE(1.0000, 2.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
+        "SET_FEED_RATE(10.0000)\n"
+        "STRAIGHT_FEED(1.0000, 2.0000, -0.1000, 0.0000, 0.0000, 0.0000)\n"
+        "ARC_FEED(2.0000, 2.0000, 1.5000, 2.0000, -1, -0.1000, 0.0000, 0.0000, 0.0000)\n"
+        "STRAIGHT_PROBE(2.0000, 2.0000, -1.0000, 0.0000, 0.0000, 0.0000)\n"
+        "DWELL(0.5000)\n"
+        "STRAIGHT_TRAVERSE(2.0000, 2.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
+        "PROGRAM_END()\n");
+  const auto bad = run_program(messprog({"check", "--canon", write(dir, "bad.ngc", "G81 X1\n")}));
+  CHECK(bad.status == 1);
+  CHECK_THAT(bad.err, Catch::Contains("bad.ngc:1:1: unsupported code: found G81"));
+}
+
+TEST_CASE("messprog check: G28's move home counts as rapid, the codes accepted without effect are listed") {
+  TempDir dir;
+  const auto file = write(dir, "cam.ngc", "G17 G21 G40 G49 G80 G90 G94\nG64 P0.01\nG0 X10 Y20 Z30\n/G0 X500\nG91 G28 Z0\nG40\nM1\nM30\n");
+  const auto r = run_program(messprog({"check", file}));
+  INFO(r.out << r.err);
+  CHECK(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("path length 67.417 mm: feed 0.000, rapid 67.417, probe 0.000\n"));
+  CHECK_THAT(r.out, Catch::Contains("accepted without effect, or skipped:\n"));
+  CHECK_THAT(r.out, Catch::Contains("  G40 (line 1, 2 times): cutter radius compensation off: IMESS never compensates\n"));
+  CHECK_THAT(r.out, Catch::Contains("  G64 (line 2): path blending"));
+  CHECK_THAT(r.out, Catch::Contains("  / (line 4): block delete"));
+  CHECK_THAT(r.out, Catch::Contains("  M1 (line 7): optional stop"));
+  CHECK_THAT(r.out, Catch::Contains("  Z        0.000 ..       30.000 mm\n"));
+}
+
+TEST_CASE("messprog check and plot --from X,Y,Z: the machine starts there") {
+  TempDir dir;
+  const auto file = write(dir, "from.ngc", "G91 G0 X10\n");
+  const auto r = run_program(messprog({"check", "--from", "430,330,100", file}));
+  INFO(r.out << r.err);
+  CHECK(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("starting at 430 330 100"));
+  CHECK_THAT(r.out, Catch::Contains("  X      430.000 ..      440.000 mm\n"));
+  CHECK_THAT(r.out, Catch::Contains("path length 10.000 mm"));
+  const auto bad = run_program(messprog({"check", "--from", "1,2", file}));
+  CHECK(bad.status == 2);
+  CHECK_THAT(bad.err, Catch::Contains("--from '1,2'; accepted X,Y,Z...: one number per axis of the machine (3)"));
+  const auto out = run_program(messprog({"check", "--from=0,0,5000", file}));
+  CHECK(out.status == 2);
+  CHECK_THAT(out.err, Catch::Contains("Z outside its travel"));
+  const auto svg = dir.file("from.svg");
+  CHECK(run_program(messprog({"plot", file, "--from", "430,330,100", "-o", svg})).status == 0);
+  CHECK_THAT(group(read_file(svg), "view-xy"), Catch::Contains("box: X 430.000 .. 440.000 mm"));
+}
+
+TEST_CASE("messprog plot: G28's move home is drawn dashed, as a rapid") {
+  TempDir dir;
+  const auto file = write(dir, "home.ngc", "G1 X10 Y10 Z10 F600\nG91 G28 Z0\n");
+  const auto svg_path = dir.file("home.svg");
+  REQUIRE(run_program(messprog({"plot", file, "-o", svg_path})).status == 0);
+  const auto view = group(read_file(svg_path), "view-xz");
+  CHECK(count(view, "<path class=\"rapid\"") == 1);
+  CHECK(count(view, "<path class=\"feed\"") == 1);
 }
 
 TEST_CASE("messprog plot: a bad output name is exit 2, a program error exit 1 and no file") {

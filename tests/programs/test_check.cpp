@@ -107,3 +107,22 @@ TEST_CASE("check: MRM and HPGL run through the same dry run") {
   CHECK(p.feed_length == Approx(20 + 5));  // 800 plotter units at 40 per mm, and the pen lowered 5 mm
   CHECK(p.high[0] == Approx(10));
 }
+
+TEST_CASE("check: an arc's box holds its exact extreme points (G3 I-300 reports +-300), G28's move home is a rapid") {
+  Setup s;
+  const Check c = check_program(Language::Gcode, "G0 X300\nG3 I-300 F6000\n", s);
+  REQUIRE(c.ok);
+  CHECK(c.low[0] == Approx(-300).epsilon(1e-12));
+  CHECK(c.high[0] == Approx(300).epsilon(1e-12));
+  CHECK(c.low[1] == Approx(-300).epsilon(1e-12));
+  CHECK(c.high[1] == Approx(300).epsilon(1e-12));
+  // A quarter arc from angle 10° to 100° passes the top of the circle, not its right.
+  const Check q = check_program(Language::Gcode, "G0 X9.848078 Y1.736482\nG3 X-1.736482 Y9.848078 I-9.848078 J-1.736482 F600\n", s);
+  REQUIRE(q.ok);
+  CHECK(q.high[1] == Approx(10).margin(1e-5));  // the radius of the rounded input: 10.0000005
+  CHECK(q.high[0] == Approx(9.848078));
+  const Check h = check_program(Language::Gcode, "G0 X10 Y20 Z30\nG91 G28 Z0\n", s);
+  REQUIRE(h.ok);
+  CHECK(h.feed_length == 0);
+  CHECK(h.rapid_length == Approx(std::sqrt(1400.0) + 30));
+}

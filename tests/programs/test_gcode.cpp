@@ -87,11 +87,11 @@ TEST_CASE("gcode: rapid feed from the options, else the fastest axis") {
 TEST_CASE("gcode: G20 inches scale linear axes, offsets and feeds — rotary axes stay degrees") {
   GcodeOptions o;
   o.machine = make_machine("XYZA", -1000, 1000, 100, 1000);
-  CHECK(run("G20 G1 X1 F10\nG91 Y-0.5\nA90 F600\nG21 X1 F60\n", o) ==
-        Lines{"1 LINE X25.4 Y0 Z0 A0 F4.233333", "2 LINE X25.4 Y-12.7 Z0 A0 F4.233333",
-              "3 LINE X25.4 Y-12.7 Z0 A90 F10", "4 LINE X26.4 Y-12.7 Z0 A90 F1"});
+  CHECK(run("G20\nG1 X1 F10\nG91 Y-0.5\nA90 F600\nG21\nX1 F60\n", o) ==
+        Lines{"2 LINE X25.4 Y0 Z0 A0 F4.233333", "3 LINE X25.4 Y-12.7 Z0 A0 F4.233333",
+              "4 LINE X25.4 Y-12.7 Z0 A90 F10", "6 LINE X26.4 Y-12.7 Z0 A90 F1"});
   // Arc centre offsets are in the programmed unit too.
-  CHECK(run("G20 G2 X1 I0.5 F1") == Lines{"1 ARC cw X25.4 Y0 Z0 C12.7,0,0 N0,0,1 P0,1,2 T0 F0.423333"});
+  CHECK(run("G20\nG2 X1 I0.5 F1") == Lines{"2 ARC cw X25.4 Y0 Z0 C12.7,0,0 N0,0,1 P0,1,2 T0 F0.423333"});
 }
 
 TEST_CASE("gcode: work offsets G54-G59 from the caller's table, G53 in machine coordinates") {

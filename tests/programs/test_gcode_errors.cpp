@@ -10,20 +10,22 @@ using namespace imess::programs::test;
 
 namespace {
 std::string err(const char* text, const GcodeOptions& o = {}) { return error_text(translate_gcode(text, o)); }
-constexpr const char* kAllWords = "N G M X Y Z A B C U V W I J K R F P S";
+constexpr const char* kAllWords = "N G M X Y Z A B C U V W I J K R F P Q S L T";
 }  // namespace
 
 TEST_CASE("gcode errors: characters, numbers, words and codes") {
   CHECK(err("G1 X1 #5") == std::string("line 1:7: bad character: found '#', accepted words ") + kAllWords + ", '(comment)', ';comment'");
   CHECK(err("G1 X F10") == "line 1:4: bad number: found X followed by 'F', accepted a decimal number after X");
   CHECK(err("G1 X1e3") == std::string("line 1:6: unsupported word: found E, accepted words ") + kAllWords);
-  CHECK(err("G0 X1\nG0 Y1\nG0 Q1") == std::string("line 3:4: unsupported word: found Q, accepted words ") + kAllWords);
-  CHECK(err("/G0 X1") == std::string("line 1:1: bad character: found '/', accepted words ") + kAllWords + ", '(comment)', ';comment'");
-  const std::string g = "G0 G1 G2 G3 G4 G17 G18 G19 G20 G21 G28 G38.2 G38.3 G53 G54 G55 G56 G57 G58 G59 G90 G91";
+  CHECK(err("G0 X1\nG0 Y1\nG0 H1") == std::string("line 3:4: unsupported word: found H, accepted words ") + kAllWords);
+  CHECK(err("G0 X1 /Y1") == std::string("line 1:7: bad character: found '/', accepted words ") + kAllWords + ", '(comment)', ';comment'");
+  const std::string g =
+      "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G30 G38.2 G38.3 G40 G49 G53 G54 G55 G56 G57 G58 G59 G61 G61.1 G64 "
+      "G80 G90 G91 G91.1 G92 G92.1 G92.2 G92.3 G94";
   CHECK(err("G81 X1") == "line 1:1: unsupported code: found G81, accepted " + g);
   CHECK(err("G38.4 Z1") == "line 1:1: unsupported code: found G38.4, accepted " + g);
   CHECK(err("G1.5") == "line 1:1: unsupported code: found G1.5, accepted " + g);
-  CHECK(err("M6") == "line 1:1: unsupported code: found M6, accepted M0 M2 M3 M4 M5 M30 M62 M63 M64 M65");
+  CHECK(err("M48") == "line 1:1: unsupported code: found M48, accepted M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M62 M63 M64 M65");
   CHECK(err("G0 (abc") == "line 1:4: unterminated comment: found '(' without ')', accepted a comment closed by ')' on the same line");
 }
 
@@ -33,8 +35,8 @@ TEST_CASE("gcode errors: modal groups, repeated words, N placement") {
   CHECK(err("G90 G91") == "line 1:5: two words of one modal group: found G91 after G90 at column 1, accepted one word of group distance (G90 G91) per line");
   CHECK(err("G20 G21") == "line 1:5: two words of one modal group: found G21 after G20 at column 1, accepted one word of group units (G20 G21) per line");
   CHECK(err("G54 G55") == "line 1:5: two words of one modal group: found G55 after G54 at column 1, accepted one word of group work offset (G54-G59) per line");
-  CHECK(err("G4 P1 G28") == "line 1:7: two words of one modal group: found G28 after G4 at column 1, accepted one word of group non-modal (G4 G28 G53) per line");
-  CHECK(err("M0 M2") == "line 1:4: two words of one modal group: found M2 after M0 at column 1, accepted one word of group stop (M0 M2 M30) per line");
+  CHECK(err("G4 P1 G28") == "line 1:7: two words of one modal group: found G28 after G4 at column 1, accepted one word of group non-modal (G4 G10 G28 G30 G53 G92 G92.1 G92.2 G92.3) per line");
+  CHECK(err("M0 M2") == "line 1:4: two words of one modal group: found M2 after M0 at column 1, accepted one word of group stop (M0 M1 M2 M30) per line");
   CHECK(err("M3 M5") == "line 1:4: two words of one modal group: found M5 after M3 at column 1, accepted one word of group spindle (M3 M4 M5) per line");
   CHECK(err("M62 P1 M63 P2") == "line 1:8: two words of one modal group: found M63 after M62 at column 1, accepted one word of group output (M62 M63 M64 M65) per line");
   CHECK(err("G1 X1 X2 F1") == "line 1:7: repeated word: found X2 after X1 at column 4, accepted one X word per line");
@@ -58,8 +60,9 @@ TEST_CASE("gcode errors: axes, missing words, feed, values") {
 }
 
 TEST_CASE("gcode errors: arcs") {
-  CHECK(err("G2 X10 I3 F60") == "line 1:1: bad arc: found end radius 7 vs start radius 3, accepted an end on the circle (within max(0.002 mm, 0.1 %))");
-  CHECK(err("G2 X10 R4 F60") == "line 1:8: bad arc: found R4 for ends 10 apart, accepted |R| >= half the distance between the ends");
+  CHECK(err("G2 X10 I3 F60") == "line 1:1: bad arc: found end radius 7 vs start radius 3, accepted an end on the circle (as LinuxCNC: within 0.028284 mm, or 0.1 % of the radius up to 2.828427 mm)");
+  CHECK(err("G20\nG2 X1 I0.3 F60") == "line 2:1: bad arc: found end radius 0.7 vs start radius 0.3, accepted an end on the circle (as LinuxCNC: within 0.002828 in, or 0.1 % of the radius up to 0.282843 in)");
+  CHECK(err("G2 X10 R4 F60") == "line 1:8: bad arc: found R4 for ends 10 apart, accepted |R| >= half the distance between the ends (less 0.00127 mm, as LinuxCNC)");
   CHECK(err("G2 R4 F60") == "line 1:4: bad arc: found R4 with the end on the start, accepted R arcs with distinct ends (a full circle takes I/J/K)");
   CHECK(err("G2 X10 I5 K1 F60") == "line 1:11: word not allowed here: found K1 in G17, accepted centre offsets I J in G17");
   CHECK(err("G2 X10 I5 R5 F60") == "line 1:11: word not allowed here: found R5 with centre offsets, accepted either R or centre offsets");
@@ -72,11 +75,11 @@ TEST_CASE("gcode errors: arcs") {
 
 TEST_CASE("gcode errors: words that do not fit the line") {
   CHECK(err("G0 X1 I5") == "line 1:7: word not allowed here: found I5, accepted I only with G2/G3");
-  CHECK(err("G0 X1 P2") == "line 1:7: word not allowed here: found P2, accepted P only with G4, M62-M65 or G2/G3 (turns)");
+  CHECK(err("G0 X1 P2") == "line 1:7: word not allowed here: found P2, accepted P only with G4, G10, M62-M65, G2/G3 (turns) or G64");
+  CHECK(err("G0 X1 Q2") == "line 1:7: word not allowed here: found Q2, accepted Q only with G64");
   CHECK(err("G28 G1 X1") == "line 1:5: word not allowed here: found G1 with G28, accepted G28 or a motion code on a line: both take the axis words");
   CHECK(err("G91 G53 G0 X1") == "line 1:5: word not allowed here: found G53 in G91, accepted G53 in G90");
   CHECK(err("G53 G2 X1 I1 F1") == "line 1:1: word not allowed here: found G53 with G2, accepted G53 with G0 or G1");
-  CHECK(err("G1 F60\nG4 P1 X3") == "line 2:7: word not allowed here: found axis words with G4, accepted G4 P<seconds> alone");
   CHECK(err("M3") == "line 1:1: not configured: found M3, accepted M3/M4/M5 only with a configured spindle output");
   CHECK(err("M62 P0") == "line 1:1: not configured: found M62, accepted M62-M65 only with configured digital outputs");
 }

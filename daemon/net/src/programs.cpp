@@ -54,6 +54,7 @@ constexpr auto kBlockEvery = std::chrono::milliseconds(100);
 // The translators name outputs by these tags; resolve_outputs() turns them into the
 // machine's output numbers (M3/M5 the spindle output, M62–M65 P<n> the n-th listed output).
 constexpr std::uint16_t kSpindleTag = 60000;
+constexpr std::uint16_t kMistTag = 60001, kFloodTag = 60002;
 constexpr std::uint16_t kDigitalTag = 61000;
 
 // A name in the programs folder: one file name, printable, no path.
@@ -76,7 +77,12 @@ programs::Setup program_setup(const ProgramConfig& pc, const core::CoreConfig& c
   s.machine = machine;
   s.start = start;
   for (std::size_t a = 0; a < pc.home.size() && a < planner::kMaxAxes; ++a) s.gcode.home[a] = pc.home[a];
+  for (std::size_t a = 0; a < pc.g30.size() && a < planner::kMaxAxes; ++a) s.gcode.g30[a] = pc.g30[a];
+  s.gcode.block_delete = pc.block_delete;
   if (!pc.spindle.empty()) s.gcode.spindle_output = kSpindleTag;
+  if (!pc.mist.empty()) s.gcode.mist_output = kMistTag;
+  if (!pc.flood.empty()) s.gcode.flood_output = kFloodTag;
+  s.gcode.tool_change_pause = pc.tool_change_pause;
   s.gcode.digital_output_base = kDigitalTag;
   s.gcode.digital_output_count = static_cast<std::uint16_t>(pc.outputs.size());
   s.hpgl.origin_x = pc.origin_x;
@@ -125,6 +131,8 @@ bool resolve_program_outputs(std::vector<programs::Item>& items, const ProgramCo
     const core::OutputSettings* out = nullptr;
     if (o->output == kSpindleTag) {
       out = core::find_output(core, pc.spindle);
+    } else if (o->output == kMistTag || o->output == kFloodTag) {
+      out = core::find_output(core, o->output == kMistTag ? pc.mist : pc.flood);
     } else if (o->output >= kDigitalTag && static_cast<std::size_t>(o->output - kDigitalTag) < pc.outputs.size()) {
       out = core::find_output(core, pc.outputs[o->output - kDigitalTag]);
     } else {
@@ -136,7 +144,7 @@ bool resolve_program_outputs(std::vector<programs::Item>& items, const ProgramCo
       for (int i = 0; i < core.output_count; ++i) names += (names.empty() ? "" : ", ") + std::string(core.outputs[i].name_view());
       error = "line " + std::to_string(item.line) + ":1: not configured: found a switch of output " +
               std::to_string(o->output) + ", accepted the machine's outputs (" + (names.empty() ? "none" : names) +
-              ") as the programs section maps them (spindle, outputs, pen, gripper)";
+              ") as the programs section maps them (spindle, mist, flood, outputs, pen, gripper)";
       return false;
     }
     o->output = static_cast<std::uint16_t>(out->number);
@@ -429,7 +437,9 @@ void Server::program_progress() {
     pr.state = ProgramState::Paused;
     show_block(true);
     pr.shown_block = *pr.pause_at + 1;  // Program names the M0 while it waits there
-    broadcast(format_event("ProgPause", pr.loaded->name + " " + std::to_string(pr.items[*pr.pause_at].line) + " M0"));
+    const auto& item = pr.items[*pr.pause_at];
+    const auto* pause = std::get_if<programs::Pause>(&item.step);
+    broadcast(format_event("ProgPause", pr.loaded->name + " " + std::to_string(item.line) + " " + (pause ? pause->reason : "M0")));
     return;
   }
   if (pr.feeding_done) {

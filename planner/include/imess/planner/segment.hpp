@@ -34,8 +34,8 @@ struct Line {
 // turns: extra full turns (≥ 0). The end's component along the normal, and every other
 // axis, move linearly along the arc (helix); `planar` refuses an end off the plane through
 // the start instead (ArcOffPlane, the same tolerance). The end must lie on the circle:
-// |r_end − r_start| ≤ max(Options::arc_tolerance, 1e-3·r) or append refuses it
-// (ArcRadiusMismatch).
+// |r_end − r_start| ≤ max(Options::arc_tolerance, 1e-3·r, radius_tolerance) or append
+// refuses it (ArcRadiusMismatch); between the radii the arc is a spiral.
 struct Arc {
   std::uint32_t id = 0;
   Pose target{};
@@ -46,6 +46,7 @@ struct Arc {
   int turns = 0;
   bool planar = false;
   double feed = 0;  // mm/s along the helix
+  double radius_tolerance = 0;  // mm, > 0: a wider end-radius tolerance the caller accepted (G-code)
 };
 
 struct Dwell {

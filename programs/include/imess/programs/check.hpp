@@ -46,7 +46,7 @@ inline std::uint32_t item_id(std::size_t index) { return static_cast<std::uint32
 // How a program's items become planner requests, the same in the dry run and in messd:
 // Line/Arc/Dwell/SetOutput as they are; Probe (G38.2/.3) one search line from where the
 // machine stands to the target at the probe's feed (a miss ends at the target); Home a rapid
-// line to the home pose at `rapid_feed` (0: the fastest axis' max_velocity). Pause and End
+// line to its target at `rapid_feed` (0: the fastest axis' max_velocity). Pause and End
 // give no request (nullopt).
 std::optional<planner::Request> request_of(const Item& item, std::uint32_t id, const Pose& from,
                                            const planner::Machine& machine, double rapid_feed = 0);
@@ -64,6 +64,7 @@ struct Check {
   double feed_length = 0, rapid_length = 0, probe_length = 0;
   Pose low{}, high{};        // bounding box of the path, every axis
   bool moves = false;        // any motion at all (else low/high are the start)
+  std::vector<Note> notes;   // codes accepted without effect, block delete (G-code)
 };
 
 // One planned segment of the dry run and the item it came from.

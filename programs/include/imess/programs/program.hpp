@@ -24,14 +24,17 @@ struct Probe {
   bool error_on_miss = true;
 };
 
-// Go to the home position (G28): every axis of the machine to `target`, the caller-given
-// home pose (GcodeOptions::home), by the executor's homing/rapid rules.
+// Go to the home position (G28, G30) at traverse rate: `target` is the caller-given home
+// pose (GcodeOptions::home, g30) for the axes the line named (all without axis words),
+// and where the machine stands for the others.
 struct Home {
   Pose target{};
 };
 
-// Stop and wait for the operator to resume (M0).
-struct Pause {};
+// Stop and wait for the operator to resume (M0; M6, a tool change by hand: "M6 T3").
+struct Pause {
+  std::string reason = "M0";
+};
 
 // Program end (M2, M30, MRM M02). Nothing after it is translated.
 struct End {};
@@ -41,8 +44,27 @@ using Step = std::variant<planner::Line, planner::Arc, planner::Dwell, planner::
 
 struct Item {
   int line = 0;        // 1-based source line
-  bool rapid = false;  // a Line at traverse rate (G0, HPGL pen-up travel)
+  bool rapid = false;  // at traverse rate (G0, G28/G30 and their via point, HPGL pen-up travel)
   Step step;
+  std::uint32_t frame = 0;  // index into Translation::frames: the program frame in force
+};
+
+// The program's frame of reference for an item (G-code): machine = program + offset (mm,
+// deg), and the length unit of its words. What LinuxCNC's canonical calls are printed in.
+struct Frame {
+  Pose offset{};
+  bool inches = false;
+  bool operator==(const Frame&) const = default;
+};
+
+// A code accepted although it changes nothing in IMESS (a state IMESS is always in, like
+// G40 or G64), or a reading worth knowing (block delete, F on a G20 line): what
+// `messprog check` reports. One note per code, with its first line and how often it came.
+struct Note {
+  std::string code;     // "G40", "/"
+  int line = 0;         // first line
+  int count = 0;
+  std::string meaning;  // "cutter radius compensation off: IMESS never compensates"
 };
 
 // Why a program was refused. Never renumbered.
@@ -80,6 +102,8 @@ struct Translation {
   std::vector<Item> items;
   bool ok = true;
   Error error;
+  std::vector<Note> notes;
+  std::vector<Frame> frames{Frame{}};  // items' frames; G-code pushes one per change
 };
 
 // The name of an error kind ("unsupported code").
@@ -87,14 +111,10 @@ const char* kind_name(ErrorKind kind);
 
 // One item as a line of text, for logs and exact test comparisons, e.g.
 // "3 LINE rapid X10 Y0 Z5 F50", "4 ARC ccw X0 Y10 Z0 C0,0,0 N0,0,1 P0,1,2 T0 F10",
-// "5 DWELL 2", "6 OUT 3=1", "7 PROBE X0 Y0 Z-5 F1 error", "8 HOME", "9 PAUSE", "10 END".
+// "5 DWELL 2", "6 OUT 3=1", "7 PROBE X0 Y0 Z-5 F1 error", "8 HOME", "9 PAUSE" (M0; else
+// "9 PAUSE M6 T3"), "10 END".
 // Numbers print with up to 6 decimals, trailing zeros removed; only machine axes print.
 std::string describe(const Item& item, const planner::Machine& machine);
-
-// The same item in LinuxCNC's canonical form as `rs274 -g` prints it (XYZABC, with a
-// STRAIGHT_TRAVERSE, STRAIGHT_FEED, ARC_FEED, DWELL, STRAIGHT_PROBE ...). Empty for items
-// rs274 does not print as one call (outputs, home, pause, end).
-std::string canonical(const Item& item, const planner::Machine& machine);
 
 // The end pose of every motion item in turn, starting from `start` (Probe: its target).
 Pose end_pose(const std::vector<Item>& items, const Pose& start);

@@ -16,7 +16,11 @@ namespace imess::net {
 struct ProgramConfig {
   std::string folder;                 // absolute; empty: no folder (Load and Programs say so)
   std::vector<double> home;           // G28 pose in machine coordinates (axis order); empty: all 0
+  std::vector<double> g30;            // G30 pose likewise; empty: all 0
+  bool block_delete = true;           // G-code lines starting with '/' are skipped
   std::string spindle;                // output switched by M3/M4 (on) and M5 (off); empty: none
+  std::string mist, flood;            // outputs M7 / M8 switch on and M9 off; empty: none
+  bool tool_change_pause = true;      // M6 pauses like M0 (else it only records the tool)
   std::vector<std::string> outputs;   // M62–M65 P0, P1 … switch these outputs
   std::string pen = "z";              // HPGL pen: "z" (a Z move) or an output's name
   double pen_up_z = 5, pen_down_z = 0, pen_feed = 10;  // mm, mm, mm/s
