@@ -135,6 +135,7 @@ TEST_CASE("output beyond the cap to a client that does not read closes it at onc
   p.session->send(std::string(3000, 'y') + "\n");  // 9 KiB would wait: more than the 8 KiB cap
   CHECK(p.closed == 1);
   CHECK(p.session->close_reason() == "dropped: more than 8192 bytes of output waiting (not reading fast enough)");
+}
 
 // Issue 26, 1: an exception from a line's handler escaped io_context::run and messd exited 2,
 // every client gone. It ends only the session whose line raised it.
