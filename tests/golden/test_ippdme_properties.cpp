@@ -10,9 +10,11 @@
 // Replayed against messd's own parts in virtual time (the golden harness), then checked:
 //
 //  1. the protocol (IPPDME.md §§1-8): every line sent is answered in the step it was sent as
-//     the library's parser and the open tags say — `tag &`, or a garbled line's `tag !` and
-//     `tag %` on a free tag, or one `E0000 !` for a bad or reused tag, with the parser's error
-//     number; every accepted command gets exactly one `%` (unless its client dropped first)
+//     the library's parser and the open tags say — `tag &` for every line whose tag can be
+//     read and is free (a refused line's `tag !` with the parser's error number comes after its
+//     `&`, in its turn), or one `E0000 !` for an unreadable or reused tag; no line ever carries
+//     a tag the client did not send; 0501 and 0506 leave the error state alone;
+//     every accepted command gets exactly one `%` (unless its client dropped first)
 //     and nothing on its tag afterwards but its move daemon's reports; command tags complete
 //     in the order they were accepted; every `& # ! %` line carries an open tag or E0000;
 //     every line is printable ASCII ending in CR LF; every `!` is `Error(F1, F2, F3, "text")`

@@ -340,7 +340,9 @@ std::vector<Value> IppServer::hit_values(const core::Event& e) const {
         break;
       case Item::ER: values.push_back(Value::call("ER", {Value::of_fixed(e.radius, kCoordinateDecimals)})); break;
       case Item::Q: values.push_back(Value::call("Q", {Value::of_integer(0)})); break;  // touches are not graded
-      default: break;  // R, Tool.A/B/C: refused by OnPtMeasReport
+      default:  // R, Tool.A/B/C: no rotary table, no probe head here (0)
+        values.push_back(Value::call(ippdme::item_name(i), {Value::of_fixed(0.0, kCoordinateDecimals)}));
+        break;
     }
   }
   return values;
