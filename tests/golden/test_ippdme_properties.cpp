@@ -171,6 +171,15 @@ TEST_CASE("I++ DME properties: the rules catch what they are about (a lost or do
        [](auto& o, std::size_t i) { o[i].text[8] = '\x01'; }},
       {"a tag never sent", [](const auto& o, std::size_t i) { return o[i].kind == EntryKind::Receive && o[i].client >= 2; },
        [](auto& o, std::size_t i) { o.insert(o.begin() + static_cast<long>(i), Entry{EntryKind::Receive, o[i].client, "77777 # X(1)"}); }},
+      {"an error before its & (a refused line not acknowledged)", [](const auto& o, std::size_t i) {
+         return i + 1 < o.size() && o[i].kind == EntryKind::Receive && o[i].client >= 2 && o[i].text.size() == 7 && o[i].text.find(" &") == 5 &&
+                o[i + 1].kind == EntryKind::Receive && o[i + 1].client == o[i].client && o[i + 1].text.rfind(o[i].text.substr(0, 5) + " ! ", 0) == 0;
+       },
+       [](auto& o, std::size_t i) { o.erase(o.begin() + static_cast<long>(i)); }},
+      {"an E0000 error on a tag the client did not send", [](const auto& o, std::size_t i) {
+         return o[i].kind == EntryKind::Receive && o[i].client >= 2 && o[i].text.rfind("E0000 ! ", 0) == 0;
+       },
+       [](auto& o, std::size_t i) { o[i].text.replace(0, 5, "01234"); }},
       {"an answer missing", [](const auto& o, std::size_t i) { return o[i].kind == EntryKind::Receive && o[i].client >= 2 && o[i].text.find(" &") == 5; },
        [](auto& o, std::size_t i) { o.erase(o.begin() + static_cast<long>(i)); }},
       {"a move beside the session", [](const auto& o, std::size_t i) { return received(o[i], 1, "Err 209 "); },
