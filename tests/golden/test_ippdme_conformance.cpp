@@ -109,3 +109,29 @@ TEST_CASE("I++ DME conformance: measuring programs asking for what the machine l
 }
 
 }  // namespace imess::golden
+
+namespace imess::golden {
+
+// Issue 25, section 2, 4: a machine fault (the probe pushed past its overtravel by hand: an
+// emergency stop) is seen and cleared from I++ — GoTo 1000, GetXtdErrStatus lists it,
+// ClearAllErrors resets the machine once the cause is gone, and the next GoTo moves.
+TEST_CASE("I++ DME conformance: a machine fault is visible and cleared by ClearAllErrors") {
+  const auto lines = session_lines(
+      "@ config/sim-servo-card.json\n"
+      "> HandMv 0 0 -30 100\n= 2000 ms\n"    // into the part past the overtravel: the fault
+      "> HandMv 0 0 20 50\n= 1000 ms\n"      // the probe freed by hand: the cause is gone
+      "> Release\n"
+      "+2 ipp\n2> 00001 StartSession()\n"
+      "2> 00002 GoTo(Z(100))\n"
+      "2> 00003 GetXtdErrStatus()\n"
+      "2> 00004 ClearAllErrors()\n= 100 ms\n"
+      "2> 00005 GetXtdErrStatus()\n"
+      "2> 00006 GoTo(Z(100))\n= 3000 ms\n");
+  CHECK(on_tag(lines, "00002") == std::vector<std::string>{"00002 &", "00002 ! Error(3, 1000, GoTo, \"Machine in error state\")", "00002 %"});
+  CHECK(index_of(lines, "00003 ! Error(3, 1000, Machine, \"Machine in error state\")") >= 0);
+  CHECK(on_tag(lines, "00004") == std::vector<std::string>{"00004 &", "00004 %"});
+  CHECK(index_of(lines, "00005 ! Error(3, 1000, Machine, \"Machine in error state\")") < 0);
+  CHECK(on_tag(lines, "00006") == std::vector<std::string>{"00006 &", "00006 %"});
+}
+
+}  // namespace imess::golden

@@ -147,6 +147,7 @@ bool IppServer::execute(const Pending& p) {
             return done();
           },
           [&](const ippdme::ClearAllErrors&) {
+            if (machine_faulted()) return start_reset(p);  // the machine's error too, when its cause is gone
             error_state_ = false;
             last_error_.reset();
             return done();
@@ -219,6 +220,7 @@ bool IppServer::execute(const Pending& p) {
             flag("IsHomed", server_.core_.snapshot().referenced);
             flag("IsUserEnabled", user_enabled_);
             if (error_state_ && last_error_) send(ippdme::format_error(tag, last_error_->first, last_error_->second));
+            if (machine_faulted()) send(ippdme::format_error(tag, ErrorCode::MachineInErrorState, "Machine"));
             return done();
           },
           [&](const ippdme::Get& c) {

@@ -85,7 +85,7 @@ class IppServer {
     // with this error in its turn (docs/ippdme.md, "Lines the library refuses").
     std::optional<std::pair<ippdme::ErrorCode, std::string>> refused;
   };
-  enum class Step : unsigned char { None, Wait, GoTo, PtMeas, Retract, Home };
+  enum class Step : unsigned char { None, Wait, GoTo, PtMeas, Retract, Home, Reset };
   struct MoveDaemon {
     ippdme::Tag tag;
     std::optional<double> time, dis;
@@ -125,6 +125,8 @@ class IppServer {
   bool start_goto(const Pending& p, const ippdme::GoTo& c);
   bool start_ptmeas(const Pending& p, const ippdme::PtMeas& c);
   bool start_home(const Pending& p);
+  bool machine_faulted() const;                 // the motion core is in its fault state
+  bool start_reset(const Pending& p);           // ClearAllErrors on a faulted machine: the core's Reset
   enum class Planned : unsigned char { Yes, Busy, OutOfTravel, Refused };  // Busy: the machine still moves
   Planned plan_lines(std::vector<planner::Line> lines, std::string& why);
   static ippdme::ErrorCode refusal_error(Planned p);  // OutOfTravel 2500, else 0511
