@@ -323,18 +323,25 @@ class Checker {
   }
   // Whether a sent line waits for room in the normal queue: a command-tag line (a request, or
   // a refused line whose tag is readable) whose tag is not open.
-  static bool waits_for_room(const ClientState& st, const std::string& line) {
-    const auto verdict = parse_sent(line);
+  static bool waits_for_room(const ClientState& st, std::size_t i) {
+    const auto verdict = parse_sent(st.awaiting[i].second);
     std::optional<ippdme::Tag> tag;
     if (const auto* req = std::get_if<ippdme::Request>(&verdict)) tag = req->tag;
     else tag = std::get<ippdme::LineError>(verdict).tag;
-    return tag && tag->kind == ippdme::TagKind::Command && !st.tracker.is_open(*tag);
+    return tag && tag->kind == ippdme::TagKind::Command && !st.tracker.is_open(*tag) && !held(st, ippdme::tag_text(*tag), i);
+  }
+  // Whether a line sent before awaiting[i] and still waiting for its Ack holds `tag`: the
+  // server opened it when it read that line, so the tag is reused (0001 on E0000).
+  static bool held(const ClientState& st, const std::string& tag, std::size_t i) {
+    for (std::size_t j = 0; j < i && j < st.awaiting.size(); ++j)
+      if (sent_tag(st.awaiting[j].second) == tag) return true;
+    return false;
   }
   // Whether every line still unanswered waits for room (then silence is the flow control).
   static bool all_wait_for_room(const ClientState& st) {
     if (!queue_full(st)) return false;
-    for (const auto& [step, line] : st.awaiting)
-      if (!waits_for_room(st, line)) return false;
+    for (std::size_t i = 0; i < st.awaiting.size(); ++i)
+      if (!waits_for_room(st, i)) return false;
     return true;
   }
 
@@ -433,24 +440,25 @@ class Checker {
     // While the normal queue is full, the first line that does not wait for room answers first.
     std::size_t pick = 0;
     if (queue_full(st))
-      while (pick + 1 < st.awaiting.size() && waits_for_room(st, st.awaiting[pick].second) &&
+      while (pick + 1 < st.awaiting.size() && waits_for_room(st, pick) &&
              tag != st.awaiting[pick].second.substr(0, 5))
         ++pick;
     const std::string sent = st.awaiting[pick].second;
+    const bool reused = sent_tag(sent) && held(st, *sent_tag(sent), pick);
     st.awaiting.erase(st.awaiting.begin() + static_cast<long>(pick));
     const auto verdict = parse_sent(sent);
     std::string want_tag;
     int want_code = -1;
     std::optional<int> refused;
     if (const auto* req = std::get_if<ippdme::Request>(&verdict)) {
-      if (st.tracker.is_open(req->tag)) {
+      if (st.tracker.is_open(req->tag) || reused) {
         want_tag = "E0000", want_code = ippdme::number_of(ippdme::ErrorCode::IllegalTag);
       } else {
         want_tag = ippdme::tag_text(req->tag);
       }
     } else {  // refused: acknowledged first when its tag is readable, else one E0000 line
       const auto& e = std::get<ippdme::LineError>(verdict);
-      want_tag = ippdme::tag_text(ippdme::answer_tag(e, st.tracker));
+      want_tag = reused ? std::string("E0000") : ippdme::tag_text(ippdme::answer_tag(e, st.tracker));
       if (want_tag == "E0000") want_code = ippdme::number_of(e.code);
       else refused = ippdme::number_of(e.code);
     }

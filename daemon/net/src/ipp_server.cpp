@@ -278,9 +278,13 @@ void IppServer::admit_unacked(bool all) {
   }
 }
 
+// Room is made before every command: also while aborted ones drain (an error admits every
+// waiting command at once, so the queue may hold more than kMaxQueued; the Acks still waiting
+// behind them come as soon as it has room again, not with the client's next line).
 void IppServer::pump() {
-  admit_unacked(false);
-  while (!running_ && !queue_.empty() && conn_) {
+  for (;;) {
+    admit_unacked(false);
+    if (running_ || queue_.empty() || !conn_) break;
     running_ = true;
     if (queue_.front().aborted) {
       const Pending p = queue_.front();
@@ -290,7 +294,6 @@ void IppServer::pump() {
       continue;
     }
     if (!run_front()) break;  // a motion step: step_done / step_failed go on
-    admit_unacked(false);
   }
   read();
 }
