@@ -55,6 +55,11 @@ const ErrorInfo& error_info(ErrorCode code) {
   return kErrors[5];  // ProtocolError; unreachable for a declared code
 }
 
+bool enters_error_state(ErrorCode code) {
+  if (code == ErrorCode::UnsupportedCommand || code == ErrorCode::ArgumentNotSupported) return false;
+  return error_info(code).severity >= Severity::Error;
+}
+
 const ErrorInfo* find_error(int number) {
   for (const auto& e : kErrors)
     if (number_of(e.code) == number) return &e;

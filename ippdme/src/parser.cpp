@@ -2,6 +2,7 @@
 // shape of the method's declaration (one reader per Shape) builds its typed command.
 #include "imess/ippdme/parser.hpp"
 
+#include <cctype>
 #include <cmath>
 
 #include "imess/ippdme/syntax.hpp"
@@ -289,12 +290,17 @@ std::string_view leading_name(std::string_view text) {
 }  // namespace
 
 LineResult parse_line(std::string_view line) {
-  const std::optional<Tag> readable = line.size() >= kTagLength ? parse_client_tag(line.substr(0, kTagLength)) : std::nullopt;
+  const std::optional<Tag> readable = readable_tag(line);
   if (has_bad_byte(line)) return LineError{readable, ErrorCode::IllegalCharacter, cause_from(line)};
-  if (!readable) return LineError{std::nullopt, ErrorCode::IllegalTag, cause_from(line)};
+  if (!readable) {
+    // A tag that goes on past column 5 (`012345 GoTo(…)`) is no tag; another byte in column 6
+    // leaves the tag unreadable too: both are answered on E0000, never on a tag not sent.
+    const bool tag_like = line.size() > kTagLength && parse_client_tag(line.substr(0, kTagLength));
+    const bool longer_tag = tag_like && std::isdigit(static_cast<unsigned char>(line[kTagLength]));
+    return LineError{std::nullopt, tag_like && !longer_tag ? ErrorCode::NoSpaceAtPos6 : ErrorCode::IllegalTag, cause_from(line)};
+  }
   const Tag tag = *readable;
-  if (line.size() <= kTagLength || line[kTagLength] != ' ')
-    return LineError{tag, ErrorCode::NoSpaceAtPos6, cause_from(line)};
+  if (line.size() <= kTagLength) return LineError{tag, ErrorCode::NoSpaceAtPos6, cause_from(line)};
   const std::string_view text = line.substr(kTagLength + 1);
 
   CallResult read = parse_call(text);
@@ -307,17 +313,21 @@ LineResult parse_line(std::string_view line) {
   const CommandSpec* spec = find_command(call.text);
   if (!spec) return LineError{tag, ErrorCode::IllegalCommand, cause_from(call.text)};
   const bool fast_tag = tag.kind == TagKind::Event;
-  if (fast_tag != (spec->queue == Queue::Fast)) return LineError{std::nullopt, ErrorCode::IllegalTag, cause_from(call.text)};
+  if (fast_tag != (spec->queue == Queue::Fast)) return LineError{tag, ErrorCode::IllegalTag, cause_from(call.text)};
   Checked checked;
   if (auto fail = read_shape(spec->shape, call, checked)) return LineError{tag, fail->code, std::string(spec->name)};
   if (!spec->build) return LineError{tag, ErrorCode::UnsupportedCommand, std::string(spec->name)};
   return Request{tag, spec->build(std::move(checked))};
 }
 
+std::optional<Tag> readable_tag(std::string_view line) {
+  if (line.size() < kTagLength || (line.size() > kTagLength && line[kTagLength] != ' ')) return std::nullopt;
+  return parse_client_tag(line.substr(0, kTagLength));
+}
+
 LineResult parse_framed(const FramedLine& line) {
   if (line.fault == LineFault::None) return parse_line(line.text);
-  const std::optional<Tag> readable =
-      line.text.size() >= kTagLength ? parse_client_tag(line.text.substr(0, kTagLength)) : std::nullopt;
+  const std::optional<Tag> readable = readable_tag(line.text);
   const ErrorCode code = line.fault == LineFault::TooLong ? ErrorCode::ProtocolError : ErrorCode::IllegalCharacter;
   return LineError{readable, code, cause_from(line.text)};
 }

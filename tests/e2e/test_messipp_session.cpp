@@ -88,14 +88,16 @@ TEST_CASE("messipp --raw on a real messd: the malformed line goes, the server an
   INFO(r.out << r.err);
   CHECK(r.status == 0);
   CHECK(r.err.empty());
+  // Acknowledged first (issue 25), then refused; messipp sends on after the Ack, so its next
+  // line may be printed between them.
   CHECK_THAT(r.out, Catch::Contains("> 00004 GetProp(Tool.Name(\n"
-                                    "00004 ! Error(3, 0008, GetProp, \"Protocol error\")\n"
-                                    "00004 %\n"
-                                    "> E0001 GetErrStatusE()\n"
-                                    "E0001 &\n"
+                                    "00004 &\n"));
+  CHECK_THAT(r.out, Catch::Contains("00004 ! Error(3, 0008, GetProp, \"Protocol error\")\n"
+                                    "00004 %\n"));
+  CHECK_THAT(r.out, Catch::Contains("E0001 &\n"
                                     "E0001 # ErrStatus(1)\n"
-                                    "E0001 %\n"
-                                    "> 00005 EndSession()\n"
+                                    "E0001 %\n"));
+  CHECK_THAT(r.out, Catch::Contains("> 00005 EndSession()\n"
                                     "00005 &\n"
                                     "00005 %\n"));
 }

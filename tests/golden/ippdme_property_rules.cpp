@@ -6,6 +6,7 @@
 #include <cstring>
 #include <deque>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "imess/ippdme/error_code.hpp"
@@ -147,6 +148,16 @@ std::map<int, double> coordinates(const std::string& payload) {
   return out;
 }
 
+// The error state (docs/ippdme.md): an error of severity 2 or more, except 0501 Unsupported
+// command and 0506 Argument not supported (the server lacks something optional: no error state).
+bool enters_error_state(const ErrorLine& e) { return e.severity >= 2 && e.number != 501 && e.number != 506; }
+
+// The tag a sent line carries: its first five characters when a space follows them.
+std::optional<std::string> sent_tag(const std::string& line) {
+  if (line.size() < 6 || line[5] != ' ') return std::nullopt;
+  return line.substr(0, 5);
+}
+
 template <class T>
 bool holds(const ippdme::Command& c) {
   return std::holds_alternative<T>(c);
@@ -249,6 +260,7 @@ class Checker {
     int opened = 0;         // step of its `&`
     std::size_t order = 0;  // the how-manieth accepted command tag
     bool first_seen = false, error = false, daemon = false;
+    std::optional<int> refused;  // a line the parser refused (its tag readable): acknowledged, then this error
     int data_lines = 0;
     std::vector<int> codes;
   };
@@ -257,7 +269,7 @@ class Checker {
     std::map<std::string, Transaction> open;  // by tag text
     ippdme::TagTracker tracker;               // the same set, as the server's parser reads it
     std::deque<std::pair<int, std::string>> awaiting;  // sent lines not yet answered
-    std::optional<std::string> garbled_tag;   // a garbled line's `!` came: its `%` is next
+    std::set<std::string> sent_tags;          // every tag the client sent
     bool in_session = false, error_state = false;
     std::size_t accepted = 0;
     std::optional<long> last_report_t;        // the move daemon's last line
@@ -283,6 +295,7 @@ class Checker {
       }
       if (l.sent) {
         ++counts.lines_sent;
+        if (auto t = sent_tag(l.text)) st.sent_tags.insert(*t);
         st.awaiting.push_back({l.step, l.text});
         continue;
       }
@@ -308,18 +321,27 @@ class Checker {
     const auto queued = std::count_if(st.open.begin(), st.open.end(), [](const auto& o) { return o.second.tag.kind == ippdme::TagKind::Command; });
     return queued >= kQueueLimit;
   }
-  // Whether a sent line waits for room in the normal queue: a valid command-tag request
-  // whose tag is not open.
-  static bool waits_for_room(const ClientState& st, const std::string& line) {
-    const auto verdict = parse_sent(line);
-    const auto* req = std::get_if<ippdme::Request>(&verdict);
-    return req && req->tag.kind == ippdme::TagKind::Command && !st.tracker.is_open(req->tag);
+  // Whether a sent line waits for room in the normal queue: a command-tag line (a request, or
+  // a refused line whose tag is readable) whose tag is not open.
+  static bool waits_for_room(const ClientState& st, std::size_t i) {
+    const auto verdict = parse_sent(st.awaiting[i].second);
+    std::optional<ippdme::Tag> tag;
+    if (const auto* req = std::get_if<ippdme::Request>(&verdict)) tag = req->tag;
+    else tag = std::get<ippdme::LineError>(verdict).tag;
+    return tag && tag->kind == ippdme::TagKind::Command && !st.tracker.is_open(*tag) && !held(st, ippdme::tag_text(*tag), i);
+  }
+  // Whether a line sent before awaiting[i] and still waiting for its Ack holds `tag`: the
+  // server opened it when it read that line, so the tag is reused (0001 on E0000).
+  static bool held(const ClientState& st, const std::string& tag, std::size_t i) {
+    for (std::size_t j = 0; j < i && j < st.awaiting.size(); ++j)
+      if (sent_tag(st.awaiting[j].second) == tag) return true;
+    return false;
   }
   // Whether every line still unanswered waits for room (then silence is the flow control).
   static bool all_wait_for_room(const ClientState& st) {
     if (!queue_full(st)) return false;
-    for (const auto& [step, line] : st.awaiting)
-      if (!waits_for_room(st, line)) return false;
+    for (std::size_t i = 0; i < st.awaiting.size(); ++i)
+      if (!waits_for_room(st, i)) return false;
     return true;
   }
 
@@ -360,6 +382,7 @@ class Checker {
     if ((kind == '&' || kind == '%') != (text.size() == 7) || (text.size() > 7 && (text[7] != ' ' || text.size() < 9)))
       return mismatch(st, l, "& and % stand alone, # and ! are followed by a space and a payload");
     const std::string tag = text.substr(0, 5), payload = text.size() > 8 ? text.substr(8) : "";
+    if (tag != "E0000" && !st.sent_tags.count(tag)) return mismatch(st, l, "a line on a tag the client never sent");
     std::optional<ErrorLine> err;
     if (kind == '!') {
       err = parse_error(payload);
@@ -379,18 +402,14 @@ class Checker {
       }
       if (kind != '!') return mismatch(st, l, "E0000 carries only events and errors");
       first_answer(st, l, tag, kind, err);
-      if (err->severity >= 2) st.error_state = st.in_session;  // outside a session there is no error state
+      if (enters_error_state(*err)) st.error_state = st.in_session;  // outside a session there is no error state
       return;
     }
     auto open = st.open.find(tag);
     if (open == st.open.end()) {
-      if (kind == '%' && st.garbled_tag == tag) {
-        st.garbled_tag.reset();
-        return;
-      }
       if (kind == '#' || kind == '%') return mismatch(st, l, "a line on a tag with no open transaction");
+      if (kind == '!') return mismatch(st, l, "an error on a readable tag before its &");
       first_answer(st, l, tag, kind, err);
-      if (err && err->severity >= 2) st.error_state = st.in_session;
       return;
     }
     Transaction& t = open->second;
@@ -408,10 +427,8 @@ class Checker {
     }
     if (kind == '!') {
       t.codes.push_back(err->number);
-      if (err->severity >= 2) {
-        t.error = true;
-        st.error_state = st.in_session;
-      }
+      if (enters_error_state(*err)) st.error_state = st.in_session;
+      if (err->severity >= 2) t.error = true;
       return;
     }
     complete(st, l, t);
@@ -423,29 +440,42 @@ class Checker {
     // While the normal queue is full, the first line that does not wait for room answers first.
     std::size_t pick = 0;
     if (queue_full(st))
-      while (pick + 1 < st.awaiting.size() && waits_for_room(st, st.awaiting[pick].second) &&
+      while (pick + 1 < st.awaiting.size() && waits_for_room(st, pick) &&
              tag != st.awaiting[pick].second.substr(0, 5))
         ++pick;
     const std::string sent = st.awaiting[pick].second;
+    const bool reused = sent_tag(sent) && held(st, *sent_tag(sent), pick);
     st.awaiting.erase(st.awaiting.begin() + static_cast<long>(pick));
     const auto verdict = parse_sent(sent);
     std::string want_tag;
     int want_code = -1;
+    std::optional<int> refused;
     if (const auto* req = std::get_if<ippdme::Request>(&verdict)) {
-      if (st.tracker.is_open(req->tag)) {
+      if (st.tracker.is_open(req->tag) || reused) {
         want_tag = "E0000", want_code = ippdme::number_of(ippdme::ErrorCode::IllegalTag);
       } else {
         want_tag = ippdme::tag_text(req->tag);
       }
-    } else {
+    } else {  // refused: acknowledged first when its tag is readable, else one E0000 line
       const auto& e = std::get<ippdme::LineError>(verdict);
-      want_tag = ippdme::tag_text(ippdme::answer_tag(e, st.tracker));
-      want_code = ippdme::number_of(e.code);
+      want_tag = reused ? std::string("E0000") : ippdme::tag_text(ippdme::answer_tag(e, st.tracker));
+      if (want_tag == "E0000") want_code = ippdme::number_of(e.code);
+      else refused = ippdme::number_of(e.code);
     }
     const bool want_ack = want_code < 0;
     if (tag != want_tag || (kind == '&') != want_ack || (kind == '!' && (!err || err->number != want_code)))
       return mismatch(st, l, "the answer to '" + escape_line(sent) + "' should be " + want_tag + (want_ack ? " &" : " ! " + zero_padded(want_code, 4)));
-    if (want_ack) {
+    if (want_ack && refused) {
+      ++counts.garbled;
+      const auto& e = std::get<ippdme::LineError>(verdict);
+      st.tracker.try_open(*e.tag);
+      Transaction t;
+      t.tag = *e.tag;
+      t.refused = refused;
+      t.opened = l.step;
+      if (e.tag->kind == ippdme::TagKind::Command) t.order = ++st.accepted;
+      st.open.emplace(tag, std::move(t));
+    } else if (want_ack) {
       const auto& req = std::get<ippdme::Request>(verdict);
       ++counts.accepted;
       if (holds<ippdme::AbortE>(req.command))
@@ -461,11 +491,8 @@ class Checker {
       t.opened = l.step;
       if (req.tag.kind == ippdme::TagKind::Command) t.order = ++st.accepted;
       st.open.emplace(tag, std::move(t));
-    } else if (tag == "E0000") {
-      ++counts.tag_errors;
     } else {
-      ++counts.garbled;
-      st.garbled_tag = tag;
+      ++counts.tag_errors;
     }
   }
 
@@ -475,6 +502,11 @@ class Checker {
     t.first_seen = true;
     const auto& c = t.command;
     if (err && err->number == 6) return;  // aborted before it ran
+    if (t.refused) {  // its own error in its turn, in or out of a session and the error state
+      if (kind != '!' || !err || err->number != *t.refused)
+        mismatch(st, l, "a refused line's first answer after its & must be its error " + zero_padded(*t.refused, 4));
+      return;
+    }
     const bool session_verb = holds<ippdme::StartSession>(c) || holds<ippdme::EndSession>(c);
     const bool motion = holds<ippdme::GoTo>(c) || holds<ippdme::PtMeas>(c) || holds<ippdme::Home>(c);
     const bool exempt = session_verb || holds<ippdme::ClearAllErrors>(c) || holds<ippdme::GetXtdErrStatus>(c) ||
@@ -554,6 +586,13 @@ class Checker {
           return mismatch(st, l, "completes before " + tag + " (accepted earlier, still open)");
     const bool ok = !t.error;
     bool daemon = false;
+    if (t.refused) {
+      if (t.codes.empty()) return mismatch(st, l, "a refused line completed without its error");
+      st.last_done.reset();
+      st.tracker.close(t.tag);
+      st.open.erase(ippdme::tag_text(t.tag));
+      return;
+    }
     if (t.tag.kind == ippdme::TagKind::Command) st.last_done = ok && holds<ippdme::GoTo>(c) ? std::optional(t) : std::nullopt;
     if (holds<ippdme::PtMeas>(c) && ok && t.data_lines != 1)
       return mismatch(st, l, "a PtMeas completed without an error and without its point");

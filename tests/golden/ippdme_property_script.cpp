@@ -315,6 +315,7 @@ class Generator {
         "%s Get(X()\x01)",        "%s Get(X())\x7f",       "%s GoTo(X(1\xff))",        "\x1b[A",
         "%s Get(X())\rGet(Y())",  "%s Get(X())\t",         "%s StopDaemon(E0000)",     "%s GoTo(X(1e999))",
         "%s SetProp(Speed(3))",   "%s OnMoveReportE()",    "%s GetErrorInfo(12.5)",    "%s GoTo(X(1), X(2))",
+        "012345 GoTo(X(3.1))",    "%s PtMeas(X(430), Y(330), Z(80), IJK(0,0,0))",
     };
     std::string line = lines[r_.pick(0, static_cast<int>(std::size(lines)) - 1)];
     if (const auto at = line.find("%s"); at != std::string::npos) line.replace(at, 2, r_.chance(0.8) ? ctag() : etag());

@@ -139,3 +139,26 @@ TEST_CASE("I++ DME finding: a GoTo right after AbortE and ClearAllErrors moves o
 
 }  // namespace
 }  // namespace imess::golden
+
+namespace imess::golden {
+namespace {
+std::vector<std::string> client2_lines(const std::string& script) {
+  std::vector<std::string> lines;
+  for (const auto& e : replay(parse_transcript(script, "finding"), "finding"))
+    if (e.kind == EntryKind::Receive && e.client == 2) lines.push_back(e.text);
+  return lines;
+}
+}  // namespace
+
+// An error admits every command waiting for its Ack at once (abort_queued), so the normal queue
+// may hold more than 64; a command sent behind them then waits for room — and got its Ack
+// only with the client's next line: IppServer::pump drained the aborted commands without
+// making room for it (found by the properties once refused lines took their turn, issue 25).
+TEST_CASE("I++ DME finding: a command waiting for room behind aborted ones is acknowledged when they drain") {
+  const auto lines = client2_lines(full_queue_script("2> 00002 Get(X())\n= 100 ms\n2> 00072 Get(Z())\n= 5000 ms\n"));
+  CHECK(std::find(lines.begin(), lines.end(), "E0000 ! Error(2, 0001, Get, \"Illegal tag\")") != lines.end());
+  CHECK(std::find(lines.begin(), lines.end(), "00072 &") != lines.end());
+  CHECK(std::find(lines.begin(), lines.end(), "00072 %") != lines.end());
+}
+
+}  // namespace imess::golden

@@ -10,9 +10,11 @@
 // Replayed against messd's own parts in virtual time (the golden harness), then checked:
 //
 //  1. the protocol (IPPDME.md §§1-8): every line sent is answered in the step it was sent as
-//     the library's parser and the open tags say — `tag &`, or a garbled line's `tag !` and
-//     `tag %` on a free tag, or one `E0000 !` for a bad or reused tag, with the parser's error
-//     number; every accepted command gets exactly one `%` (unless its client dropped first)
+//     the library's parser and the open tags say — `tag &` for every line whose tag can be
+//     read and is free (a refused line's `tag !` with the parser's error number comes after its
+//     `&`, in its turn), or one `E0000 !` for an unreadable or reused tag; no line ever carries
+//     a tag the client did not send; 0501 and 0506 leave the error state alone;
+//     every accepted command gets exactly one `%` (unless its client dropped first)
 //     and nothing on its tag afterwards but its move daemon's reports; command tags complete
 //     in the order they were accepted; every `& # ! %` line carries an open tag or E0000;
 //     every line is printable ASCII ending in CR LF; every `!` is `Error(F1, F2, F3, "text")`
@@ -169,6 +171,15 @@ TEST_CASE("I++ DME properties: the rules catch what they are about (a lost or do
        [](auto& o, std::size_t i) { o[i].text[8] = '\x01'; }},
       {"a tag never sent", [](const auto& o, std::size_t i) { return o[i].kind == EntryKind::Receive && o[i].client >= 2; },
        [](auto& o, std::size_t i) { o.insert(o.begin() + static_cast<long>(i), Entry{EntryKind::Receive, o[i].client, "77777 # X(1)"}); }},
+      {"an error before its & (a refused line not acknowledged)", [](const auto& o, std::size_t i) {
+         return i + 1 < o.size() && o[i].kind == EntryKind::Receive && o[i].client >= 2 && o[i].text.size() == 7 && o[i].text.find(" &") == 5 &&
+                o[i + 1].kind == EntryKind::Receive && o[i + 1].client == o[i].client && o[i + 1].text.rfind(o[i].text.substr(0, 5) + " ! ", 0) == 0;
+       },
+       [](auto& o, std::size_t i) { o.erase(o.begin() + static_cast<long>(i)); }},
+      {"an E0000 error on a tag the client did not send", [](const auto& o, std::size_t i) {
+         return o[i].kind == EntryKind::Receive && o[i].client >= 2 && o[i].text.rfind("E0000 ! ", 0) == 0;
+       },
+       [](auto& o, std::size_t i) { o[i].text.replace(0, 5, "01234"); }},
       {"an answer missing", [](const auto& o, std::size_t i) { return o[i].kind == EntryKind::Receive && o[i].client >= 2 && o[i].text.find(" &") == 5; },
        [](auto& o, std::size_t i) { o.erase(o.begin() + static_cast<long>(i)); }},
       {"a move beside the session", [](const auto& o, std::size_t i) { return received(o[i], 1, "Err 209 "); },

@@ -36,7 +36,9 @@ const std::vector<ErrCase> kCases{
     {"00001 Home()\r", E::IllegalCharacter, kT1},
     {"00001 Ch\xe4ngeTool()", E::IllegalCharacter, kT1},
     {"0\t001 Home()", E::IllegalCharacter, std::nullopt},
-    // 0001: tags, reserved tags, wrong queue
+    {"000012 Ho\x01me()", E::IllegalCharacter, std::nullopt},  // a six-digit tag is no tag: E0000
+    // 0001: tags, reserved tags (E0000), a tag longer than five digits (E0000, never on its
+    // first five: issue 25), the wrong queue (on the tag: it can be read)
     {"", E::IllegalTag, std::nullopt},
     {"0001 Home()", E::IllegalTag, std::nullopt},
     {"00000 Home()", E::IllegalTag, std::nullopt},
@@ -44,17 +46,19 @@ const std::vector<ErrCase> kCases{
     {"e0001 AbortE()", E::IllegalTag, std::nullopt},
     {"A0001 Home()", E::IllegalTag, std::nullopt},
     {"E001 AbortE()", E::IllegalTag, std::nullopt},
-    {"E0001 Home()", E::IllegalTag, std::nullopt},
-    {"E0001 GetProp(Tool.Name())", E::IllegalTag, std::nullopt},
-    {"00001 AbortE()", E::IllegalTag, std::nullopt},
-    {"00001 GetErrStatusE()", E::IllegalTag, std::nullopt},
-    {"00001 GetPropE(Tool.Name())", E::IllegalTag, std::nullopt},
-    {"00001 SetPropE(Tool.GoToPar.Speed(1))", E::IllegalTag, std::nullopt},
-    {"00001 OnMoveReportE(X())", E::IllegalTag, std::nullopt},
-    // 0002: column 6
-    {"00001Home()", E::NoSpaceAtPos6, kT1},
+    {"012345 GoTo(X(3.1))", E::IllegalTag, std::nullopt},
+    {"E00012 AbortE()", E::IllegalTag, std::nullopt},
+    {"E0001 Home()", E::IllegalTag, kE1},
+    {"E0001 GetProp(Tool.Name())", E::IllegalTag, kE1},
+    {"00001 AbortE()", E::IllegalTag, kT1},
+    {"00001 GetErrStatusE()", E::IllegalTag, kT1},
+    {"00001 GetPropE(Tool.Name())", E::IllegalTag, kT1},
+    {"00001 SetPropE(Tool.GoToPar.Speed(1))", E::IllegalTag, kT1},
+    {"00001 OnMoveReportE(X())", E::IllegalTag, kT1},
+    // 0002: column 6 (another byte there leaves the tag unreadable: E0000)
+    {"00001Home()", E::NoSpaceAtPos6, std::nullopt},
     {"00001", E::NoSpaceAtPos6, kT1},
-    {"E0001_AbortE()", E::NoSpaceAtPos6, kE1},
+    {"E0001_AbortE()", E::NoSpaceAtPos6, std::nullopt},
     // 0008: garbled call, spaces where none may be
     {"00001 ", E::ProtocolError, kT1},
     {"00001  Home()", E::ProtocolError, kT1},
@@ -216,7 +220,8 @@ TEST_CASE("ippdme errors: a reused tag is answered with 0001 on E0000") {
   CHECK(format_error(bad, open) == "E0000 ! Error(3, 0502, Home, \"Incorrect arguments\")\r\n");
   open.close(r.tag);
   CHECK(format_error(bad, open) == "00005 ! Error(3, 0502, Home, \"Incorrect arguments\")\r\n");
-  CHECK(format_error(error_of("E0003 Home()"), open) == "E0000 ! Error(2, 0001, Home, \"Illegal tag\")\r\n");
+  // The wrong queue: the tag can be read, so the error goes on it (after its Ack, the server's).
+  CHECK(format_error(error_of("E0003 Home()"), open) == "E0003 ! Error(2, 0001, Home, \"Illegal tag\")\r\n");
 }
 
 TEST_CASE("ippdme errors: the error lines byte-exactly, both F3 styles") {
@@ -259,4 +264,18 @@ TEST_CASE("ippdme errors: the table holds the spec's numbers, severities and tex
   CHECK(error_info(E::IllegalCharacter).severity == Severity::OperatorError);
   CHECK(error_info(E::NoDaemonsAreActive).severity == Severity::Warning);
   CHECK(error_info(E::UseClearAllErrorsToContinue).text == "Use ClearAllErrors to continue");
+}
+
+// Issue 25: only what the server lacks (an optional command, a probe head's or a rotary
+// table's argument) is no error state; every other error of severity 2 or more is.
+TEST_CASE("ippdme errors: which errors put a session into the error state") {
+  for (const auto& e : error_table()) {
+    INFO(number_of(e.code));
+    const bool lacks = e.code == E::UnsupportedCommand || e.code == E::ArgumentNotSupported;
+    CHECK(enters_error_state(e.code) == (!lacks && e.severity >= Severity::Error));
+  }
+  CHECK_FALSE(enters_error_state(E::UnsupportedCommand));
+  CHECK_FALSE(enters_error_state(E::ArgumentOutOfRange));
+  CHECK(enters_error_state(E::MachineLimitEncountered));
+  CHECK(enters_error_state(E::IncorrectArguments));
 }

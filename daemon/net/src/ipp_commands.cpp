@@ -25,19 +25,15 @@ double degrees_mod_360(double a) {
 }
 }  // namespace
 
-// X Y Z (and in report lists IJK, ER, Q); R and the head angles exist on no machine here.
-bool IppServer::items_supported(const std::vector<Item>& items) const {
-  for (Item i : items)
-    if (i == Item::R || i == Item::ToolA || i == Item::ToolB || i == Item::ToolC) return false;
-  return true;
-}
-
+// X Y Z where the tip stands; R (a rotary table's angle) and Tool.A/B/C (a probe head's) are
+// 0: no machine here has a table or a head, and the spec lets a server report them so.
 std::string IppServer::position_payload(const std::vector<Item>& items) const {
   const ippdme::Point3 p = tip_here();
   std::vector<Value> values;
   for (Item i : items) {
+    const bool axis = i == Item::X || i == Item::Y || i == Item::Z;
     const int c = i == Item::X ? 0 : i == Item::Y ? 1 : 2;
-    values.push_back(Value::call(ippdme::item_name(i), {Value::of_fixed(p[c], kCoordinateDecimals)}));
+    values.push_back(Value::call(ippdme::item_name(i), {Value::of_fixed(axis ? p[c] : 0.0, kCoordinateDecimals)}));
   }
   return ippdme::format_values(values);
 }
@@ -76,6 +72,10 @@ void IppServer::set_props(const Tag& tag, const std::vector<ippdme::PropertySett
 
 bool IppServer::execute(const Pending& p) {
   const Tag& tag = p.tag;
+  if (p.refused) {  // a refused line in its turn: its own error, whatever the session's state
+    fail(tag, p.refused->first, p.refused->second);
+    return true;
+  }
   const std::string_view name = ippdme::method_name(p.command);
   const bool session_verb = std::holds_alternative<ippdme::StartSession>(p.command) ||
                             std::holds_alternative<ippdme::EndSession>(p.command);
@@ -147,6 +147,7 @@ bool IppServer::execute(const Pending& p) {
             return done();
           },
           [&](const ippdme::ClearAllErrors&) {
+            if (machine_faulted()) return start_reset(p);  // the machine's error too, when its cause is gone
             error_state_ = false;
             last_error_.reset();
             return done();
@@ -208,10 +209,6 @@ bool IppServer::execute(const Pending& p) {
             return done();
           },
           [&](const ippdme::OnPtMeasReport& c) {
-            if (!items_supported(c.items)) {
-              fail(tag, ErrorCode::ArgumentNotSupported, name);
-              return true;
-            }
             ptmeas_items_ = c.items;
             return done();
           },
@@ -223,13 +220,10 @@ bool IppServer::execute(const Pending& p) {
             flag("IsHomed", server_.core_.snapshot().referenced);
             flag("IsUserEnabled", user_enabled_);
             if (error_state_ && last_error_) send(ippdme::format_error(tag, last_error_->first, last_error_->second));
+            if (machine_faulted()) send(ippdme::format_error(tag, ErrorCode::MachineInErrorState, "Machine"));
             return done();
           },
           [&](const ippdme::Get& c) {
-            if (!items_supported(c.items)) {
-              fail(tag, ErrorCode::ArgumentNotSupported, name);
-              return true;
-            }
             send(ippdme::format_data(tag, position_payload(c.items)));
             return done();
           },
@@ -313,6 +307,10 @@ bool IppServer::execute(const Pending& p) {
 
 void IppServer::execute_fast(const Pending& p) {
   const Tag& tag = p.tag;
+  if (p.refused) {
+    fail(tag, p.refused->first, p.refused->second);
+    return;
+  }
   const std::string_view name = ippdme::method_name(p.command);
   if (!in_session_) {
     fail(tag, ErrorCode::ProtocolError, name);
@@ -358,10 +356,6 @@ void IppServer::execute_fast(const Pending& p) {
       return;
     }
     std::vector<Item> items = m->items;
-    if (!items_supported(items)) {
-      fail(tag, ErrorCode::ArgumentNotSupported, name);
-      return;
-    }
     // At most 10 reports a second (Time below 0.1 s is read as 0.1).
     daemon_ = MoveDaemon{tag, m->time ? std::optional(std::max(*m->time, 0.1)) : std::nullopt, m->dis, std::move(items), {}, {}};
     send(ippdme::format_done(tag));  // the tag stays open: the daemon's lines carry it

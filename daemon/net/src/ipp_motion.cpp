@@ -120,6 +120,10 @@ bool IppServer::take_machine(const Pending& p) {
     fail(p.tag, ErrorCode::ErrorProcessingMethod, ippdme::method_name(p.command));
     return false;
   }
+  if (machine_faulted()) {  // ClearAllErrors resets it once its cause is gone
+    fail(p.tag, ErrorCode::MachineInErrorState, ippdme::method_name(p.command));
+    return false;
+  }
   user_enabled_ = false;
   return true;
 }
@@ -217,6 +221,29 @@ bool IppServer::start_ptmeas(const Pending& p, const ippdme::PtMeas& c) {
   return false;
 }
 
+bool IppServer::machine_faulted() const { return server_.core_.snapshot().mode == core::Mode::Fault; }
+
+// The machine's fault is cleared as MESSD's Reset clears it: the core resets the drives' faults
+// and frees the machine, or refuses while the cause remains (then 1000). Needs control.
+bool IppServer::start_reset(const Pending& p) {
+  const std::string_view name = ippdme::method_name(p.command);
+  std::string why;
+  if (!claim_control(false, why)) {
+    spdlog::warn("I++ DME: ClearAllErrors cannot reset the machine: {}", why);
+    fail(p.tag, ErrorCode::MachineInErrorState, name);
+    return true;
+  }
+  core::Command c{core::CommandKind::Reset};
+  c.client = kClientId;
+  if (!server_.core_.submit(c)) {
+    fail(p.tag, ErrorCode::MachineInErrorState, name);
+    return true;
+  }
+  step_ = Step::Reset;
+  first_id_ = wait_id_ = 0;
+  return false;
+}
+
 bool IppServer::start_home(const Pending& p) {
   const std::string_view name = ippdme::method_name(p.command);
   if (!take_machine(p)) return true;
@@ -262,7 +289,8 @@ void IppServer::end_step(std::optional<ErrorCode> error) {
 }
 
 void IppServer::segment_end(const core::Event& e) {
-  if (step_ == Step::None || step_ == Step::Home || step_ == Step::Wait || e.id < first_id_ || e.id > wait_id_) return;  // a step ended before
+  if (step_ == Step::None || step_ == Step::Home || step_ == Step::Reset || step_ == Step::Wait || e.id < first_id_ || e.id > wait_id_)
+    return;  // a step ended before
   if (e.kind == core::EventKind::Failed) {
     step_failed(error_of(e.fail));
     return;
@@ -302,13 +330,23 @@ void IppServer::segment_end(const core::Event& e) {
 
 void IppServer::dropped(core::FailReason why) {
   rest_.reset();
-  if (step_ == Step::None || step_ == Step::Home || step_ == Step::Wait) return;
+  if (step_ == Step::None || step_ == Step::Home || step_ == Step::Reset || step_ == Step::Wait) return;
   for (const auto& [id, seconds] : server_.in_loop_)
     if (id >= first_id_ && id <= wait_id_) return;  // its own Failed will come
   step_failed(error_of(why));
 }
 
 void IppServer::core_reply(const core::Event& e) {
+  if (step_ == Step::Reset) {  // ClearAllErrors: the machine's fault is gone, or its cause remains
+    if (e.refusal == core::Refusal::None) {
+      error_state_ = false;
+      last_error_.reset();
+      step_done();
+    } else {
+      step_failed(ErrorCode::MachineInErrorState);
+    }
+    return;
+  }
   if (step_ != Step::Home || e.refusal == core::Refusal::None) return;
   step_failed(ErrorCode::ErrorDuringHome);
 }
@@ -340,7 +378,9 @@ std::vector<Value> IppServer::hit_values(const core::Event& e) const {
         break;
       case Item::ER: values.push_back(Value::call("ER", {Value::of_fixed(e.radius, kCoordinateDecimals)})); break;
       case Item::Q: values.push_back(Value::call("Q", {Value::of_integer(0)})); break;  // touches are not graded
-      default: break;  // R, Tool.A/B/C: refused by OnPtMeasReport
+      default:  // R, Tool.A/B/C: no rotary table, no probe head here (0)
+        values.push_back(Value::call(ippdme::item_name(i), {Value::of_fixed(0.0, kCoordinateDecimals)}));
+        break;
     }
   }
   return values;

@@ -198,35 +198,51 @@ void IppServer::closed() {
   tags_.clear();
 }
 
+// Every line whose tag can be read is acknowledged first (a refused one too: it is answered
+// with its error in its turn, so completions stay in the order sent); a line whose tag cannot
+// be read, or whose tag is open, is answered on E0000 alone.
 void IppServer::on_line(const ippdme::FramedLine& line) {
   auto result = ippdme::parse_framed(line);
+  Pending p;
   if (const auto* err = std::get_if<ippdme::LineError>(&result)) {
     const Tag tag = ippdme::answer_tag(*err, tags_);
-    send(ippdme::format_error(*err, tags_));
-    if (!(tag == ippdme::kServerTag)) send(ippdme::format_done(tag));
-    if (in_session_ && ippdme::error_info(err->code).severity >= ippdme::Severity::Error) enter_error(err->code, err->cause);
-    return;
+    if (tag == ippdme::kServerTag) {
+      send(ippdme::format_error(*err, tags_));
+      if (in_session_ && ippdme::enters_error_state(err->code)) enter_error(err->code, err->cause);
+      return;
+    }
+    tags_.try_open(tag);
+    p.tag = tag;
+    p.refused = std::pair(err->code, err->cause);
+  } else {
+    auto& req = std::get<ippdme::Request>(result);
+    if (!tags_.try_open(req.tag)) {  // reused while open (NIST: 0001 on E0000)
+      const std::string_view name = ippdme::method_name(req.command);
+      send(ippdme::format_error(ippdme::kServerTag, ErrorCode::IllegalTag, name));
+      if (in_session_) enter_error(ErrorCode::IllegalTag, name);
+      return;
+    }
+    p.tag = req.tag;
+    p.command = std::move(req.command);
   }
-  auto& req = std::get<ippdme::Request>(result);
-  const std::string_view name = ippdme::method_name(req.command);
-  if (!tags_.try_open(req.tag)) {  // reused while open (NIST: 0001 on E0000)
-    send(ippdme::format_error(ippdme::kServerTag, ErrorCode::IllegalTag, name));
-    if (in_session_) enter_error(ErrorCode::IllegalTag, name);
-    return;
-  }
-  if (req.tag.kind == ippdme::TagKind::Event) {
-    send(ippdme::format_ack(req.tag));
-    execute_fast({req.tag, std::move(req.command)});
+  if (p.tag.kind == ippdme::TagKind::Event) {
+    send(ippdme::format_ack(p.tag));
+    execute_fast(p);
     return;
   }
   if (queue_.size() >= kMaxQueued || !unacked_.empty()) {  // no room: the Ack waits
     unacked_bytes_ += line.text.size();
-    unacked_.push_back({req.tag, std::move(req.command), false, line.text.size()});
+    p.bytes = line.text.size();
+    unacked_.push_back(std::move(p));
     return;
   }
-  send(ippdme::format_ack(req.tag));
-  queue_.push_back({req.tag, std::move(req.command)});
+  send(ippdme::format_ack(p.tag));
+  queue_.push_back(std::move(p));
   pump();
+}
+
+std::string_view IppServer::cause_of(const Pending& p) {
+  return p.refused ? std::string_view(p.refused->second) : ippdme::method_name(p.command);
 }
 
 bool IppServer::guarded(std::string_view what, const std::function<void()>& f) {
@@ -262,9 +278,13 @@ void IppServer::admit_unacked(bool all) {
   }
 }
 
+// Room is made before every command: also while aborted ones drain (an error admits every
+// waiting command at once, so the queue may hold more than kMaxQueued; the Acks still waiting
+// behind them come as soon as it has room again, not with the client's next line).
 void IppServer::pump() {
-  admit_unacked(false);
-  while (!running_ && !queue_.empty() && conn_) {
+  for (;;) {
+    admit_unacked(false);
+    if (running_ || queue_.empty() || !conn_) break;
     running_ = true;
     if (queue_.front().aborted) {
       const Pending p = queue_.front();
@@ -274,7 +294,6 @@ void IppServer::pump() {
       continue;
     }
     if (!run_front()) break;  // a motion step: step_done / step_failed go on
-    admit_unacked(false);
   }
   read();
 }
@@ -284,7 +303,7 @@ void IppServer::pump() {
 bool IppServer::run_front() {
   const Pending p = queue_.front();
   bool answered = true;
-  if (!guarded(ippdme::method_name(p.command), [&] { answered = execute(p); })) {
+  if (!guarded(cause_of(p), [&] { answered = execute(p); })) {
     // The session ends (closed from the io loop); nothing of its queue runs any more.
     queue_.clear();
     unacked_.clear();
@@ -300,7 +319,7 @@ bool IppServer::run_front() {
 }
 
 void IppServer::answer_aborted(const Pending& p) {
-  send(ippdme::format_error(p.tag, ErrorCode::TransactionAborted, ippdme::method_name(p.command)));
+  send(ippdme::format_error(p.tag, ErrorCode::TransactionAborted, cause_of(p)));
   finish(p.tag);
 }
 
@@ -313,7 +332,7 @@ void IppServer::fail(const Tag& tag, ErrorCode code, std::string_view cause) {
   send(ippdme::format_error(tag, code, cause));
   finish(tag);
   // Outside a session there is no error state to enter (StartSession would clear it).
-  if (ippdme::error_info(code).severity >= ippdme::Severity::Error && in_session_ && !error_state_) enter_error(code, cause);
+  if (ippdme::enters_error_state(code) && in_session_ && !error_state_) enter_error(code, cause);
 }
 
 void IppServer::enter_error(ErrorCode code, std::string_view cause) {

@@ -69,6 +69,11 @@ const ErrorInfo& error_info(ErrorCode code);
 // The entry for a number from the wire (GetErrorInfo(n)); null when the spec has none.
 const ErrorInfo* find_error(int number);
 
+// Whether the error puts a session into the error state: severity Error and above, except
+// what only says the server lacks something optional (0501 Unsupported command, 0506 Argument
+// not supported) — no machine error, nothing changed: the program goes on (docs/ippdme.md).
+bool enters_error_state(ErrorCode code);
+
 constexpr int number_of(ErrorCode code) { return static_cast<int>(code); }
 constexpr int severity_number(Severity s) { return static_cast<int>(s); }
 

@@ -20,8 +20,9 @@ struct Request {
 };
 
 struct LineError {
-  // The client's tag when the error belongs to its transaction; nullopt: answer on E0000
-  // (IllegalTag of any kind, and lines whose tag cannot be read).
+  // The client's tag when it can be read (columns 1-5 a tag, column 6 a space or the line's
+  // end): the server acknowledges it, then answers the error on it. nullopt: answer on E0000
+  // (a line whose tag cannot be read).
   std::optional<Tag> tag;
   ErrorCode code;
   std::string cause;  // F3: the method name when it was read, else the start of the line
@@ -36,6 +37,9 @@ using LineResult = std::variant<Request, LineError>;
 LineResult parse_line(std::string_view line);
 // A framed line: its fault first (IllegalCharacter, or ProtocolError for an overlong line).
 LineResult parse_framed(const FramedLine& line);
+
+// The client's tag of a line, when it can be read (see LineError::tag).
+std::optional<Tag> readable_tag(std::string_view line);
 
 // The tag an error is sent on: the client's, unless there is none or it is already open.
 Tag answer_tag(const LineError& error, const TagTracker& open_tags);

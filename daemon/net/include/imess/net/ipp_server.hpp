@@ -81,8 +81,11 @@ class IppServer {
     ippdme::Command command;
     bool aborted = false;  // an error came while a move ran: 0006 when its turn comes, after that move's `%`
     std::size_t bytes = 0;  // its line's length while its Ack waits
+    // A line the library refused (its tag readable): acknowledged like a command, answered
+    // with this error in its turn (docs/ippdme.md, "Lines the library refuses").
+    std::optional<std::pair<ippdme::ErrorCode, std::string>> refused;
   };
-  enum class Step : unsigned char { None, Wait, GoTo, PtMeas, Retract, Home };
+  enum class Step : unsigned char { None, Wait, GoTo, PtMeas, Retract, Home, Reset };
   struct MoveDaemon {
     ippdme::Tag tag;
     std::optional<double> time, dis;
@@ -105,6 +108,7 @@ class IppServer {
   void abort_queued();
   bool run_front();                             // the queue's front: answered (true) or a motion step started
   void answer_aborted(const Pending& p);        // 0006 and its `%`
+  static std::string_view cause_of(const Pending& p);  // F3: the method, or what a refused line began with
   void admit_unacked(bool all);                          // every queued transaction: 0006 + `%`
   bool claim_control(bool at_start, std::string& why);  // the session owns the machine
   void release_control();
@@ -114,7 +118,6 @@ class IppServer {
   void execute_fast(const Pending& p);
   void get_props(const ippdme::Tag& tag, const std::vector<std::string>& paths, std::string_view cause);
   void set_props(const ippdme::Tag& tag, const std::vector<ippdme::PropertySetting>& settings, std::string_view cause);
-  bool items_supported(const std::vector<ippdme::Item>& items) const;
   std::string position_payload(const std::vector<ippdme::Item>& items) const;
   void change_tool(std::string_view name);
   // ipp_motion.cpp: GoTo, PtMeas, Home on the Server's planner
@@ -122,6 +125,8 @@ class IppServer {
   bool start_goto(const Pending& p, const ippdme::GoTo& c);
   bool start_ptmeas(const Pending& p, const ippdme::PtMeas& c);
   bool start_home(const Pending& p);
+  bool machine_faulted() const;                 // the motion core is in its fault state
+  bool start_reset(const Pending& p);           // ClearAllErrors on a faulted machine: the core's Reset
   enum class Planned : unsigned char { Yes, Busy, OutOfTravel, Refused };  // Busy: the machine still moves
   Planned plan_lines(std::vector<planner::Line> lines, std::string& why);
   static ippdme::ErrorCode refusal_error(Planned p);  // OutOfTravel 2500, else 0511
