@@ -1,6 +1,7 @@
 // MotionCore: the 1996 behaviour (jog, limits, probe hit + retract, hand hits, idle loop
 // opening, homing) on top of a MotionBackend, in one allocation-free cycle.
 #include "imess/core/motion_core.hpp"
+#include "imess/core/path_machine.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -47,19 +48,9 @@ double& param_ref(CoreParams& p, ParamId id) noexcept {
 
 double param_value(const CoreParams& p, ParamId id) noexcept { return param_ref(const_cast<CoreParams&>(p), id); }
 
-namespace {
-CoreConfig resolved(CoreConfig c) {
-  for (auto& a : c.axes) {  // the unused entries too: they are never moved
-    if (a.max_velocity <= 0) a.max_velocity = c.max_velocity;
-    if (a.max_accel <= 0) a.max_accel = c.params.max_accel;
-  }
-  return c;
-}
-}  // namespace
-
 MotionCore::MotionCore(hal::MotionBackend& hardware, CoreConfig config, hal::SimHooks* sim)
     : hw_(hardware),
-      config_(resolved(std::move(config))),
+      config_(resolved_limits(std::move(config))),
       limits_(config_),
       sim_(sim),
       params_out_(config_.params),
