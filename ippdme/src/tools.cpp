@@ -90,6 +90,12 @@ bool ToolBox::change(std::string_view name) {
   return true;
 }
 
+double ToolBox::lowered(Param p) const {
+  const int i = active_ < 0 ? last_active_ : active_;
+  const double a = acts_[i][static_cast<int>(p)];
+  return a < tools_[i].params[static_cast<int>(p)].max ? a : 0;
+}
+
 bool ToolBox::find_tool(std::string_view name) {
   const int i = name == kBaseTool ? base() : find(name);
   if (i < 0) return false;

@@ -55,6 +55,16 @@ TEST_CASE("tools: SetProp keeps Act within Min and Max (0504 when clamped) and o
   CHECK(box.get("Probe.Name").error == ErrorCode::BadProperty);
 }
 
+TEST_CASE("tools: lowered gives Act only when the client set it below Max (a limit to apply)") {
+  ToolBox box({tool("RefTool", 2, 5)});
+  CHECK(box.lowered(Param::GoToAccel) == 10);  // Def 10 lies below Max 100
+  box.set("Tool.GoToPar.Accel", 100);
+  CHECK(box.lowered(Param::GoToAccel) == 0);   // at Max: nothing to apply
+  box.set("Tool.GoToPar.Accel", 50);
+  CHECK(box.lowered(Param::GoToAccel) == 50);
+  CHECK(box.lowered(Param::PtMeasAccel) == 10);
+}
+
 TEST_CASE("tools: a tool change resets Act to the new tool's Def, an unknown name leaves UnDefTool") {
   ToolBox box({tool("RefTool", 2, 5), tool("Star1", 1.5, 3)});
   box.set("Tool.PtMeasPar.Speed", 9);

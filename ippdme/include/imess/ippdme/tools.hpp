@@ -72,6 +72,8 @@ class ToolBox {
   std::string_view active_name() const { return active_ < 0 ? kUnDefTool : std::string_view(tools_[active_].name); }
   // The active tool's Act value (while UnDefTool: the last active tool's, as GoTo moves on).
   double act(Param p) const { return acts_[active_ < 0 ? last_active_ : active_][static_cast<int>(p)]; }
+  // Act when the client set it below Max (a limit to apply, e.g. an acceleration), else 0.
+  double lowered(Param p) const;
 
   // GetProp item `path` ("Tool.PtMeasPar.Speed", "Tool.GoToPar.Speed.Max", "Tool.Name",
   // "FoundTool.Name"); the value is a call named by the path as asked.
