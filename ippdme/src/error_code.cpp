@@ -55,10 +55,33 @@ const ErrorInfo& error_info(ErrorCode code) {
   return kErrors[5];  // ProtocolError; unreachable for a declared code
 }
 
-bool enters_error_state(ErrorCode code) {
-  if (code == ErrorCode::UnsupportedCommand || code == ErrorCode::ArgumentNotSupported) return false;
-  return error_info(code).severity >= Severity::Error;
+bool is_refusal(ErrorCode code) {
+  switch (code) {
+    case E::IllegalTag: case E::NoSpaceAtPos6: case E::IllegalCharacter: case E::ProtocolError:
+    case E::UnsupportedCommand: case E::IncorrectArguments: case E::ArgumentNotRecognized:
+    case E::ArgumentNotSupported: case E::IllegalCommand: case E::BadContext: case E::BadArgument:
+    case E::BadProperty: case E::DaemonDoesNotExist: case E::DaemonAlreadyExists:
+    case E::ThetaOutOfRange: case E::VectorHasNoNorm:
+      return true;
+    default:
+      return false;
+  }
 }
+
+bool is_query(std::string_view method) {
+  constexpr std::string_view kQueries[] = {"GetErrorInfo", "GetProp",       "GetPropE",        "EnumProp",
+                                           "EnumAllProp",  "GetDMEVersion", "IsHomed",         "IsUserEnabled",
+                                           "GetMachineClass", "GetErrStatusE", "GetXtdErrStatus", "Get",
+                                           "EnumTools",    "FindTool",      "GetChangeToolAction", "GetCoordSystem",
+                                           "GetCsyTransformation"};
+  for (auto q : kQueries)
+    if (q == method) return true;
+  return false;
+}
+
+bool enters_error_state(ErrorCode code) { return !is_refusal(code) && error_info(code).severity >= Severity::Error; }
+
+bool enters_error_state(ErrorCode code, std::string_view method) { return enters_error_state(code) && !is_query(method); }
 
 const ErrorInfo* find_error(int number) {
   for (const auto& e : kErrors)

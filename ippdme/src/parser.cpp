@@ -49,6 +49,12 @@ std::optional<Item> item_named(std::string_view name) {
   return std::nullopt;
 }
 bool report_only(Item i) { return i == Item::IJK || i == Item::ER || i == Item::Q; }
+// An item asked for twice (`Get(X(), X())`) is refused (0502), as a repeated GoTo axis is.
+bool repeated(const std::vector<Item>& items, Item i) {
+  for (Item seen : items)
+    if (seen == i) return true;
+  return false;
+}
 
 // Get: known position items with empty parentheses.
 Step read_get_items(const Value& call, Checked& out) {
@@ -58,7 +64,7 @@ Step read_get_items(const Value& call, Checked& out) {
     auto item = item_named(a.text);
     if (!item) return Fail{ErrorCode::ArgumentNotRecognized};
     if (report_only(*item)) return Fail{ErrorCode::BadContext};
-    if (!a.args.empty()) return Fail{ErrorCode::IncorrectArguments};
+    if (!a.args.empty() || repeated(out.items, *item)) return Fail{ErrorCode::IncorrectArguments};
     out.items.push_back(*item);
   }
   return std::nullopt;
@@ -70,7 +76,7 @@ Step read_ptmeas_report(const Value& call, Checked& out) {
   for (const auto& a : call.args) {
     auto item = a.kind == ValueKind::Call ? item_named(a.text) : std::nullopt;
     if (!item) return Fail{ErrorCode::BadProperty};
-    if (!a.args.empty()) return Fail{ErrorCode::IncorrectArguments};
+    if (!a.args.empty() || repeated(out.items, *item)) return Fail{ErrorCode::IncorrectArguments};
     out.items.push_back(*item);
   }
   return std::nullopt;
@@ -95,7 +101,7 @@ Step read_move_report(const Value& call, Checked& out) {
     auto item = a.kind == ValueKind::Call ? item_named(a.text) : std::nullopt;
     if (!item) return Fail{ErrorCode::BadProperty};
     if (report_only(*item)) return Fail{ErrorCode::BadContext};
-    if (!a.args.empty()) return Fail{ErrorCode::IncorrectArguments};
+    if (!a.args.empty() || repeated(out.items, *item)) return Fail{ErrorCode::IncorrectArguments};
     out.items.push_back(*item);
   }
   if (out.items.empty()) return Fail{ErrorCode::BadProperty};
@@ -306,8 +312,10 @@ LineResult parse_line(std::string_view line) {
   CallResult read = parse_call(text);
   if (!read.call) {
     const std::string_view name = leading_name(text);
-    return LineError{tag, read.error ? read.error->code : ErrorCode::ProtocolError,
-                     cause_from(name.empty() ? text : name)};
+    ErrorCode code = read.error ? read.error->code : ErrorCode::ProtocolError;
+    // Wrong arguments of a method this library does not know: the method is the fault.
+    if (code == ErrorCode::IncorrectArguments && !find_command(name)) code = ErrorCode::IllegalCommand;
+    return LineError{tag, code, cause_from(name.empty() ? text : name)};
   }
   const Value& call = *read.call;
   const CommandSpec* spec = find_command(call.text);

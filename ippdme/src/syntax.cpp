@@ -90,7 +90,9 @@ class Reader {
         ++pos_;
         return true;
       }
-      return fail();
+      // Another value where a comma or `)` belongs (`X(1 0)`): the call's arguments are
+      // wrong (0502); the line ending inside the call is the line's fault (0008).
+      return fail(peek() == '\0' ? ErrorCode::ProtocolError : ErrorCode::IncorrectArguments);
     }
   }
 
@@ -124,7 +126,8 @@ class Reader {
       v.number = *n;
       return true;
     }
-    return fail();
+    // A comma or `)` where a value belongs (`X(1,)`, `X(,1)`): a missing argument (0502).
+    return fail(c == ',' || c == ')' ? ErrorCode::IncorrectArguments : ErrorCode::ProtocolError);
   }
 
  public:

@@ -59,31 +59,45 @@ ToolBox::ToolBox(std::vector<ToolSpec> tools) : tools_(std::move(tools)) {
   none.name = std::string(kNoTool);
   none.radius = 0;
   none.measures = false;
+  ToolSpec base = none;
+  base.name = std::string(kBaseTool);
+  base.measures = true;  // its probing values are the machine's; it is never active
   tools_.push_back(std::move(none));
+  tools_.push_back(std::move(base));
+  acts_.resize(tools_.size());
+  for (std::size_t i = 0; i < tools_.size(); ++i)
+    for (int p = 0; p < kParamCount; ++p) acts_[i][p] = tools_[i].params[p].def;
   change(tools_.front().name);
 }
 
 int ToolBox::find(std::string_view name) const {
-  for (std::size_t i = 0; i < tools_.size(); ++i)
+  for (std::size_t i = 0; i + 1 < tools_.size(); ++i)
     if (tools_[i].name == name) return static_cast<int>(i);
   return -1;
 }
 
 std::vector<std::string> ToolBox::names() const {
   std::vector<std::string> out;
-  for (const auto& t : tools_) out.push_back(t.name);
+  for (std::size_t i = 0; i + 1 < tools_.size(); ++i) out.push_back(tools_[i].name);
   return out;
 }
 
 bool ToolBox::change(std::string_view name) {
   active_ = find(name);
   if (active_ < 0) return false;
-  for (int p = 0; p < kParamCount; ++p) act_[p] = tools_[active_].params[p].def;
+  last_active_ = active_;
+  for (int p = 0; p < kParamCount; ++p) acts_[active_][p] = tools_[active_].params[p].def;  // the spec: Def on a change
   return true;
 }
 
+double ToolBox::lowered(Param p) const {
+  const int i = active_ < 0 ? last_active_ : active_;
+  const double a = acts_[i][static_cast<int>(p)];
+  return a < tools_[i].params[static_cast<int>(p)].max ? a : 0;
+}
+
 bool ToolBox::find_tool(std::string_view name) {
-  const int i = find(name);
+  const int i = name == kBaseTool ? base() : find(name);
   if (i < 0) return false;
   found_ = i;
   return true;
@@ -100,10 +114,9 @@ PropertyResult ToolBox::get(std::string_view path) const {
   if (parts.size() < 3 || parts.size() > 4) return error(ErrorCode::BadProperty);
   const auto p = param_of(parts[1], parts[2]);
   if (!p) return error(ErrorCode::BadProperty);
-  if (!t.measures && parts[1] == "PtMeasPar") return error(ErrorCode::IllegalCommand);  // NoTool measures nothing (NIST: 0507)
+  if (!t.measures && parts[1] == "PtMeasPar") return error(ErrorCode::ToolNotDefined);  // NoTool has no probing values
   const Range& r = t.params[static_cast<int>(*p)];
-  const double act = tool ? act_[static_cast<int>(*p)] : r.def;
-  double v = act;
+  double v = acts_[index][static_cast<int>(*p)];
   if (parts.size() == 4) {
     if (parts[3] == "Min") v = r.min;
     else if (parts[3] == "Max") v = r.max;
@@ -115,16 +128,23 @@ PropertyResult ToolBox::get(std::string_view path) const {
 
 PropertyResult ToolBox::set(std::string_view path, double value) {
   const auto parts = split(path);
-  if (parts[0] != "Tool") return error(ErrorCode::BadProperty);  // FoundTool's values are read only
-  if (active_ < 0) return error(ErrorCode::ToolNotDefined);
-  if (parts.size() < 3 || parts.size() > 4 || (parts.size() == 4 && parts[3] != "Act")) return error(ErrorCode::BadProperty);
+  const bool tool = parts[0] == "Tool";
+  if (!tool && parts[0] != "FoundTool") return error(ErrorCode::BadProperty);
+  const int index = tool ? active_ : found_;
+  if (index < 0) return error(ErrorCode::ToolNotDefined);
+  const ToolSpec& t = tools_[index];
+  if (parts.size() == 2 && parts[1] == "Name") return error(ErrorCode::BadArgument);  // read only
+  if (parts.size() < 3 || parts.size() > 4) return error(ErrorCode::BadProperty);
   const auto p = param_of(parts[1], parts[2]);
   if (!p) return error(ErrorCode::BadProperty);
-  const ToolSpec& t = tools_[active_];
-  if (!t.measures && parts[1] == "PtMeasPar") return error(ErrorCode::IllegalCommand);
+  if (parts.size() == 4 && parts[3] != "Act") {
+    const bool limit = parts[3] == "Min" || parts[3] == "Max" || parts[3] == "Def";
+    return error(limit ? ErrorCode::BadArgument : ErrorCode::BadProperty);  // a limit is read only
+  }
+  if (!t.measures && parts[1] == "PtMeasPar") return error(ErrorCode::ToolNotDefined);
   const Range& r = t.params[static_cast<int>(*p)];
   const double kept = std::clamp(value, r.min, r.max);
-  act_[static_cast<int>(*p)] = kept;
+  acts_[index][static_cast<int>(*p)] = kept;
   return {std::nullopt, kept != value ? std::optional(ErrorCode::ArgumentOutOfRange) : std::nullopt, kept != value};
 }
 
@@ -161,7 +181,7 @@ std::optional<std::vector<PropertyEntry>> ToolBox::enumerate(std::string_view pa
   }
   if (!is_block(parts[1])) return std::nullopt;
   if (!t.measures && parts[1] == "PtMeasPar") {
-    err = ErrorCode::IllegalCommand;
+    err = ErrorCode::ToolNotDefined;
     return std::nullopt;
   }
   if (parts.size() == 2) {

@@ -166,6 +166,7 @@ AppendResult Planner::queue_line(const Line& l) {
     v = std::min(v, machine_.axes[i].max_velocity / u);
     a = std::min(a, machine_.axes[i].max_accel / u);
   }
+  if (l.max_accel > 0) a = std::min(a, l.max_accel);
   v = std::min(v, L / (options_.min_segment_periods * options_.loop_period));
   seg.length = L;
   seg.a = a;

@@ -111,7 +111,7 @@ Session read_session(const std::vector<Entry>& out, long period_us) {
 // "00012 ! Error(3, 2500, GoTo, "text")" -> severity, number, text.
 struct ErrorLine {
   int severity = -1, number = -1;
-  std::string text;
+  std::string cause, text;  // F3 (a method name, unquoted) and F4
 };
 
 std::optional<ErrorLine> parse_error(const std::string& payload) {
@@ -123,6 +123,8 @@ std::optional<ErrorLine> parse_error(const std::string& payload) {
   const auto open = payload.rfind(", \"");
   if (open == std::string::npos || payload.size() < open + 5 || payload[payload.size() - 2] != '"') return std::nullopt;
   e.text = payload.substr(open + 3, payload.size() - open - 5);
+  const auto cause = payload.find(", ", payload.find(", ") + 2) + 2;
+  if (cause < open) e.cause = payload.substr(cause, open - cause);
   return e;
 }
 
@@ -148,9 +150,17 @@ std::map<int, double> coordinates(const std::string& payload) {
   return out;
 }
 
-// The error state (docs/ippdme.md): an error of severity 2 or more, except 0501 Unsupported
-// command and 0506 Argument not supported (the server lacks something optional: no error state).
-bool enters_error_state(const ErrorLine& e) { return e.severity >= 2 && e.number != 501 && e.number != 506; }
+// The error state (docs/ippdme.md): an error of severity 2 or more, except a refusal (the line
+// not executed for what it says: 0001 0002 0007 0008, 0501 0502 0505-0510, 0513 0515, 1007
+// 1010) and except any error of a query (Get…, Enum…, FindTool …: it changes nothing).
+bool enters_error_state(const ErrorLine& e) {
+  static const std::set<int> refusals{1, 2, 7, 8, 501, 502, 505, 506, 507, 508, 509, 510, 513, 515, 1007, 1010};
+  static const std::set<std::string> queries{"GetErrorInfo", "GetProp", "GetPropE", "EnumProp", "EnumAllProp",
+                                             "GetDMEVersion", "IsHomed", "IsUserEnabled", "GetMachineClass",
+                                             "GetErrStatusE", "GetXtdErrStatus", "Get", "EnumTools", "FindTool",
+                                             "GetChangeToolAction", "GetCoordSystem", "GetCsyTransformation"};
+  return e.severity >= 2 && !refusals.count(e.number) && !queries.count(e.cause);
+}
 
 // The tag a sent line carries: its first five characters when a space follows them.
 std::optional<std::string> sent_tag(const std::string& line) {

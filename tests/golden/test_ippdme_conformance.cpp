@@ -135,3 +135,20 @@ TEST_CASE("I++ DME conformance: a machine fault is visible and cleared by ClearA
 }
 
 }  // namespace imess::golden
+
+namespace imess::golden {
+
+// Issue 25, section 2: SetProp(Tool.GoToPar.Accel(50.0)) is accepted and applied. A 200 mm GoTo
+// at 50 mm/s takes about 4.05 s with the machine's 1000 mm/s2, 5 s with 50 mm/s2 (1 s to reach
+// the speed, 1 s to stop): after 4.5 s the first has arrived, the second not yet.
+TEST_CASE("I++ DME conformance: a lowered GoToPar.Accel slows the session's moves down") {
+  auto arrived_after = [](const std::string& set_accel, const std::string& wait) {
+    const auto lines = session_lines(kStart + set_accel + "2> 00003 GoTo(Z(300))\n= " + wait + "\n");
+    return index_of(lines, "00003 %") >= 0;
+  };
+  CHECK(arrived_after("2> 00002 GetDMEVersion()\n", "4500 ms"));
+  CHECK_FALSE(arrived_after("2> 00002 SetProp(Tool.GoToPar.Accel(50.0))\n", "4500 ms"));
+  CHECK(arrived_after("2> 00002 SetProp(Tool.GoToPar.Accel(50.0))\n", "5500 ms"));
+}
+
+}  // namespace imess::golden

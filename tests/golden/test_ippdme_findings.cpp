@@ -37,7 +37,9 @@ long index_of(const std::vector<std::string>& lines, const std::string& line) {
 // IPPDME.md §3: completions come back in the order the commands were started. A garbled line
 // while a GoTo runs (so do a reused tag, or a fast command's error) puts the session into the
 // error state; the Get queued behind the GoTo got its 0006 and `%` before the GoTo's `%`. Fixed
-// (the queue is answered in its turn after the move's `%`): kept as a regression case.
+// (the queue is answered in its turn after the move's `%`): kept as a regression case. (Since
+// issue 25 a garbled line is a refusal and no longer enters the error state: the order holds
+// either way.)
 TEST_CASE("I++ DME finding: an error while a GoTo runs answers the queue behind it after the GoTo") {
   const auto lines = session_lines(
       "@ config/sim-servo-card.json\n"

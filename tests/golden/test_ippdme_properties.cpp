@@ -13,7 +13,7 @@
 //     the library's parser and the open tags say — `tag &` for every line whose tag can be
 //     read and is free (a refused line's `tag !` with the parser's error number comes after its
 //     `&`, in its turn), or one `E0000 !` for an unreadable or reused tag; no line ever carries
-//     a tag the client did not send; 0501 and 0506 leave the error state alone;
+//     a tag the client did not send; refusals and queries' errors leave the error state alone;
 //     every accepted command gets exactly one `%` (unless its client dropped first)
 //     and nothing on its tag afterwards but its move daemon's reports; command tags complete
 //     in the order they were accepted; every `& # ! %` line carries an open tag or E0000;

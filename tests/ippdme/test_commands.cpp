@@ -158,7 +158,7 @@ TEST_CASE("ippdme commands: optional spaces, any order, numbers in every form") 
   CHECK(parsed("00001 GetErrorInfo(5.02E2)").command == Command{GetErrorInfo{502}});
   CHECK(parsed("E0001 OnMoveReportE ( X ( ) , Dis(1), Time(0))").command ==
         Command{OnMoveReportE{0.0, 1.0, {Item::X}}});
-  CHECK(parsed("00001 Get(X(), X())").command == Command{Get{{Item::X, Item::X}}});
+  CHECK(parsed("00001 Get(Z(), X())").command == Command{Get{{Item::Z, Item::X}}});  // the order asked
   CHECK(parsed("00001 GetProp(FoundTool.Name(), XX.Vendor.Prop())").command ==
         Command{GetProp{{"FoundTool.Name", "XX.Vendor.Prop"}}});
   CHECK(parsed("99999 Home()").tag == Tag{TagKind::Command, 99999});

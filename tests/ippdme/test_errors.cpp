@@ -65,7 +65,6 @@ const std::vector<ErrCase> kCases{
     {"00001 Home() ", E::ProtocolError, kT1},
     {"00001 Home", E::ProtocolError, kT1},
     {"00001 GoTo(X(1)", E::ProtocolError, kT1},
-    {"00001 GoTo(X(1 0))", E::ProtocolError, kT1},
     {"00001 GoTo(X(12345678901234567))", E::ProtocolError, kT1},
     {"00001 GoTo(X(1e1000))", E::ProtocolError, kT1},
     {"00001 ChangeTool(\"Ref)", E::ProtocolError, kT1},
@@ -76,6 +75,7 @@ const std::vector<ErrCase> kCases{
     {"00001 Foo(1, 2)", E::IllegalCommand, kT1},
     {"00001 XX.Cmd()", E::IllegalCommand, kT1},
     {"E0001 FooE()", E::IllegalCommand, kE1},
+    {"00001 Foo(X(1,)", E::IllegalCommand, kT1},  // wrong arguments of an unknown method
     // 0501: known 1.4 methods not implemented
     {"00001 ScanOnCircle(1, 2, 3)", E::UnsupportedCommand, kT1},
     {"00001 AlignTool(0, 0, 1, 0)", E::UnsupportedCommand, kT1},
@@ -94,6 +94,15 @@ const std::vector<ErrCase> kCases{
     {"00001 GoTo(X(1), X(2))", E::IncorrectArguments, kT1},
     {"00001 GoTo(5)", E::IncorrectArguments, kT1},
     {"00001 GoTo(X(1e999))", E::IncorrectArguments, kT1},
+    // 0502 too: readable tokens that make no argument list (the NIST server's `GoTo(X(1,)`)
+    {"00001 GoTo(X(1,)", E::IncorrectArguments, kT1},
+    {"00001 GoTo(X(1 0))", E::IncorrectArguments, kT1},
+    {"00001 GoTo(X(1),)", E::IncorrectArguments, kT1},
+    // 0502 too: an item asked for twice (issue 25: `Get(X(), X())` was answered twice)
+    {"00001 Get(X(), X())", E::IncorrectArguments, kT1},
+    {"00001 Get(X(), Y(), Tool.A(), Tool.A())", E::IncorrectArguments, kT1},
+    {"00001 OnPtMeasReport(X(), IJK(), IJK())", E::IncorrectArguments, kT1},
+    {"E0001 OnMoveReportE(Dis(1), Z(), Z())", E::IncorrectArguments, kE1},
     {"00001 PtMeas()", E::IncorrectArguments, kT1},
     {"00001 PtMeas(IJK(0, 0, 1))", E::IncorrectArguments, kT1},
     {"00001 PtMeas(X(1), IJK(0, 1))", E::IncorrectArguments, kT1},
@@ -266,16 +275,30 @@ TEST_CASE("ippdme errors: the table holds the spec's numbers, severities and tex
   CHECK(error_info(E::UseClearAllErrorsToContinue).text == "Use ClearAllErrors to continue");
 }
 
-// Issue 25: only what the server lacks (an optional command, a probe head's or a rotary
-// table's argument) is no error state; every other error of severity 2 or more is.
+// Issue 25: a refusal (the line was not executed for what it says: its tag, characters,
+// syntax or arguments, an optional command the server lacks, a daemon not there or already
+// there) is no error state; what the machine failed to do is, and so is every other error of
+// severity 2 or more. A query's errors never are.
 TEST_CASE("ippdme errors: which errors put a session into the error state") {
+  const std::set<E> refusals{E::IllegalTag,        E::NoSpaceAtPos6,    E::IllegalCharacter,      E::ProtocolError,
+                             E::UnsupportedCommand, E::IncorrectArguments, E::ArgumentNotRecognized, E::ArgumentNotSupported,
+                             E::IllegalCommand,    E::BadContext,        E::BadArgument,           E::BadProperty,
+                             E::DaemonDoesNotExist, E::DaemonAlreadyExists, E::ThetaOutOfRange,    E::VectorHasNoNorm};
   for (const auto& e : error_table()) {
     INFO(number_of(e.code));
-    const bool lacks = e.code == E::UnsupportedCommand || e.code == E::ArgumentNotSupported;
-    CHECK(enters_error_state(e.code) == (!lacks && e.severity >= Severity::Error));
+    CHECK(is_refusal(e.code) == (refusals.count(e.code) == 1));
+    CHECK(enters_error_state(e.code) == (!refusals.count(e.code) && e.severity >= Severity::Error));
+    CHECK_FALSE(enters_error_state(e.code, "GetProp"));
+    CHECK(enters_error_state(e.code, "GoTo") == enters_error_state(e.code));
   }
-  CHECK_FALSE(enters_error_state(E::UnsupportedCommand));
-  CHECK_FALSE(enters_error_state(E::ArgumentOutOfRange));
-  CHECK(enters_error_state(E::MachineLimitEncountered));
-  CHECK(enters_error_state(E::IncorrectArguments));
+  for (E e : {E::UnsupportedCommand, E::IncorrectArguments, E::IllegalCommand, E::ProtocolError, E::VectorHasNoNorm,
+              E::ArgumentOutOfRange, E::NoDaemonsAreActive})
+    CHECK_FALSE(enters_error_state(e));
+  for (E e : {E::MachineLimitEncountered, E::MachineInErrorState, E::SurfaceNotFound, E::IllegalTouch, E::TransactionAborted,
+              E::ToolNotFound, E::ErrorProcessingMethod})
+    CHECK(enters_error_state(e));
+  CHECK_FALSE(enters_error_state(E::ToolNotFound, "FindTool"));
+  CHECK(enters_error_state(E::ToolNotFound, "ChangeTool"));
+  CHECK_FALSE(enters_error_state(E::ToolNotDefined, "EnumProp"));
+  CHECK(enters_error_state(E::ToolNotDefined, "SetProp"));
 }

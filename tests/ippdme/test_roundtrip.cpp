@@ -2,6 +2,8 @@
 // random byte mutations of valid lines always give a Request or a known error, never a throw.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include <cmath>
 #include <random>
 #include <string>
@@ -50,7 +52,10 @@ class Gen {
   }
   std::vector<Item> items(bool report) {
     std::vector<Item> out;
-    for (int n = integer(1, 8); n > 0; --n) out.push_back(static_cast<Item>(integer(0, report ? 9 : 6)));
+    for (int n = integer(1, 8); n > 0; --n) {  // each item at most once (a repeated one is 0502)
+      const auto item = static_cast<Item>(integer(0, report ? 9 : 6));
+      if (std::find(out.begin(), out.end(), item) == out.end()) out.push_back(item);
+    }
     return out;
   }
   Axes axes(bool tool_axes) {

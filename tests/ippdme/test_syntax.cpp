@@ -97,12 +97,20 @@ TEST_CASE("ippdme spaces: allowed around commas, around ( and before ), nowhere 
   CHECK(ref.args.size() == 2);
   CHECK(call("Home( )").args.empty());
   CHECK(call("Home ()").args.empty());
-  for (const char* bad : {" GoTo(X(1))", "GoTo(X(1)) ", "Go To(X(1))", "GoTo(X(1 2))", "GoTo(X(- 1))", "GoTo(X(1. 5))",
-                          "Tool. Name()", "Get(Tool .A())", "GoTo(X(1))x", "GoTo", "GoTo(", "GoTo(X(1)", "GoTo(X(1)))",
-                          "GoTo(,)", "GoTo(X(1),)", "GoTo(,X(1))", "GoTo(X(1)Y(2))", "A(\"x)", "A(\"x\"y)", "(1)", "1(2)",
+  // The line itself is garbled (a token that cannot be read, a space inside a name or a
+  // number, the line ending inside the call, something after it): 0008.
+  for (const char* bad : {" GoTo(X(1))", "GoTo(X(1)) ", "Go To(X(1))", "GoTo(X(- 1))", "Tool. Name()", "GoTo(X(1))x",
+                          "GoTo", "GoTo(", "GoTo(X(1)", "GoTo(X(1)))", "GoTo(X(1),", "A(\"x)", "(1)", "1(2)",
                           "\"A\"()", "A(#)", ""}) {
     INFO(bad);
     CHECK(syntax_error(bad) == ErrorCode::ProtocolError);
+  }
+  // Readable tokens that make no argument list (a missing argument, two values without a
+  // comma between them): the call's arguments are wrong, 0502 (the NIST server's answer).
+  for (const char* bad : {"GoTo(X(1 2))", "GoTo(X(1. 5))", "Get(Tool .A())", "GoTo(,)", "GoTo(X(1),)", "GoTo(,X(1))",
+                          "GoTo(X(1)Y(2))", "A(\"x\"y)", "GoTo(X(1,)", "GoTo(X(1,))", "GoTo(X(,1))"}) {
+    INFO(bad);
+    CHECK(syntax_error(bad) == ErrorCode::IncorrectArguments);
   }
   CHECK(syntax_error("GoTo(X(1e999))") == ErrorCode::IncorrectArguments);
 }

@@ -43,12 +43,26 @@ TEST_CASE("tools: SetProp keeps Act within Min and Max (0504 when clamped) and o
   CHECK(box.act(Param::PtMeasSpeed) == 20);
   r = box.set("Tool.PtMeasPar.Speed", -3);
   CHECK(box.act(Param::PtMeasSpeed) == 0.5);
-  CHECK(box.set("Tool.PtMeasPar.Speed.Max", 30).error == ErrorCode::BadProperty);
-  CHECK(box.set("Tool.Name", 1).error == ErrorCode::BadProperty);
-  CHECK(box.set("FoundTool.PtMeasPar.Speed", 3).error == ErrorCode::BadProperty);
+  // A property that exists but is read only: a bad argument (0509); a name that is no
+  // property: a bad property (0510).
+  CHECK(box.set("Tool.PtMeasPar.Speed.Max", 30).error == ErrorCode::BadArgument);
+  CHECK(box.set("Tool.GoToPar.Accel.Def", 30).error == ErrorCode::BadArgument);
+  CHECK(box.set("Tool.Name", 1).error == ErrorCode::BadArgument);
+  CHECK(box.set("Tool.PtMeasPar.Speed.Top", 3).error == ErrorCode::BadProperty);
+  CHECK(box.set("FoundTool.PtMeasPar.Speed", 3).error == ErrorCode::ToolNotDefined);  // nothing found yet
   CHECK(box.set("Tool.PtMeasPar.Nothing", 3).error == ErrorCode::BadProperty);
   CHECK(box.get("Tool.PtMeasPar").error == ErrorCode::BadProperty);  // a block is no value
   CHECK(box.get("Probe.Name").error == ErrorCode::BadProperty);
+}
+
+TEST_CASE("tools: lowered gives Act only when the client set it below Max (a limit to apply)") {
+  ToolBox box({tool("RefTool", 2, 5)});
+  CHECK(box.lowered(Param::GoToAccel) == 10);  // Def 10 lies below Max 100
+  box.set("Tool.GoToPar.Accel", 100);
+  CHECK(box.lowered(Param::GoToAccel) == 0);   // at Max: nothing to apply
+  box.set("Tool.GoToPar.Accel", 50);
+  CHECK(box.lowered(Param::GoToAccel) == 50);
+  CHECK(box.lowered(Param::PtMeasAccel) == 10);
 }
 
 TEST_CASE("tools: a tool change resets Act to the new tool's Def, an unknown name leaves UnDefTool") {
@@ -76,12 +90,50 @@ TEST_CASE("tools: FoundTool names the last tool FindTool found and reads its Def
   CHECK(text(box.get("FoundTool.Name")) == "FoundTool.Name(\"Star1\")");  // unchanged
 }
 
-TEST_CASE("tools: NoTool moves but measures nothing: its PtMeasPar is refused with 0507 (as the NIST server)") {
+TEST_CASE("tools: FoundTool's values are set as Tool's are, clamped the same, a change to it starts at Def") {
+  ToolBox box({tool("RefTool", 2, 5), tool("Star1", 1.5, 3)});
+  REQUIRE(box.find_tool("Star1"));
+  auto r = box.set("FoundTool.PtMeasPar.Speed", 4);
+  CHECK_FALSE(r.error);
+  CHECK(text(box.get("FoundTool.PtMeasPar.Speed")) == "FoundTool.PtMeasPar.Speed(4)");
+  CHECK(text(box.get("Tool.PtMeasPar.Speed")) == "Tool.PtMeasPar.Speed(5)");  // the active tool is another
+  r = box.set("FoundTool.PtMeasPar.Speed.Act", 99);
+  CHECK(r.error == ErrorCode::ArgumentOutOfRange);
+  CHECK(text(box.get("FoundTool.PtMeasPar.Speed")) == "FoundTool.PtMeasPar.Speed(20)");
+  REQUIRE(box.find_tool("RefTool"));  // FoundTool is the active tool: the same values
+  CHECK_FALSE(box.set("FoundTool.GoToPar.Speed", 42).error);
+  CHECK(box.act(Param::GoToSpeed) == 42);
+  REQUIRE(box.change("Star1"));
+  CHECK(box.act(Param::PtMeasSpeed) == 3);  // the spec: a tool change sets Act to Def
+}
+
+TEST_CASE("tools: FindTool finds BaseTool, the machine's base tool, which is neither listed nor changed to") {
+  ToolBox box({tool("RefTool", 2, 5)});
+  CHECK(box.names() == std::vector<std::string>{"RefTool", "NoTool"});
+  REQUIRE(box.find_tool("BaseTool"));
+  CHECK(text(box.get("FoundTool.Name")) == "FoundTool.Name(\"BaseTool\")");
+  CHECK(text(box.get("FoundTool.PtMeasPar.Speed.Max")) == "FoundTool.PtMeasPar.Speed.Max(20)");
+  CHECK_FALSE(box.set("FoundTool.PtMeasPar.Speed", 4).error);
+  CHECK(text(box.get("FoundTool.PtMeasPar.Speed")) == "FoundTool.PtMeasPar.Speed(4)");
+  CHECK(box.set("FoundTool.GoToPar.Accel", 500).error == ErrorCode::ArgumentOutOfRange);
+  ErrorCode err{};
+  const auto all = box.enumerate("FoundTool", true, err);
+  REQUIRE(all);
+  CHECK(all->size() == 1 + 1 + 2 * 5 + 1 + 5 * 5);
+  CHECK_FALSE(box.exists("BaseTool"));
+  CHECK_FALSE(box.change("BaseTool"));  // cannot be changed to: UnDefTool, as for any unknown name
+  CHECK(box.active() == nullptr);
+}
+
+TEST_CASE("tools: NoTool moves but measures nothing: its PtMeasPar is not defined (1503)") {
   ToolBox box({tool("RefTool", 2, 5)});
   REQUIRE(box.change("NoTool"));
   CHECK_FALSE(box.active()->measures);
-  CHECK(box.get("Tool.PtMeasPar.Speed").error == ErrorCode::IllegalCommand);
-  CHECK(box.set("Tool.PtMeasPar.Speed", 3).error == ErrorCode::IllegalCommand);
+  CHECK(box.get("Tool.PtMeasPar.Speed").error == ErrorCode::ToolNotDefined);
+  CHECK(box.set("Tool.PtMeasPar.Speed", 3).error == ErrorCode::ToolNotDefined);
+  ErrorCode e{};
+  CHECK_FALSE(box.enumerate("Tool.PtMeasPar", false, e));
+  CHECK(e == ErrorCode::ToolNotDefined);
   CHECK(text(box.get("Tool.GoToPar.Speed")) == "Tool.GoToPar.Speed(10)");
   ErrorCode err{};
   const auto entries = box.enumerate("Tool", false, err);
@@ -107,6 +159,7 @@ TEST_CASE("tools: reserved, repeated or malformed names and ranges with Def outs
   CHECK_THROWS_AS(ToolBox({}), std::invalid_argument);
   CHECK_THROWS_AS(ToolBox({tool("NoTool", 1, 5)}), std::invalid_argument);
   CHECK_THROWS_AS(ToolBox({tool("UnDefTool", 1, 5)}), std::invalid_argument);
+  CHECK_THROWS_AS(ToolBox({tool("BaseTool", 1, 5)}), std::invalid_argument);
   CHECK_THROWS_AS(ToolBox({tool("A", 1, 5), tool("A", 2, 5)}), std::invalid_argument);
   CHECK_THROWS_AS(ToolBox({tool("1st", 1, 5)}), std::invalid_argument);
   CHECK_THROWS_AS(ToolBox({tool("A", 1, 50)}), std::invalid_argument);

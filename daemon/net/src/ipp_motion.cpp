@@ -145,7 +145,8 @@ bool IppServer::start_goto(const Pending& p, const ippdme::GoTo& c) {
     fail(p.tag, ErrorCode::MachineLimitEncountered, name);
     return true;
   }
-  const planner::Line line{next_id(), pose_at(target), tools_.act(Param::GoToSpeed), planner::ProbePhase::None};
+  const planner::Line line{next_id(), pose_at(target), tools_.act(Param::GoToSpeed), planner::ProbePhase::None,
+                           tools_.lowered(Param::GoToAccel)};
   if (const auto planned = plan_lines({line}, why); planned != Planned::Yes) {
     if (planned == Planned::Busy) return wait_for_rest();
     spdlog::info("I++ DME: GoTo refused: {}", why);
@@ -208,6 +209,8 @@ bool IppServer::start_ptmeas(const Pending& p, const ippdme::PtMeas& c) {
   }
   if (cycle->approach) lines.push_back(*cycle->approach);
   lines.push_back(cycle->search);
+  for (auto& l : lines)  // GoToPar.Accel / PtMeasPar.Accel when the client lowered them
+    l.max_accel = tools_.lowered(l.probe == planner::ProbePhase::Search ? Param::PtMeasAccel : Param::GoToAccel);
   if (const auto planned = plan_lines(std::move(lines), why); planned != Planned::Yes) {
     if (planned == Planned::Busy) return wait_for_rest();
     spdlog::info("I++ DME: PtMeas refused: {}", why);
@@ -314,7 +317,8 @@ void IppServer::segment_end(const core::Event& e) {
       step_done();
       return;
     }
-    const planner::Line back{next_id(), pose_at(*target), tools_.act(Param::GoToSpeed), planner::ProbePhase::None};
+    const planner::Line back{next_id(), pose_at(*target), tools_.act(Param::GoToSpeed), planner::ProbePhase::None,
+                             tools_.lowered(Param::GoToAccel)};
     std::string why;
     if (const auto planned = plan_lines({back}, why); planned != Planned::Yes) {
       spdlog::info("I++ DME: PtMeas retract refused: {}", why);

@@ -74,9 +74,9 @@ IppServer::IppServer(asio::io_context& io, Server& server, IppConfig config)
         const double goto_def = std::min(p.goto_speed * p.speed_level, vmax);
         const ippdme::Range ranges[ippdme::kParamCount] = {
             {0.1, vmax, goto_def},                                        // GoToPar.Speed
-            {amax, amax, amax},                                           // GoToPar.Accel: the machine's
+            {std::min(1.0, amax), amax, amax},                            // GoToPar.Accel: kept; moves plan with the machine's
             {0.1, std::max(0.1, vmax), std::min(p.probe_speed, vmax)},    // PtMeasPar.Speed
-            {amax, amax, amax},                                           // PtMeasPar.Accel
+            {std::min(1.0, amax), amax, amax},                            // PtMeasPar.Accel
             {0.1, 100, std::clamp(p.prehit_distance, 0.1, 100.0)},        // Approach
             {0.1, 100, std::clamp(p.search_distance, 0.1, 100.0)},        // Search
             {-1, 100, std::clamp(p.retract_distance, 0.0, 100.0)},        // Retract (< 0: back to the approach point)
@@ -219,7 +219,7 @@ void IppServer::on_line(const ippdme::FramedLine& line) {
     if (!tags_.try_open(req.tag)) {  // reused while open (NIST: 0001 on E0000)
       const std::string_view name = ippdme::method_name(req.command);
       send(ippdme::format_error(ippdme::kServerTag, ErrorCode::IllegalTag, name));
-      if (in_session_) enter_error(ErrorCode::IllegalTag, name);
+      if (in_session_ && ippdme::enters_error_state(ErrorCode::IllegalTag)) enter_error(ErrorCode::IllegalTag, name);
       return;
     }
     p.tag = req.tag;
@@ -332,7 +332,7 @@ void IppServer::fail(const Tag& tag, ErrorCode code, std::string_view cause) {
   send(ippdme::format_error(tag, code, cause));
   finish(tag);
   // Outside a session there is no error state to enter (StartSession would clear it).
-  if (ippdme::enters_error_state(code) && in_session_ && !error_state_) enter_error(code, cause);
+  if (ippdme::enters_error_state(code, cause) && in_session_ && !error_state_) enter_error(code, cause);
 }
 
 void IppServer::enter_error(ErrorCode code, std::string_view cause) {

@@ -69,10 +69,20 @@ const ErrorInfo& error_info(ErrorCode code);
 // The entry for a number from the wire (GetErrorInfo(n)); null when the spec has none.
 const ErrorInfo* find_error(int number);
 
-// Whether the error puts a session into the error state: severity Error and above, except
-// what only says the server lacks something optional (0501 Unsupported command, 0506 Argument
-// not supported) — no machine error, nothing changed: the program goes on (docs/ippdme.md).
+// Whether the error puts a session into the error state (docs/ippdme.md, "The error state"):
+// severity Error and above, except a refusal — an error that only says the line was not
+// executed for what it says (its tag, characters, syntax, an argument, an optional command this
+// server lacks, a daemon that is not there or already is): nothing was done, nothing changed,
+// so the program goes on, as the NIST reference server lets it. What the machine failed to do
+// (a move, a touch, homing, a tool change, an abort) stops the program until ClearAllErrors.
 bool enters_error_state(ErrorCode code);
+// The same for an error answered to `method`: a query (Get…, Enum…, FindTool, IsHomed …)
+// changes nothing, so none of its errors enters the error state.
+bool enters_error_state(ErrorCode code, std::string_view method);
+// Refusals: the numbers for which enters_error_state is false although their severity is 2+.
+bool is_refusal(ErrorCode code);
+// Methods that only read (their failure changes nothing).
+bool is_query(std::string_view method);
 
 constexpr int number_of(ErrorCode code) { return static_cast<int>(code); }
 constexpr int severity_number(Severity s) { return static_cast<int>(s); }

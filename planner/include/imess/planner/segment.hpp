@@ -25,6 +25,7 @@ struct Line {
   Pose target{};
   double feed = 0;
   ProbePhase probe = ProbePhase::None;
+  double max_accel = 0;  // > 0: caps the path acceleration (I++ DME's GoToPar.Accel); else the axes' limits alone
 };
 
 // A circular arc or helix. The circle lies in the plane through the three linear axes
