@@ -178,7 +178,7 @@ std::string load_error(const std::string& path) {
   return "";
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+bool mentions(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;
@@ -209,11 +209,11 @@ TEST_CASE("every bad configuration gives one message naming the file, what is wr
     REQUIRE_FALSE(msg.empty());
     CHECK(msg.rfind(path + ": ", 0) == 0);          // begins with the file
     CHECK(msg.find('\n') == std::string::npos);      // one line
-    CHECK_FALSE(contains(msg, "json.exception"));    // no library internals
-    CHECK_FALSE(contains(msg, "not a ConfigError"));
+    CHECK_FALSE(mentions(msg, "json.exception"));    // no library internals
+    CHECK_FALSE(mentions(msg, "not a ConfigError"));
     for (const auto& part : c.must_say) {
       INFO("must say: " << part);
-      CHECK(contains(msg, part));
+      CHECK(mentions(msg, part));
     }
   }
 }
@@ -231,9 +231,9 @@ TEST_CASE("messd --config with a bad configuration exits 2 with that one message
     CHECK(run.out.empty());  // no "messd: OK, listening"
     const auto lines = lines_of(run.err);
     REQUIRE(lines.size() == 1);
-    CHECK(contains(lines[0], " error: " + load_error(path)));  // the same message as the library's
+    CHECK(mentions(lines[0], " error: " + load_error(path)));  // the same message as the library's
     for (const char* crash : {"terminate called", "what():", "Aborted", "stack", "unexpected error"})
-      CHECK_FALSE(contains(run.err, crash));
+      CHECK_FALSE(mentions(run.err, crash));
   }
   CHECK_FALSE(fs::exists(files.dir / "journal"));  // refused before anything was created
 }
@@ -246,7 +246,7 @@ TEST_CASE("settings the backend cannot run are a bad configuration too: one mess
   const std::string msg = load_error(path);
   INFO(msg);
   CHECK(msg.rfind("sim-parport: axis X: max_speed", 0) == 0);  // a ConfigError naming backend, axis and key
-  CHECK(contains(msg, "steps/s"));
+  CHECK(mentions(msg, "steps/s"));
   CHECK(msg.find('\n') == std::string::npos);
 
   const auto run = test::run_messd_to_exit({"--config", path, "--journal", (files.dir / "journal").string()});
@@ -254,8 +254,8 @@ TEST_CASE("settings the backend cannot run are a bad configuration too: one mess
   CHECK(run.status == 2);  // packaging/messd.service: no restart for a bad configuration
   CHECK(run.out.empty());
   std::size_t errors = 0;
-  for (const auto& l : lines_of(run.err)) errors += contains(l, " error: ") ? 1 : 0;
+  for (const auto& l : lines_of(run.err)) errors += mentions(l, " error: ") ? 1 : 0;
   CHECK(errors == 1);
-  CHECK(contains(run.err, "error: controller start failed: " + msg));
-  CHECK_FALSE(contains(run.err, "terminate called"));
+  CHECK(mentions(run.err, "error: controller start failed: " + msg));
+  CHECK_FALSE(mentions(run.err, "terminate called"));
 }

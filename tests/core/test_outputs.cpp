@@ -45,16 +45,6 @@ core::CoreConfig with_outputs(double arming = kArming) {
 double seconds(const Event& e) { return std::chrono::duration<double>(e.time).count(); }
 double seconds(imess::hal::Nanos t) { return std::chrono::duration<double>(t).count(); }
 
-void queue_probe(FollowerRig& rig, std::uint32_t id, Vec3 target) {
-  const auto& p = rig.core().params();
-  planner::Pose t = rig.planner().position();
-  for (int a = 0; a < 3; ++a) t[a] = target[a];
-  auto c = planner::probe_cycle(id, rig.planner().position(), t, {p.prehit_distance, p.search_distance, 50, p.probe_speed});
-  REQUIRE(c);
-  if (c->approach) rig.append(*c->approach);
-  rig.append(c->search);
-}
-
 planner::SetOutput set_out(std::uint32_t id, int number, bool on, double hold) {
   return planner::SetOutput{id, static_cast<std::uint16_t>(number), on ? 1.0 : 0.0, hold};
 }

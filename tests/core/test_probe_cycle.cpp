@@ -43,16 +43,6 @@ bool run_wall(FollowerRig& rig, double wall, const std::function<bool()>& until,
   return until();
 }
 
-// Queues Probe id toward (x, y, z) from where the planner stands, as the io side does.
-void queue_probe(FollowerRig& rig, std::uint32_t id, Vec3 target, double feed = 50) {
-  const auto& p = rig.core().params();
-  planner::Pose t = rig.planner().position();
-  for (int a = 0; a < 3; ++a) t[a] = target[a];
-  auto c = planner::probe_cycle(id, rig.planner().position(), t, {p.prehit_distance, p.search_distance, feed, p.probe_speed});
-  REQUIRE(c);
-  if (c->approach) rig.append(*c->approach);
-  rig.append(c->search);
-}
 
 
 bool at_rest_done(FollowerRig& rig) {

@@ -15,7 +15,6 @@ using namespace imess::test;
 
 namespace {
 
-std::string fast_cmm() { return std::string(IMESS_SOURCE_DIR) + "/tests/e2e/fast-cmm.json"; }
 
 const std::string kSession =
     "StartSession()\n"

@@ -27,7 +27,6 @@ namespace {
 // Generous for a loaded 2-vCPU machine; the programs themselves take a few seconds.
 constexpr double kProgramTimeout = 60;
 
-std::string fast_cmm() { return std::string(IMESS_SOURCE_DIR) + "/tests/e2e/fast-cmm.json"; }
 
 std::string write(const TempDir& dir, const std::string& name, const std::string& text) {
   const auto path = dir.file(name);

@@ -6,17 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "golden_harness.hpp"
+#include "ipp_script.hpp"
 
 namespace imess::golden {
 namespace {
 
-std::vector<std::string> session_lines(const std::string& script) {
-  std::vector<std::string> lines;
-  for (const auto& e : replay(parse_transcript(script, "conformance"), "conformance"))
-    if (e.kind == EntryKind::Receive && e.client == 2) lines.push_back(e.text);
-  return lines;
-}
+std::vector<std::string> conformance_lines(const std::string& script) { return ipp_session_lines(script, "conformance"); }
 
 std::vector<std::string> on_tag(const std::vector<std::string>& lines, const std::string& tag) {
   std::vector<std::string> out;
@@ -25,18 +20,11 @@ std::vector<std::string> on_tag(const std::vector<std::string>& lines, const std
   return out;
 }
 
-long index_of(const std::vector<std::string>& lines, const std::string& line) {
-  for (std::size_t i = 0; i < lines.size(); ++i)
-    if (lines[i] == line) return static_cast<long>(i);
-  return -1;
-}
-
-const std::string kStart = "@ config/sim-servo-card.json\n+2 ipp\n2> 00001 StartSession()\n";
 
 }  // namespace
 
 TEST_CASE("I++ DME conformance: a refused line is acknowledged first, then its error and %") {
-  const auto lines = session_lines(kStart +
+  const auto lines = conformance_lines(kIppStart +
                                    "2> 00020 PtMeas(X(430), Y(330), Z(80), IJK(0,0,0))\n"
                                    "2> 00021 Frobnicate()\n"
                                    "2> 00022 AbortE()\n"
@@ -51,7 +39,7 @@ TEST_CASE("I++ DME conformance: a refused line is acknowledged first, then its e
 }
 
 TEST_CASE("I++ DME conformance: a refused line behind a running GoTo completes after it") {
-  const auto lines = session_lines(kStart + "2> 00002 GoTo(Z(300))\n= 100 ms\n2> 00003 Get(W())\n= 4000 ms\n");
+  const auto lines = conformance_lines(kIppStart + "2> 00002 GoTo(Z(300))\n= 100 ms\n2> 00003 Get(W())\n= 4000 ms\n");
   const long ack = index_of(lines, "00003 &"), go_to = index_of(lines, "00002 %");
   const long error = index_of(lines, "00003 ! Error(3, 0505, Get, \"Argument not recognized\")"), done = index_of(lines, "00003 %");
   REQUIRE(ack >= 0);
@@ -63,7 +51,7 @@ TEST_CASE("I++ DME conformance: a refused line behind a running GoTo completes a
 }
 
 TEST_CASE("I++ DME conformance: a line whose tag cannot be read is answered on E0000 only") {
-  const auto lines = session_lines(kStart + "2> 012345 GoTo(X(3.1))\n2> 00002Get(X())\n2> 00003 Get(X())\n");
+  const auto lines = conformance_lines(kIppStart + "2> 012345 GoTo(X(3.1))\n2> 00002Get(X())\n2> 00003 Get(X())\n");
   CHECK(on_tag(lines, "01234").empty());
   CHECK(on_tag(lines, "00002").empty());
   REQUIRE(on_tag(lines, "E0000").size() == 2);
@@ -72,7 +60,7 @@ TEST_CASE("I++ DME conformance: a line whose tag cannot be read is answered on E
 }
 
 TEST_CASE("I++ DME conformance: Tool.A, Tool.B and R are reported as 0") {
-  const auto lines = session_lines(kStart + "2> 00002 Get(X(), Tool.A(), Tool.B(), R())\n");
+  const auto lines = conformance_lines(kIppStart + "2> 00002 Get(X(), Tool.A(), Tool.B(), R())\n");
   CHECK(on_tag(lines, "00002") ==
         std::vector<std::string>{"00002 &", "00002 # X(430.0000), Tool.A(0.0000), Tool.B(0.0000), R(0.0000)", "00002 %"});
 }
@@ -81,7 +69,7 @@ TEST_CASE("I++ DME conformance: Tool.A, Tool.B and R are reported as 0") {
 // head's angles, a report list with R, an unsupported scan and a GoTo with a head angle on the
 // way (0501, 0506: no error state) — every command completes, none gets 0514.
 TEST_CASE("I++ DME conformance: measuring programs asking for what the machine lacks run to the end") {
-  const auto lines = session_lines(kStart +
+  const auto lines = conformance_lines(kIppStart +
                                    "2> E0002 OnMoveReportE(Dis(10.0), X(), Y(), Z(), Tool.A(), Tool.B())\n"
                                    "2> 00003 OnPtMeasReport(X(), Y(), Z(), R())\n"
                                    "2> 00004 GoTo(X(460), Y(350), Z(100))\n= 3000 ms\n"
@@ -116,7 +104,7 @@ namespace imess::golden {
 // emergency stop) is seen and cleared from I++ — GoTo 1000, GetXtdErrStatus lists it,
 // ClearAllErrors resets the machine once the cause is gone, and the next GoTo moves.
 TEST_CASE("I++ DME conformance: a machine fault is visible and cleared by ClearAllErrors") {
-  const auto lines = session_lines(
+  const auto lines = conformance_lines(
       "@ config/sim-servo-card.json\n"
       "> HandMv 0 0 -30 100\n= 2000 ms\n"    // into the part past the overtravel: the fault
       "> HandMv 0 0 20 50\n= 1000 ms\n"      // the probe freed by hand: the cause is gone
@@ -143,7 +131,7 @@ namespace imess::golden {
 // the speed, 1 s to stop): after 4.5 s the first has arrived, the second not yet.
 TEST_CASE("I++ DME conformance: a lowered GoToPar.Accel slows the session's moves down") {
   auto arrived_after = [](const std::string& set_accel, const std::string& wait) {
-    const auto lines = session_lines(kStart + set_accel + "2> 00003 GoTo(Z(300))\n= " + wait + "\n");
+    const auto lines = conformance_lines(kIppStart + set_accel + "2> 00003 GoTo(Z(300))\n= " + wait + "\n");
     return index_of(lines, "00003 %") >= 0;
   };
   CHECK(arrived_after("2> 00002 GetDMEVersion()\n", "4500 ms"));

@@ -8,17 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "golden_harness.hpp"
+#include "ipp_script.hpp"
 
 namespace imess::golden {
 namespace {
 
-std::vector<std::string> session_lines(const std::string& script) {
-  std::vector<std::string> lines;
-  for (const auto& e : replay(parse_transcript(script, "finding"), "finding"))
-    if (e.kind == EntryKind::Receive && e.client == 2) lines.push_back(e.text);
-  return lines;
-}
+std::vector<std::string> finding_lines(const std::string& script) { return ipp_session_lines(script, "finding"); }
 
 // "" when equal, else where they part: "line N: 'got' where 'want'".
 std::string first_difference(const std::vector<std::string>& got, const std::vector<std::string>& want) {
@@ -29,10 +24,6 @@ std::string first_difference(const std::vector<std::string>& got, const std::vec
   return "";
 }
 
-long index_of(const std::vector<std::string>& lines, const std::string& line) {
-  const auto it = std::find(lines.begin(), lines.end(), line);
-  return it == lines.end() ? -1 : static_cast<long>(it - lines.begin());
-}
 
 // IPPDME.md §3: completions come back in the order the commands were started. A garbled line
 // while a GoTo runs (so do a reused tag, or a fast command's error) puts the session into the
@@ -41,7 +32,7 @@ long index_of(const std::vector<std::string>& lines, const std::string& line) {
 // issue 25 a garbled line is a refusal and no longer enters the error state: the order holds
 // either way.)
 TEST_CASE("I++ DME finding: an error while a GoTo runs answers the queue behind it after the GoTo") {
-  const auto lines = session_lines(
+  const auto lines = finding_lines(
       "@ config/sim-servo-card.json\n"
       "+2 ipp\n"
       "2> 00001 StartSession()\n"
@@ -71,7 +62,7 @@ TEST_CASE("I++ DME finding: more than 4 KiB of lines in one write are answered l
     std::snprintf(line, sizeof line, "%s %05d Get(X(), Y(), Z())\n", tag == 2 ? "2>" : "2>>", tag);
     script += line;
   }
-  const auto lines = session_lines(script);
+  const auto lines = finding_lines(script);
   std::vector<std::string> want = {"00001 &", "00001 %"};
   for (int tag = 2; tag <= 201; ++tag) {
     char prefix[8];
@@ -104,7 +95,7 @@ std::string full_queue_script(const std::string& then) {
 }
 
 TEST_CASE("I++ DME finding: AbortE behind a full queue stops the GoTo at once") {
-  const auto lines = session_lines(full_queue_script("2> E0001 AbortE()\n= 5000 ms\n"));
+  const auto lines = finding_lines(full_queue_script("2> E0001 AbortE()\n= 5000 ms\n"));
   CHECK(index_of(lines, "00002 ! Error(2, 0006, GoTo, \"Transaction aborted (Use ClearAllErrors To Continue)\")") >= 0);
 }
 
@@ -126,14 +117,14 @@ TEST_CASE("I++ DME finding: a client dropping behind a full queue stops the mach
 // moves. And AbortE, ClearAllErrors, GoTo in one go, as a client recovers, is refused while the
 // machine brakes from the AbortE.
 TEST_CASE("I++ DME finding: a GoTo taking the machine back from a jogging operator moves") {
-  const auto lines = session_lines(
+  const auto lines = finding_lines(
       "@ config/sim-servo-card.json\n+2 ipp\n2> 00001 StartSession()\n2> 00002 EnableUser()\n"
       "> StartMv 0 0 20\n= 300 ms\n2> 00003 GoTo(Z(150))\n= 3000 ms\n");
   CHECK(index_of(lines, "00003 ! Error(3, 0511, GoTo, \"Error processing method\")") < 0);
 }
 
 TEST_CASE("I++ DME finding: a GoTo right after AbortE and ClearAllErrors moves once the machine stands") {
-  const auto lines = session_lines(
+  const auto lines = finding_lines(
       "@ config/sim-servo-card.json\n+2 ipp\n2> 00001 StartSession()\n2> 00002 GoTo(Z(300))\n= 300 ms\n"
       "2> E0001 AbortE()\n2>> 00003 ClearAllErrors()\n2>> 00004 GoTo(Z(100))\n= 3000 ms\n");
   CHECK(index_of(lines, "00004 ! Error(3, 0511, GoTo, \"Error processing method\")") < 0);

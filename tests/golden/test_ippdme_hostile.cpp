@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "golden_harness.hpp"
+#include "ipp_script.hpp"
 
 namespace imess::golden {
 namespace {
@@ -26,14 +26,13 @@ bool has_prefix(const std::vector<std::string>& lines, const std::string& prefix
   return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.rfind(prefix, 0) == 0; });
 }
 
-const std::string kStart = "@ config/sim-servo-card.json\n+2 ipp\n2> 00001 StartSession()\n";
 
 }  // namespace
 
 // Issue 26, 1: this line made messd exit 2 ("frame has a non-finite rotation or translation
 // element"), both ports gone. Now it is refused and the session and MESSD clients go on.
 TEST_CASE("I++ DME hostile: SetCsyTransformation with 1.7e308 offsets is refused 0509, messd serves on") {
-  const auto out = replay(parse_transcript(kStart +
+  const auto out = replay(parse_transcript(kIppStart +
                                                "2> 00002 SetCsyTransformation(PartCsy, 1.7e308, 1.7e308, 0, 0, 45, 0)\n"
                                                "2> 00003 ClearAllErrors()\n2> 00004 Get(X())\n> Status\n",
                                            "hostile"),
@@ -48,7 +47,7 @@ TEST_CASE("I++ DME hostile: SetCsyTransformation with 1.7e308 offsets is refused
 // Issue 26, 2: 1e300 was taken, stored as frame PartCsy and printed cut short. Offsets are
 // bounded as MESSD's SetFrame bounds a frame's origin: ±1e6 mm.
 TEST_CASE("I++ DME hostile: SetCsyTransformation beyond 1e6 mm is refused 0509 and stores no frame") {
-  const auto out = replay(parse_transcript(kStart +
+  const auto out = replay(parse_transcript(kIppStart +
                                                "2> 00002 SetCsyTransformation(PartCsy, 1e300, 0, 0, 0, 0, 0)\n"
                                                "2> 00003 ClearAllErrors()\n"
                                                "2> 00004 SetCsyTransformation(MoveableMachineCsy, 0, -1000000.5, 0, 0, 0, 0)\n"
@@ -68,7 +67,7 @@ TEST_CASE("I++ DME hostile: SetCsyTransformation beyond 1e6 mm is refused 0509 a
 // Issue 26, 8: the normal's length overflowed (1e200 squared) and the direction became 1010.
 TEST_CASE("I++ DME hostile: PtMeas with IJK(-1e200, 0, 0) measures as IJK(-1, 0, 0)") {
   auto measure = [](const std::string& ijk) {
-    const auto out = replay(parse_transcript(kStart +
+    const auto out = replay(parse_transcript(kIppStart +
                                                  "2> 00002 GoTo(X(460), Y(350), Z(100))\n= 3000 ms\n"
                                                  "2> 00003 GoTo(Z(40))\n= 3000 ms\n"
                                                  "2> 00004 PtMeas(X(475), Y(350), Z(40), IJK(" + ijk + "))\n= 4000 ms\n",
@@ -88,7 +87,7 @@ TEST_CASE("I++ DME hostile: PtMeas with IJK(-1e200, 0, 0) measures as IJK(-1, 0,
 // Issue 26, 8: a target beyond every limit came back 0511 (the planner refused a non-finite
 // pose); it is the spec's out-of-range error.
 TEST_CASE("I++ DME hostile: GoTo to a target that is infinite in machine coordinates gets 2500") {
-  const auto out = replay(parse_transcript(kStart +
+  const auto out = replay(parse_transcript(kIppStart +
                                                "2> 00002 SetCsyTransformation(PartCsy, 0, 0, 0, 0, 45, 0)\n"
                                                "2> 00003 SetCoordSystem(PartCsy)\n"
                                                "2> 00004 GoTo(X(1.7e308), Y(1.7e308))\n"

@@ -1,9 +1,12 @@
-// TempDir: a fresh directory under /tmp for one test, removed with everything in it.
+// TempDir: a fresh directory under /tmp for one test, removed with everything in it; hit_at:
+// the measured point the journal tests write (430 330 z, approached along -Z).
 #pragma once
 #include <stdlib.h>
 
 #include <filesystem>
 #include <string>
+
+#include "imess/protocol/messages.hpp"
 
 namespace imess::test {
 
@@ -25,5 +28,7 @@ class TempDir {
  private:
   std::string path_;
 };
+
+inline protocol::HitMsg hit_at(double z) { return protocol::HitMsg{0, 0, {430, 330, z}, {0, 0, -1}, 2, 17.25}; }
 
 }  // namespace imess::test

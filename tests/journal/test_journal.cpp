@@ -10,10 +10,10 @@
 
 using namespace imess::journal;
 using imess::protocol::HitMsg;
+using imess::test::hit_at;
 
 namespace {
 
-HitMsg hit_at(double z) { return HitMsg{0, 0, {430, 330, z}, {0, 0, -1}, 2, 17.25}; }
 
 std::vector<std::filesystem::path> files_in(const std::string& dir) {
   std::vector<std::filesystem::path> out;

@@ -11,10 +11,10 @@
 
 using namespace imess::journal;
 using imess::protocol::HitMsg;
+using imess::test::hit_at;
 
 namespace {
 
-HitMsg hit_at(double z) { return HitMsg{0, 0, {430, 330, z}, {0, 0, -1}, 2, 17.25}; }
 
 std::vector<std::string> fill(const JournalConfig& cfg, int n) {
   Journal j(cfg);

@@ -48,8 +48,8 @@ int draw_count() {
 constexpr double kRelTol = 1e-6;  // closeness to the generator, relative to its size
 constexpr double kCosTol = 1e-6;  // stationarity with the test's own Jacobian
 
-// Worst figures of one feature, printed at the end of its test case on request.
-struct Worst {
+// WorstFit figures of one feature, printed at the end of its test case on request.
+struct WorstFit {
   const char* feature;
   int draws = draw_count();
   double error = 0.0;   // relative to size: max(location, size) / size, orientation in rad
@@ -62,7 +62,7 @@ struct Worst {
     error = std::max({error, d.location / size, d.size / size, d.orientation, d.apex_angle});
     cosine = std::max(cosine, cos);
   }
-  ~Worst() {
+  ~WorstFit() {
     if (std::getenv("IMESS_PRINT_FITS") == nullptr) return;
     std::printf("%-9s worst relative error %.2e  worst gradient cosine %.2e  ambiguous minimal sets %d"
                 "  lower minimum %d  missed %d  (of %d)",
@@ -88,8 +88,8 @@ std::size_t count(Rng& rng, std::size_t minimum) {
 }  // namespace
 
 TEST_CASE("random lines and planes are their exact least-squares fits", "[fit][random]") {
-  Worst wl{"line3d"};
-  Worst wp{"plane"};
+  WorstFit wl{"line3d"};
+  WorstFit wp{"plane"};
   for (int seed = 0; seed < draw_count(); ++seed) {
     Rng rng(1000 + seed);
     const double size = rng.uniform(1, 200);
@@ -126,8 +126,8 @@ TEST_CASE("random lines and planes are their exact least-squares fits", "[fit][r
 }
 
 TEST_CASE("random circles on arcs down to 30 degrees are their exact least-squares fits", "[fit][random]") {
-  Worst w2{"circle2d"};
-  Worst w3{"circle3d"};
+  WorstFit w2{"circle2d"};
+  WorstFit w3{"circle3d"};
   for (int seed = 0; seed < draw_count(); ++seed) {
     Rng rng(2000 + seed);
     const double radius = rng.uniform(1, 200);
@@ -172,7 +172,7 @@ TEST_CASE("random circles on arcs down to 30 degrees are their exact least-squar
 }
 
 TEST_CASE("random spheres on caps down to 30 degrees are their exact least-squares fits", "[fit][random]") {
-  Worst w{"sphere"};
+  WorstFit w{"sphere"};
   for (int seed = 0; seed < draw_count(); ++seed) {
     Rng rng(3000 + seed);
     const double radius = rng.uniform(1, 200);
@@ -208,7 +208,7 @@ double amplitude(Rng& rng, double size) { return rng.uniform(0, 1) < 0.25 ? 0.0 
 bool no_worse(double ssq, double ssq_truth, double amp) { return amp > 0.0 && ssq <= ssq_truth * (1.0 + 1e-9); }
 
 TEST_CASE("random cylinders on sectors down to 30 degrees are their exact least-squares fits", "[fit][random]") {
-  Worst w{"cylinder"};
+  WorstFit w{"cylinder"};
   for (int seed = 0; seed < draw_count(); ++seed) {
     Rng rng(4000 + seed);
     const double radius = rng.uniform(1, 200);
@@ -267,7 +267,7 @@ namespace {
 // 0.2 to 1.5 radii, drawn from Rng(seed), fitted and judged. Minimal sets must be refused; others
 // must give the generator, or (data with deviations) a stationary point no worse than it, or be
 // refused as a cylinder that fits no worse than it.
-void check_random_cone(std::uint64_t seed, Worst& w) {
+void check_random_cone(std::uint64_t seed, WorstFit& w) {
   Rng rng(seed);
   Cone truth;
   truth.direction = rng.unit_vector();
@@ -332,7 +332,7 @@ void check_random_cone(std::uint64_t seed, Worst& w) {
 }  // namespace
 
 TEST_CASE("random cones (apex 10 to 120 degrees, sectors and height bands) are their exact fits", "[fit][random]") {
-  Worst w{"cone"};
+  WorstFit w{"cone"};
   for (int i = 0; i < draw_count(); ++i) check_random_cone(5000 + static_cast<std::uint64_t>(i), w);
   CHECK(w.misses == 0);
 }
@@ -348,7 +348,7 @@ TEST_CASE("cones of the wider random check that were once missed or not converge
   const std::uint64_t seeds[] = {5583,   6165,   6304,   6682,   7275,   7573,   100047, 101687, 103834, 103969,
                                  304845, 6387,   100015, 101877, 102199, 104004, 203921, 204324, 304669, 504436,
                                  101617, 8588,   102158, 504596};
-  Worst w{"cone+", static_cast<int>(std::size(seeds))};
+  WorstFit w{"cone+", static_cast<int>(std::size(seeds))};
   for (const std::uint64_t seed : seeds) check_random_cone(seed, w);
   CHECK(w.misses == 0);
 }

@@ -5,6 +5,8 @@
 // exactly the arcs whose path leaves the box (seeded random property).
 #include <catch2/catch.hpp>
 
+#include <numbers>
+
 #include <Eigen/Geometry>
 
 #include "planner_rig.hpp"
@@ -13,7 +15,6 @@ using namespace imess::test;
 using Eigen::Vector3d;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 // An arc given by its geometry: centre c in the plane axes, unit normal n, radius r, the
 // start at angle 0 (along e1), swept angle phi (signed about n, |phi| may exceed 2π), lead
@@ -21,7 +22,7 @@ constexpr double kPi = 3.14159265358979323846;
 struct HelixSpec {
   std::array<std::int8_t, 3> axes{0, 1, 2};
   Vector3d c{0, 0, 0}, n{0, 0, 1}, e1{1, 0, 0};
-  double r = 10, phi = kPi / 2, h = 0;
+  double r = 10, phi = std::numbers::pi / 2, h = 0;
   Pose other{};  // displacement of the axes outside the plane
   double feed = 50;
 
@@ -43,7 +44,7 @@ struct HelixSpec {
     for (int k = 0; k < 3; ++k) a.centre[k] = c[k], a.normal[k] = n[k];
     a.plane_axes = axes;
     a.ccw = phi > 0;
-    a.turns = static_cast<int>(std::floor(std::fabs(phi) / (2 * kPi)));
+    a.turns = static_cast<int>(std::floor(std::fabs(phi) / (2 * std::numbers::pi)));
     a.feed = feed;
     return a;
   }
@@ -63,7 +64,7 @@ double check_on_helix(const HelixSpec& s, const Pose& start, const RunResult& r)
     const double along = q.dot(s.n);
     const Vector3d radial = q - along * s.n;
     const double a = std::atan2(radial.dot(s.e2()), radial.dot(s.e1));
-    theta += std::remainder(a - theta, 2 * kPi);  // unwrap: the step per tick is far below π
+    theta += std::remainder(a - theta, 2 * std::numbers::pi);  // unwrap: the step per tick is far below π
     worst = std::max(worst, std::fabs(radial.norm() - s.r));
     worst = std::max(worst, std::fabs(along - s.h * theta / s.phi));
     const double f = theta / s.phi;
@@ -107,7 +108,7 @@ TEST_CASE("arc planes: XY, ZX and YZ (G17/G18/G19 normals), both ways, with heli
   // G18's plane is ZX: counter-clockwise about +Y turns Z toward X.
   const Plane planes[] = {{"XY", {0, 0, 1}, {1, 0, 0}}, {"ZX", {0, 1, 0}, {0, 0, 1}}, {"YZ", {1, 0, 0}, {0, 1, 0}}};
   for (const auto& pl : planes)
-    for (double phi : {kPi / 2, -kPi / 2, 1.5 * kPi, -(2 * kPi + 1), 2 * (2 * kPi) + 0.3})
+    for (double phi : {std::numbers::pi / 2, -std::numbers::pi / 2, 1.5 * std::numbers::pi, -(2 * std::numbers::pi + 1), 2 * (2 * std::numbers::pi) + 0.3})
       for (double h : {0.0, 7.5, -3.0}) {
         DYNAMIC_SECTION(pl.name << " phi " << phi << " h " << h) {
           HelixSpec s;
@@ -144,7 +145,7 @@ TEST_CASE("arc planes: the sense of rotation of the principal planes is G-code's
     p.flush();
     PlannedSegment s;
     REQUIRE(p.take(s));
-    CHECK(s.length == Approx(10 * kPi / 2));  // a quarter, not three quarters
+    CHECK(s.length == Approx(10 * std::numbers::pi / 2));  // a quarter, not three quarters
   }
 }
 
@@ -155,7 +156,7 @@ TEST_CASE("arc planes: a tilted normal with a helix, and a plane through X Y and
     s.e1 = s.n.cross(Vector3d(0, 0, 1)).normalized();
     s.c = {10, 20, 30};
     s.r = 25;
-    s.phi = -(2 * kPi + 2);
+    s.phi = -(2 * std::numbers::pi + 2);
     s.h = 15;
     run_and_check(uneven_machine("XYZ"), s);
   }
@@ -241,11 +242,11 @@ TEST_CASE("arc planes: random planes, helices and turns stay on the helix and wi
     do s.n = Vector3d(u(rng), u(rng), u(rng)); while (s.n.norm() < 0.2);
     s.n.normalize();
     s.e1 = s.n.unitOrthogonal();
-    s.e1 = Eigen::AngleAxisd(kPi * u(rng), s.n) * s.e1;
+    s.e1 = Eigen::AngleAxisd(std::numbers::pi * u(rng), s.n) * s.e1;
     s.c = Vector3d(100 * u(rng), 100 * u(rng), 100 * u(rng));
     s.r = 1 + 40 * unit(rng);
     const int turns = static_cast<int>(3 * unit(rng));
-    const double sweep = 0.2 + (2 * kPi - 0.4) * unit(rng) + 2 * kPi * turns;
+    const double sweep = 0.2 + (2 * std::numbers::pi - 0.4) * unit(rng) + 2 * std::numbers::pi * turns;
     s.phi = unit(rng) < 0.5 ? sweep : -sweep;
     s.h = unit(rng) < 0.3 ? 0 : 30 * u(rng);
     for (int k = 3; k < 5; ++k) s.other[pick[k]] = unit(rng) < 0.5 ? 0 : 20 * u(rng);
@@ -265,10 +266,10 @@ TEST_CASE("arc planes: the travel check refuses exactly the arcs whose path leav
     HelixSpec s;
     do s.n = Vector3d(u(rng), u(rng), u(rng)); while (s.n.norm() < 0.2);
     s.n.normalize();
-    s.e1 = Eigen::AngleAxisd(kPi * u(rng), s.n) * s.n.unitOrthogonal();
+    s.e1 = Eigen::AngleAxisd(std::numbers::pi * u(rng), s.n) * s.n.unitOrthogonal();
     s.r = 5 + 30 * unit(rng);
     s.c = Vector3d(50 + 40 * u(rng), 50 + 40 * u(rng), 50 + 40 * u(rng));
-    s.phi = (unit(rng) < 0.5 ? 1 : -1) * (0.3 + 5.5 * unit(rng) + (unit(rng) < 0.2 ? 2 * kPi : 0));
+    s.phi = (unit(rng) < 0.5 ? 1 : -1) * (0.3 + 5.5 * unit(rng) + (unit(rng) < 0.2 ? 2 * std::numbers::pi : 0));
     s.h = unit(rng) < 0.5 ? 0 : 20 * u(rng);
     const Pose start = start_of(s, {});
     const Pose end = s.pose({}, s.phi);

@@ -2,12 +2,13 @@
 // points, radius mismatch, planes other than XY.
 #include <catch2/catch.hpp>
 
+#include <numbers>
+
 #include "planner_rig.hpp"
 
 using namespace imess::test;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 Arc arc_xy(std::uint32_t id, Pose end, double cx, double cy, bool ccw, double feed) {
   Arc a;
@@ -33,7 +34,7 @@ TEST_CASE("arcs: a quarter circle is native, its length is Rφ and the samples l
   const auto r = run(p, {arc_xy(1, pose_of({0, 10, 0}), 0, 0, true, 20)});
   REQUIRE(r.segments.size() == 1);
   CHECK(r.segments[0].kind == SegmentKind::Arc);
-  CHECK(r.segments[0].length == Approx(10 * kPi / 2));
+  CHECK(r.segments[0].length == Approx(10 * std::numbers::pi / 2));
   for (const auto& t : r.ticks) {
     CHECK(std::hypot(t.pose[0], t.pose[1]) == Approx(10).epsilon(1e-12));
     CHECK(t.pose[0] >= -1e-12);  // ccw from +X to +Y stays in the first quadrant
@@ -47,15 +48,15 @@ TEST_CASE("arcs: clockwise goes the other way round, end == start is a full circ
   Planner p(make_machine("XYZ", -100, 100, 100, 1000));
   p.set_position(pose_of({10, 0, 0}));
   p.append(arc_xy(1, pose_of({0, 10, 0}), 0, 0, false, 20));
-  CHECK(only(p).length == Approx(10 * 3 * kPi / 2));
+  CHECK(only(p).length == Approx(10 * 3 * std::numbers::pi / 2));
   p.set_position(pose_of({10, 0, 0}));
   p.append(arc_xy(2, pose_of({10, 0, 0}), 0, 0, true, 20));
-  CHECK(only(p).length == Approx(20 * kPi));
+  CHECK(only(p).length == Approx(20 * std::numbers::pi));
   p.set_position(pose_of({10, 0, 0}));
   Arc a = arc_xy(3, pose_of({0, 10, 0}), 0, 0, true, 20);
   a.turns = 2;
   p.append(a);
-  CHECK(only(p).length == Approx(10 * (kPi / 2 + 4 * kPi)));
+  CHECK(only(p).length == Approx(10 * (std::numbers::pi / 2 + 4 * std::numbers::pi)));
 }
 
 TEST_CASE("arcs: a helix has L = √((Rφ)² + h²) and moves the other axes linearly") {
@@ -65,7 +66,7 @@ TEST_CASE("arcs: a helix has L = √((Rφ)² + h²) and moves the other axes lin
   Arc a = arc_xy(1, pose_of({10, 0, 5, 90}), 0, 0, true, 20);
   const auto r = run(p, {a});
   const auto& s = r.segments.at(0);
-  CHECK(s.length == Approx(std::hypot(10 * 2 * kPi, 5)));
+  CHECK(s.length == Approx(std::hypot(10 * 2 * std::numbers::pi, 5)));
   for (const auto& t : r.ticks) {
     CHECK(std::hypot(t.pose[0], t.pose[1]) == Approx(10).epsilon(1e-12));
     CHECK(t.pose[3] == Approx(t.pose[2] / 5 * 90).margin(1e-9));  // A follows Z linearly
@@ -129,7 +130,7 @@ TEST_CASE("arcs: any plane given by a normal (YZ, and a tilted one)") {
     a.normal = {1, 0, 0};
     a.feed = 20;
     const auto r = run(p, {a});
-    CHECK(r.segments.at(0).length == Approx(10 * kPi / 2));
+    CHECK(r.segments.at(0).length == Approx(10 * std::numbers::pi / 2));
     for (const auto& t : r.ticks) CHECK(std::hypot(t.pose[1], t.pose[2]) == Approx(10).epsilon(1e-12));
     CHECK(r.ticks.back().pose == pose_of({0, 0, 10}));
     check_limits(m, r);

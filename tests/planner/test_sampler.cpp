@@ -2,12 +2,13 @@
 // and a chain of short tangent segments that runs without stopping.
 #include <catch2/catch.hpp>
 
+#include <numbers>
+
 #include "planner_rig.hpp"
 
 using namespace imess::test;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 double path_speed(const Tick& t) {
   return std::sqrt(t.velocity[0] * t.velocity[0] + t.velocity[1] * t.velocity[1] + t.velocity[2] * t.velocity[2]);
@@ -49,11 +50,11 @@ TEST_CASE("sampler: leftover time is carried into the next segment, so junctions
 TEST_CASE("sampler: a circle of 1 mm chords at 100 mm/s runs without stopping between them") {
   Planner p(make_machine("XYZ", -1000, 1000, 200, 1000));
   const double R = 10;
-  const int n = static_cast<int>(std::ceil(2 * kPi * R / 1.0));  // 63 chords of ~1 mm
+  const int n = static_cast<int>(std::ceil(2 * std::numbers::pi * R / 1.0));  // 63 chords of ~1 mm
   p.set_position(pose_of({R, 0, 0}));
   std::vector<Request> reqs;
   for (int i = 1; i <= 2 * n; ++i)  // two laps
-    reqs.push_back(Line{static_cast<std::uint32_t>(i), pose_of({R * std::cos(2 * kPi * i / n), R * std::sin(2 * kPi * i / n), 0}), 100});
+    reqs.push_back(Line{static_cast<std::uint32_t>(i), pose_of({R * std::cos(2 * std::numbers::pi * i / n), R * std::sin(2 * std::numbers::pi * i / n), 0}), 100});
   const auto r = run(p, reqs);
   check_continuity(r);
   check_limits(p.machine(), r);

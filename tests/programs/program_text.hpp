@@ -1,9 +1,11 @@
-// Test helpers: a translation as lines of text (describe), or its error message.
+// Test helpers: a translation as lines of text (describe), or its error message; run and err
+// for G-code (the HPGL and MRM tests name theirs hpgl and mrm).
 #pragma once
 #include <catch2/catch.hpp>
 #include <string>
 #include <vector>
 
+#include "imess/programs/gcode.hpp"
 #include "imess/programs/program.hpp"
 
 namespace imess::programs::test {
@@ -23,5 +25,8 @@ inline std::string error_text(const Translation& t) {
 }
 
 using Lines = std::vector<std::string>;
+
+inline Lines run(const char* text, const GcodeOptions& o = {}) { return lines(translate_gcode(text, o), o.machine); }
+inline std::string err(const char* text, const GcodeOptions& o = {}) { return error_text(translate_gcode(text, o)); }
 
 }  // namespace imess::programs::test

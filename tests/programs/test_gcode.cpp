@@ -1,6 +1,8 @@
 // G-code: worked examples compared item by item, modal behaviour, units, offsets, arcs in
 // every plane (checked through the planner's own geometry), probe, home, outputs.
 #include <catch2/catch.hpp>
+
+#include <numbers>
 #include <cmath>
 
 #include "imess/planner/planner.hpp"
@@ -13,9 +15,7 @@ using imess::planner::Machine;
 using imess::planner::make_machine;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
-Lines run(const char* text, const GcodeOptions& o = {}) { return lines(translate_gcode(text, o), o.machine); }
 
 // The planner's segment for the only arc of `text`, starting at o.start.
 imess::planner::PlannedSegment arc_segment(const char* text, const GcodeOptions& o = {}) {
@@ -138,9 +138,9 @@ TEST_CASE("gcode: arcs by centre I J and by radius R, both senses, short and lon
   CHECK(run("G2 X10 Y10 R10 F60") == Lines{"1 ARC cw X10 Y10 Z0 C10,0,0 N0,0,1 P0,1,2 T0 F1"});
   CHECK(run("G2 X10 Y10 R-10 F60") == Lines{"1 ARC cw X10 Y10 Z0 C0,10,0 N0,0,1 P0,1,2 T0 F1"});
   // Lengths through the planner: quarter (short) and three quarters (long).
-  CHECK(arc_segment("G3 X10 Y10 R10 F60").length == Approx(kPi * 10 / 2));
-  CHECK(arc_segment("G3 X10 Y10 R-10 F60").length == Approx(3 * kPi * 10 / 2));
-  CHECK(arc_segment("G2 X10 Y10 R10 F60").length == Approx(kPi * 10 / 2));
+  CHECK(arc_segment("G3 X10 Y10 R10 F60").length == Approx(std::numbers::pi * 10 / 2));
+  CHECK(arc_segment("G3 X10 Y10 R-10 F60").length == Approx(3 * std::numbers::pi * 10 / 2));
+  CHECK(arc_segment("G2 X10 Y10 R10 F60").length == Approx(std::numbers::pi * 10 / 2));
   // The G2 quarter from the origin around (10, 0) passes above the chord (y > x side).
   const auto mid = at_fraction(arc_segment("G2 X10 Y10 R10 F60"), 0.5);
   CHECK(mid[0] == Approx(10 - 10 / std::sqrt(2.0)));
@@ -149,10 +149,10 @@ TEST_CASE("gcode: arcs by centre I J and by radius R, both senses, short and lon
 
 TEST_CASE("gcode: full circle by I J (end on the start), extra turns by P, helix") {
   CHECK(run("G2 I5 F60") == Lines{"1 ARC cw X0 Y0 Z0 C5,0,0 N0,0,1 P0,1,2 T0 F1"});
-  CHECK(arc_segment("G2 I5 F60").length == Approx(2 * kPi * 5));
+  CHECK(arc_segment("G2 I5 F60").length == Approx(2 * std::numbers::pi * 5));
   CHECK(run("G17 G3 X0 Y0 Z-3 I5 P2 F60") == Lines{"1 ARC ccw X0 Y0 Z-3 C5,0,0 N0,0,1 P0,1,2 T1 F1"});
   const auto helix = arc_segment("G17 G3 X0 Y0 Z-3 I5 P2 F60");
-  CHECK(helix.length == Approx(std::hypot(4 * kPi * 5, 3)));
+  CHECK(helix.length == Approx(std::hypot(4 * std::numbers::pi * 5, 3)));
   CHECK(at_fraction(helix, 0.5)[2] == Approx(-1.5));
   // A quarter helix: Z moves with the angle.
   CHECK(at_fraction(arc_segment("G3 X5 Y5 Z2 J5 F60"), 0.5)[2] == Approx(1));
@@ -170,7 +170,7 @@ TEST_CASE("gcode: G18 (ZX, I K, normal Y) and G19 (YZ, J K, normal X) planes") {
   CHECK(g19[1] == Approx(5));
   CHECK(g19[2] == Approx(-5));
   // R form in G18 and a helix along Y.
-  CHECK(arc_segment("G18 G3 Z10 X10 R10 Y4 F60").length == Approx(std::hypot(kPi * 10 / 2, 4)));
+  CHECK(arc_segment("G18 G3 Z10 X10 R10 Y4 F60").length == Approx(std::hypot(std::numbers::pi * 10 / 2, 4)));
 }
 
 TEST_CASE("gcode: G38.2 / G38.3 probes — probed axes must be named in G90 before moving") {

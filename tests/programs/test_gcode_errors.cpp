@@ -9,7 +9,6 @@ using namespace imess::programs;
 using namespace imess::programs::test;
 
 namespace {
-std::string err(const char* text, const GcodeOptions& o = {}) { return error_text(translate_gcode(text, o)); }
 constexpr const char* kAllWords = "N G M X Y Z A B C U V W I J K R F P Q S L T";
 }  // namespace
 

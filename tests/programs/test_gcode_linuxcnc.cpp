@@ -11,8 +11,6 @@ using namespace imess::programs;
 using namespace imess::programs::test;
 
 namespace {
-Lines run(const char* text, const GcodeOptions& o = {}) { return lines(translate_gcode(text, o), o.machine); }
-std::string err(const char* text, const GcodeOptions& o = {}) { return error_text(translate_gcode(text, o)); }
 std::string notes(const Translation& t) {
   std::string s;
   for (const auto& n : t.notes) s += n.code + "@" + std::to_string(n.line) + "x" + std::to_string(n.count) + " ";

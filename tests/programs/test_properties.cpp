@@ -1,6 +1,8 @@
 // Seeded random programs in each language: the motion items' targets match an independent
 // accumulation of the words, and the planner accepts every request the translators emit.
 #include <catch2/catch.hpp>
+
+#include <numbers>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -16,7 +18,6 @@ using namespace imess::programs;
 using imess::planner::Pose;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 // A value printed with 4 decimals and the number the text stands for.
 double printed(double v, std::string& text) {
@@ -110,7 +111,7 @@ TEST_CASE("properties: random G-code (G0/G1/G2/G3, G90/G91, G20/G21, G54/G55) en
         const double i_off = printed(coord(rng) / unit, ti), j_off = printed(coord(rng) / unit, tj);
         if (std::hypot(i_off, j_off) * unit < 1) continue;
         const double cx = pos[0] + i_off * unit, cy = pos[1] + j_off * unit;
-        const double a0 = std::atan2(pos[1] - cy, pos[0] - cx) + (ccw ? kPi / 2 : -kPi / 2);
+        const double a0 = std::atan2(pos[1] - cy, pos[0] - cx) + (ccw ? std::numbers::pi / 2 : -std::numbers::pi / 2);
         const double rr = std::hypot(i_off, j_off) * unit;
         Pose t = pos;
         const double ex = printed(((absolute ? cx + rr * std::cos(a0) - off[0] : rr * std::cos(a0) + cx - pos[0])) / unit, tx);

@@ -26,13 +26,13 @@ const std::array kToyVerbs{
 };
 
 template <class T>
-T parsed(std::string_view line) {
+T toy_parsed(std::string_view line) {
   auto r = parse_command(line, kToyVerbs);
   REQUIRE(std::holds_alternative<Command>(r));
   REQUIRE(std::holds_alternative<T>(std::get<Command>(r)));
   return std::get<T>(std::get<Command>(r));
 }
-ParseError failed(std::string_view line) {
+ParseError toy_failed(std::string_view line) {
   auto r = parse_command(line, kToyVerbs);
   REQUIRE(std::holds_alternative<ParseError>(r));
   return std::get<ParseError>(r);
@@ -41,25 +41,25 @@ ParseError failed(std::string_view line) {
 }  // namespace
 
 TEST_CASE("a second verb table is parsed by the generic parser with its own grammar") {
-  parsed<StopMv>("aborte");
-  auto g = parsed<GoTo>("MoveTo 1 -2 3.5 20");
+  toy_parsed<StopMv>("aborte");
+  auto g = toy_parsed<GoTo>("MoveTo 1 -2 3.5 20");
   CHECK(g.target == Xyz{1, -2, 3.5});
   CHECK(g.speed == 20.0);
-  CHECK_FALSE(parsed<GoTo>("MoveTo 1 2 3").speed.has_value());
+  CHECK_FALSE(toy_parsed<GoTo>("MoveTo 1 2 3").speed.has_value());
 
-  auto range = failed("MoveTo 600 0 0");
+  auto range = toy_failed("MoveTo 600 0 0");
   CHECK(range.code == ErrorCode::BadValue);
   CHECK(range.text == "MoveTo x must be -500 to 500 mm, got 600");
-  auto count = failed("MoveTo 1 2");
+  auto count = toy_failed("MoveTo 1 2");
   CHECK(count.code == ErrorCode::BadArguments);
   CHECK(count.text == "MoveTo takes 'x y z [speed]', got 2; usage: MoveTo x y z [speed]");
-  CHECK(failed("MoveTo 1 2 3 0").text == "speed must be above 0, at most 50");
-  CHECK(failed("MoveTo 1 2 3 abc").code == ErrorCode::BadNumber);
-  CHECK(failed("AbortE\x01").code == ErrorCode::BadCharacter);
+  CHECK(toy_failed("MoveTo 1 2 3 0").text == "speed must be above 0, at most 50");
+  CHECK(toy_failed("MoveTo 1 2 3 abc").code == ErrorCode::BadNumber);
+  CHECK(toy_failed("AbortE\x01").code == ErrorCode::BadCharacter);
 }
 
 TEST_CASE("the tables do not see each other's verbs") {
-  auto unknown = failed("StopMv");  // a MESSD verb, not in the toy table
+  auto unknown = toy_failed("StopMv");  // a MESSD verb, not in the toy table
   CHECK(unknown.code == ErrorCode::UnknownCommand);
   CHECK(unknown.text.find("'StopMv'") != std::string::npos);
   auto r = parse_command("AbortE");  // the toy verb, not in the MESSD table

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core_rig.hpp"
+#include "poses.hpp"
 #include "imess/planner/planner.hpp"
 #include "imess/planner/sampler.hpp"
 
@@ -55,11 +56,6 @@ class FaultyLink final : public hal::Link {
   long countdown_ = 0;
 };
 
-inline planner::Pose pose3(const Vec3& v) {
-  planner::Pose p{};
-  for (int a = 0; a < 3; ++a) p[a] = v[a];
-  return p;
-}
 
 // The card and its driver, loops closed at the simulated machine's start position.
 class CardFollowRig {

@@ -12,7 +12,7 @@
 using namespace imess;
 using namespace imess::test;
 namespace st = hal::status;
-using Fault = sim::SerialChannel::Fault;
+using ChannelFault = sim::SerialChannel::Fault;
 
 namespace {
 constexpr double kBudget = 115200.0 / 10 / 1000;  // bytes per ms each way: 11.52
@@ -90,10 +90,10 @@ TEST_CASE("card stream: a lost or damaged frame either way ends in Fault CommLos
   struct Case {
     const char* what;
     bool to_card;
-    Fault fault;
+    ChannelFault fault;
   };
-  for (const Case c : {Case{"setpoint frame lost", true, Fault::Lose}, Case{"setpoint frame damaged", true, Fault::Corrupt},
-                       Case{"status frame lost", false, Fault::Lose}, Case{"status frame damaged", false, Fault::Corrupt}}) {
+  for (const Case c : {Case{"setpoint frame lost", true, ChannelFault::Lose}, Case{"setpoint frame damaged", true, ChannelFault::Corrupt},
+                       Case{"status frame lost", false, ChannelFault::Lose}, Case{"status frame damaged", false, ChannelFault::Corrupt}}) {
     INFO(c.what);
     StreamRig s;
     s.queue(chord_circle(s.rig.position(), 20, 1.0, 2, 100));

@@ -43,6 +43,11 @@ namespace imess::test {
   _exit(127);
 }
 
+#ifdef IMESS_SOURCE_DIR  // the tests' (the benches use this header too)
+// tests/e2e/fast-cmm.json, the quick simulated CMM of the end-to-end tests.
+inline std::string fast_cmm() { return std::string(IMESS_SOURCE_DIR) + "/tests/e2e/fast-cmm.json"; }
+#endif
+
 class DaemonProcess {
  public:
   enum class Scheduling { Plain, RealtimeIfPermitted };

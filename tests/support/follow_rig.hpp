@@ -17,15 +17,10 @@
 #include "imess/planner/planner.hpp"
 #include "imess/planner/sampler.hpp"
 #include "port_rigs.hpp"
+#include "poses.hpp"
 
 namespace imess::test {
 
-inline planner::Pose pose3(const hal::Vec3& v) {
-  planner::Pose p{};
-  for (int a = 0; a < 3; ++a) p[a] = v[a];
-  return p;
-}
-inline hal::Vec3 vec3(const planner::Pose& p) { return {p[0], p[1], p[2]}; }
 
 // The planner's machine: travel from the simulated mechanics, speed and acceleration per
 // axis from the driver's configuration.

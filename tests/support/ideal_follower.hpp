@@ -12,6 +12,7 @@
 #include "core_rig.hpp"
 #include "imess/core/path_machine.hpp"
 #include "imess/planner/planner.hpp"
+#include "imess/planner/probe.hpp"
 
 namespace imess::test {
 
@@ -235,5 +236,17 @@ class FollowerRig final : public MotionRig {
  private:
   std::optional<planner::Planner> planner_;
 };
+
+// Queues Probe `id` toward `target` (X Y Z) from where the planner stands, as the io side
+// does: the approach at `feed` (when the target is beyond the prehit distance), then the search.
+inline void queue_probe(FollowerRig& rig, std::uint32_t id, hal::Vec3 target, double feed = 50) {
+  const auto& p = rig.core().params();
+  planner::Pose t = rig.planner().position();
+  for (int a = 0; a < 3; ++a) t[a] = target[a];
+  auto c = planner::probe_cycle(id, rig.planner().position(), t, {p.prehit_distance, p.search_distance, feed, p.probe_speed});
+  REQUIRE(c);
+  if (c->approach) rig.append(*c->approach);
+  rig.append(c->search);
+}
 
 }  // namespace imess::test

@@ -21,7 +21,7 @@ void IntervalStats::record(double latency_us, bool overrun) noexcept {
   sequence_.store(s + 2, std::memory_order_release);
 }
 
-void IntervalStats::snapshot(IntervalSnapshot& out) const noexcept {
+bool IntervalStats::snapshot(IntervalSnapshot& out) const noexcept {
   for (int attempt = 0; attempt < 500; ++attempt) {
     const std::uint64_t before = sequence_.load(std::memory_order_acquire);
     std::uint64_t cycles = 0;
@@ -33,8 +33,9 @@ void IntervalStats::snapshot(IntervalSnapshot& out) const noexcept {
     out.overruns = overruns_.load(std::memory_order_relaxed);
     out.latency_max_us = max_.load(std::memory_order_relaxed);
     std::atomic_thread_fence(std::memory_order_acquire);
-    if ((before & 1) == 0 && sequence_.load(std::memory_order_relaxed) == before) return;
+    if ((before & 1) == 0 && sequence_.load(std::memory_order_relaxed) == before) return true;
   }
+  return false;
 }
 
 }  // namespace imess::core

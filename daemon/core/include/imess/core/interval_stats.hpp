@@ -38,8 +38,9 @@ class IntervalStats {
   }
   // Any thread: copies the interval. A copy that a cycle wrote into is taken again (up to a
   // few hundred times; a reader preempted throughout keeps the last copy: its counts are
-  // then still each a cycle's, summed to `cycles`).
-  void snapshot(IntervalSnapshot& out) const noexcept;
+  // then still each a cycle's, summed to `cycles`, but may mix two cycles). True when the
+  // copy is of one moment, false for that last resort.
+  bool snapshot(IntervalSnapshot& out) const noexcept;
 
  private:
   static_assert(std::atomic<double>::is_always_lock_free, "the loop must not lock to store a double");

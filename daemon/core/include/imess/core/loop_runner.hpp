@@ -61,7 +61,7 @@ class LoopRunner {
   // The measuring interval (Stats Reset, Stats Interval, Stats Hist): any thread.
   void restart_interval() noexcept { interval_.request_restart(); }
   bool interval_restarted() const noexcept { return interval_.restarted(); }  // the loop has begun it
-  void interval(IntervalSnapshot& out) const noexcept { interval_.snapshot(out); }
+  void interval(IntervalSnapshot& out) const noexcept { (void)interval_.snapshot(out); }
   double period_us() const noexcept { return std::chrono::duration<double, std::micro>(period_).count(); }
   bool realtime() const noexcept { return realtime_.load(std::memory_order_relaxed); }
 
