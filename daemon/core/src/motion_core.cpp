@@ -20,28 +20,6 @@ bool moving_mode(Mode m) {
 int sign(double v) { return (v > 0) - (v < 0); }
 }  // namespace
 
-double& param_ref(CoreParams& p, ParamId id) noexcept {
-  switch (id) {
-    case ParamId::TipRadius: return p.tip_radius;
-    case ParamId::SpeedLevel: return p.speed_level;
-    case ParamId::MaxSpeed: return p.max_speed;
-    case ParamId::MaxAccel: return p.max_accel;
-    case ParamId::RetractDistance: return p.retract_distance;
-    case ParamId::RetractSpeed: return p.retract_speed;
-    case ParamId::RetractTimeout: return p.retract_timeout;
-    case ParamId::IdleOpenTime: return p.idle_open_time;
-    case ParamId::GoToSpeed: return p.goto_speed;
-    case ParamId::HandMinTravel: return p.hand_min_travel;
-    case ParamId::HandMinInterval: return p.hand_min_interval;
-    case ParamId::SearchDistance: return p.search_distance;
-    case ParamId::PrehitDistance: return p.prehit_distance;
-    case ParamId::ProbeSpeed: return p.probe_speed;
-  }
-  return p.tip_radius;
-}
-
-double param_value(const CoreParams& p, ParamId id) noexcept { return param_ref(const_cast<CoreParams&>(p), id); }
-
 namespace {
 CoreConfig resolved(CoreConfig c) {
   for (auto& a : c.axes) {  // the unused entries too: they are never moved
