@@ -2,11 +2,10 @@
 // to its unit, limits, faults, the snapshot; the parameter lane.
 #include "imess/core/motion_core.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <limits>
+#include <chrono>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace imess::core {
 
