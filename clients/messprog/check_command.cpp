@@ -19,7 +19,7 @@ int run_check_command(const ProgOptions& options) {
     std::cout << programs::canonical_program(t, d.machine, d.setup.start);
     return 0;
   }
-  std::cout << check_report(options.file, options.lang, d.check, d.machine, describe_machine(d.machine, d.setup));
+  std::cout << check_report(options.file, options.lang, d.check, d.machine, d.description);
   return 0;
 }
 

@@ -1,11 +1,14 @@
 // The offline dry run of check and plot.
 #include "dry_run.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <iostream>
 #include <stdexcept>
 
 #include "check_report.hpp"
+#include "configured_machine.hpp"
+#include "imess/net/program_run.hpp"
 #include "imess/client/usage_error.hpp"
 #include "program_file.hpp"
 
@@ -39,7 +42,36 @@ planner::Pose start_pose(std::string_view text, const planner::Machine& m) {
   return p;
 }
 
+namespace {
+
+// The start when --from is not given: the configured machine's (simulated: its power-on
+// position), else 0 on every axis or the travel end nearest to it.
+planner::Pose default_start(const planner::Machine& m) {
+  planner::Pose p{};
+  for (int i = 0; i < m.count; ++i) p[i] = std::clamp(0.0, m.axes[i].travel_min, m.axes[i].travel_max);
+  return p;
+}
+
+DryRun configured_dry_run(const ProgOptions& options, const programs::SegmentVisitor& visit) {
+  const ConfiguredMachine cm = load_configured_machine(*options.config);
+  DryRun d;
+  d.machine = cm.machine;
+  const planner::Pose start = options.from ? start_pose(*options.from, d.machine) : cm.start.value_or(default_start(d.machine));
+  d.setup = net::program_setup(cm.config.server.programs, cm.config.core, cm.machine, start);
+  d.check = check_on_configured(cm, options.lang, base_name(options.file), read_program(options.file), start, visit);
+  d.description = describe_configured(cm, start);
+  return d;
+}
+
+}  // namespace
+
+planner::Machine dry_run_machine(const ProgOptions& options) {
+  if (options.config) return load_configured_machine(*options.config).machine;
+  return offline_machine(options.lang, offline_spec(options));
+}
+
 DryRun dry_run(const ProgOptions& options, const programs::SegmentVisitor& visit) {
+  if (options.config) return configured_dry_run(options, visit);
   DryRun d;
   d.machine = offline_machine(options.lang, offline_spec(options));
   d.setup = offline_setup(d.machine);
@@ -51,6 +83,7 @@ DryRun dry_run(const ProgOptions& options, const programs::SegmentVisitor& visit
     throw client::UsageError(std::string("--axes/--travel do not suit ") + programs::language_name(options.lang) +
                              ": " + e.what());
   }
+  d.description = describe_machine(d.machine, d.setup);
   return d;
 }
 

@@ -1,5 +1,6 @@
-// check and plot share this: the generic machine from the options, the file read, the
-// program translated and planned on it (programs::check_program).
+// check and plot share this: the machine (the generic one from the options, or with --config
+// the configured one), the file read, the program translated and planned on it
+// (programs::check_program, or messd's own check on a configured machine).
 #pragma once
 #include <string>
 
@@ -13,9 +14,14 @@ struct DryRun {
   planner::Machine machine;
   programs::Setup setup;
   programs::Check check;
+  std::string description;  // the machine, for the report's header
 };
 
 OfflineSpec offline_spec(const ProgOptions& options);
+
+// The machine check and plot run on, without the program: the configured one (--config) or
+// the generic one; throws client::UsageError naming the option.
+planner::Machine dry_run_machine(const ProgOptions& options);
 
 // --from "X,Y,Z": one number per machine axis, within its travel; throws client::UsageError.
 planner::Pose start_pose(std::string_view text, const planner::Machine& machine);

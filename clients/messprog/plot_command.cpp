@@ -17,10 +17,11 @@
 namespace imess::messprog {
 
 int run_plot_command(const ProgOptions& options) {
-  const auto machine = offline_machine(options.lang, offline_spec(options));
+  const auto machine = dry_run_machine(options);
   if (machine.count < 2)
-    throw client::UsageError("--axes '" + *options.axes +
-                             "': plot draws axes against each other; accepted: two or more letters");
+    throw client::UsageError((options.config ? "--config " + *options.config + ": the machine has one axis"
+                                             : "--axes '" + options.axes.value_or("") + "'") +
+                             ": plot draws axes against each other; accepted: two or more axes");
   TraceBuilder trace;
   const DryRun d = dry_run(options, [&](const planner::PlannedSegment& seg, const programs::Item& item) { trace.add(seg, item); });
   if (!d.check.ok) return report_program_error(options, d.check);

@@ -24,8 +24,8 @@ const char* command_name(Command c) {
 
 const char* accepted_options(Command c) {
   switch (c) {
-    case Command::Check: return "--canon, --from X,Y,Z, --lang L, --axes LETTERS, --travel MIN:MAX, --help";
-    case Command::Plot: return "-o OUT.svg, --from X,Y,Z, --lang L, --axes LETTERS, --travel MIN:MAX, --help";
+    case Command::Check: return "--canon, --config FILE, --from X,Y,Z, --lang L, --axes LETTERS, --travel MIN:MAX, --help";
+    case Command::Plot: return "-o OUT.svg, --config FILE, --from X,Y,Z, --lang L, --axes LETTERS, --travel MIN:MAX, --help";
     case Command::Run: return "--detached, --lang L, --help";
   }
   return "";
@@ -104,6 +104,8 @@ ProgOptions parse_prog_options(int argc, const char* const argv[]) {
         throw UsageError("--travel '" + std::string(*t) + "': MIN must be below MAX, e.g. -500:500");
     } else if (auto from = offline ? value_of("--from", i, argc, argv) : std::nullopt) {
       o.from = std::string(*from);
+    } else if (auto config = offline ? value_of("--config", i, argc, argv) : std::nullopt) {
+      o.config = std::string(*config);
     } else if (a == "--canon" && o.command == Command::Check) {
       o.canon = true;
     } else if (auto out = o.command == Command::Plot ? value_of("-o", i, argc, argv) : std::nullopt) {
@@ -123,6 +125,9 @@ ProgOptions parse_prog_options(int argc, const char* const argv[]) {
       throw UsageError("unexpected argument '" + std::string(a) + "'; " + cmd + " takes one program FILE");
     }
   }
+  if (o.config && (o.axes || o.travel_min))
+    throw UsageError(std::string(o.axes ? "--axes" : "--travel") + " with --config " + *o.config +
+                     ": the configuration gives the axes and their travel; accepted: one of them");
   if (!have_file)
     throw UsageError(cmd + " needs a program FILE (" + programs::kExtensions + ", or another name with --lang)");
   if (o.command == Command::Plot) {
@@ -135,8 +140,8 @@ ProgOptions parse_prog_options(int argc, const char* const argv[]) {
 }
 
 std::string prog_usage() {
-  return "usage: messprog check FILE [--canon] [--from X,Y,Z] [--lang L] [--axes LETTERS] [--travel MIN:MAX]\n"
-         "       messprog plot FILE -o OUT.svg [--from X,Y,Z] [--lang L] [--axes LETTERS] [--travel MIN:MAX]\n"
+  return "usage: messprog check FILE [--canon] [--config FILE | --axes LETTERS --travel MIN:MAX] [--from X,Y,Z] [--lang L]\n"
+         "       messprog plot FILE -o OUT.svg [--config FILE | --axes LETTERS --travel MIN:MAX] [--from X,Y,Z] [--lang L]\n"
          "       messprog run FILE [HOST[:PORT]] [--detached] [--lang L]\n"
          "Checks, draws and runs G-code, HPGL and MRM programs. The language follows FILE's\n"
          "extension: .nc .ngc .gcode .tap G-code, .plt .hpgl HPGL, .mrm MRM; or --lang.\n"
@@ -158,8 +163,11 @@ std::string prog_usage() {
          "  --canon          check: print the program's motion as LinuxCNC's rs274 -g prints\n"
          "                   its canonical calls (STRAIGHT_TRAVERSE, STRAIGHT_FEED, ARC_FEED,\n"
          "                   STRAIGHT_PROBE, DWELL; program units), to diff against LinuxCNC\n"
+         "  --config FILE    check/plot: the machine of a messd configuration (its axes,\n"
+         "                   travel, speeds, the programs section, a simulation's start) and\n"
+         "                   messd's own check: what passes here, messd's Load accepts\n"
          "  --from X,Y,Z     check/plot: where the machine starts, one number per axis in its\n"
-         "                   order (default 0 on every axis)\n"
+         "                   order (default: the configured simulation's start, else 0)\n"
          "  --lang L         gcode, hpgl or mrm, whatever the extension\n"
          "  --axes LETTERS   check/plot: the machine's axes, 1-9 of X Y Z A B C U V W\n"
          "                   (default XYZ; MRM: XYCUV, its A B C words moving U V C)\n"

@@ -18,6 +18,7 @@ struct ProgOptions {
   std::optional<std::string> axes;                  // --axes LETTERS (check, plot)
   std::optional<double> travel_min, travel_max;     // --travel MIN:MAX (check, plot)
   std::optional<std::string> from;                  // --from X,Y,Z: the start pose (check, plot)
+  std::optional<std::string> config;                // --config FILE: messd's machine (check, plot)
   bool canon = false;                               // check --canon: LinuxCNC's canonical calls
   std::string output;                               // plot: -o OUT.svg
   client::Endpoint endpoint;                        // run: HOST[:PORT]

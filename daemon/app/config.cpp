@@ -1,6 +1,8 @@
 // Configuration loading: JSON (strict, documented in docs/configuration.md) and messdrc.
 #include "config.hpp"
 
+#include "imess/core/path_machine.hpp"
+
 #include <boost/asio/ip/address.hpp>
 #include <algorithm>
 #include <cctype>
@@ -465,12 +467,8 @@ void finish_config(DaemonConfig& cfg) {
     cfg.core.output_count = 1;
   }
   finish_backend_config(cfg);
-  for (int a = 0; a < layout.count; ++a) {
-    auto& s = cfg.core.axes[a];
-    if (s.max_velocity <= 0) s.max_velocity = cfg.core.max_velocity;
-    if (s.max_accel <= 0) s.max_accel = cfg.core.params.max_accel;
-    cfg.card.max_velocity[a] = s.max_velocity;
-  }
+  cfg.core = core::resolved_limits(std::move(cfg.core));
+  for (int a = 0; a < layout.count; ++a) cfg.card.max_velocity[a] = cfg.core.axes[a].max_velocity;
   for (int a = 0; a < layout.count; ++a) cfg.card.max_accel[a] = 20000;  // the drives' limit; MaxAccel shapes moves
   cfg.server.period_us = cfg.period_us;  // the read-only parameters Period and Backend
   cfg.core.period_s = cfg.period_us * 1e-6;  // the time step of queued segments

@@ -19,10 +19,12 @@ using namespace detail;
 
 constexpr const char* kLetters = "N G M X Y Z A B C U V W I J K R F P Q S L T";
 constexpr const char* kGcodes =
-    "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G30 G38.2 G38.3 G40 G49 G53 G54 G55 G56 G57 G58 G59 G61 G61.1 G64 "
+    "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G30 G38.2 G38.3 G40 G49 G53 G54 G55 G56 G57 G58 G59 G59.1 G59.2 G59.3 G61 G61.1 G64 "
     "G80 G90 G91 G91.1 G92 G92.1 G92.2 G92.3 G94";
 constexpr const char* kMcodes = "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M62 M63 M64 M65";
 constexpr double kInch = 25.4;
+// G54 ... G59 (codes 540 ... 590 in tenths), then G59.1 G59.2 G59.3 (591 ... 593): 0 ... 8.
+int work_offset_index(int code_tenths) { return code_tenths > 590 ? 6 + (code_tenths - 591) : (code_tenths - 540) / 10; }
 
 struct Word {
   char letter = 0;
@@ -36,7 +38,7 @@ enum Group {
   kCancel, kComp, kLength, kFeedMode, kPath, kArcDistance, kToolChange, kCoolant, kGroups
 };
 constexpr const char* kGroupNames[kGroups] = {"motion (G0 G1 G2 G3 G38.2 G38.3)", "plane (G17 G18 G19)",
-                                              "distance (G90 G91)", "units (G20 G21)", "work offset (G54-G59)",
+                                              "distance (G90 G91)", "units (G20 G21)", "work offset (G54-G59.3)",
                                               "non-modal (G4 G10 G28 G30 G53 G92 G92.1 G92.2 G92.3)", "stop (M0 M1 M2 M30)", "spindle (M3 M4 M5)",
                                               "output (M62 M63 M64 M65)", "motion cancel (G80)",
                                               "cutter compensation (G40)", "tool length (G49)", "feed mode (G94)",
@@ -72,7 +74,7 @@ class GcodeTranslator {
  public:
   explicit GcodeTranslator(const GcodeOptions& o) : o_(o), m_(o.machine) {
     planner::validate(m_);
-    if (o.work_offset < 0 || o.work_offset > 5) throw std::invalid_argument("GcodeOptions::work_offset: 0..5 (G54..G59)");
+    if (o.work_offset < 0 || o.work_offset >= kWorkOffsets) throw std::invalid_argument("GcodeOptions::work_offset: 0..8 (G54..G59.3)");
     pos_ = o.start;
     coord_ = o.work_offset;
     known_.fill(true);
@@ -183,7 +185,7 @@ class GcodeTranslator {
           case 170: case 180: case 190: group = kPlane; break;
           case 200: case 210: group = kUnits; break;
           case 900: case 910: group = kDistance; break;
-          case 540: case 550: case 560: case 570: case 580: case 590: group = kCoord; break;
+          case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593: group = kCoord; break;
           case 40: case 100: case 280: case 300: case 530: case 920: case 921: case 922: case 923: group = kNonModal; break;
           case 800: group = kCancel; break;
           case 400: group = kComp; break;
@@ -345,7 +347,7 @@ class GcodeTranslator {
     if (codes_[kUnits].code >= 0) inches_ = codes_[kUnits].code == 200;
     note_code(codes_[kComp]);
     note_code(codes_[kLength]);
-    if (codes_[kCoord].code >= 0) coord_ = (codes_[kCoord].code - 540) / 10;
+    if (codes_[kCoord].code >= 0) coord_ = work_offset_index(codes_[kCoord].code);
     set_frame();
     note_code(codes_[kPath]);
     if (codes_[kDistance].code >= 0) absolute_ = codes_[kDistance].code == 900;
@@ -429,10 +431,10 @@ class GcodeTranslator {
     const Word& l = word('L');
     const Word& p = word('P');
     if (!l.given || (l.value != 2 && l.value != 20)) fail(ErrorKind::MissingWord, c.column, "G10" + (l.given ? " " + word_text(l) : std::string(" without L")), "G10 L2 or G10 L20");
-    if (!p.given) fail(ErrorKind::MissingWord, c.column, "G10 without P", "G10 L2/L20 P0 ... P6 (P0 the offset in force, P1 ... P6 G54 ... G59)");
+    if (!p.given) fail(ErrorKind::MissingWord, c.column, "G10 without P", "G10 L2/L20 P0 ... P9 (P0 the offset in force, P1 ... P9 G54 ... G59.3)");
     const long n = std::lround(p.value);
-    if (std::fabs(p.value - static_cast<double>(n)) > 1e-9 || n < 0 || n > 6)
-      fail(ErrorKind::BadValue, p.column, word_text(p), "P0 ... P6 (P0 the offset in force, P1 ... P6 G54 ... G59)");
+    if (std::fabs(p.value - static_cast<double>(n)) > 1e-9 || n < 0 || n > kWorkOffsets)
+      fail(ErrorKind::BadValue, p.column, word_text(p), "P0 ... P9 (P0 the offset in force, P1 ... P9 G54 ... G59.3)");
     const std::size_t k = n == 0 ? static_cast<std::size_t>(coord_) : static_cast<std::size_t>(n - 1);
     for (int i = 0; i < m_.count; ++i) {
       const Word& w = word(m_.axes[i].letter);
@@ -633,7 +635,7 @@ class GcodeTranslator {
   bool absolute_ = true, inches_ = false;
   int coord_ = 0;
   long tool_ = 0;                  // the last T
-  std::array<Pose, 6> offsets_{};  // G54 ... G59: the caller's, as G10 changes them in this program
+  std::array<Pose, kWorkOffsets> offsets_{};  // G54 ... G59.3: the caller's, as G10 changes them in this program
   Pose g92_{}, g92_kept_{};        // G92's offset in force; the one G92.2 suspended
   double feed_mm_ = 0, feed_deg_ = 0;  // the F speed: mm/min for linear moves, deg/min for rotary-only
   int feed_reset_line_ = 0;            // the last G94, which set F to 0

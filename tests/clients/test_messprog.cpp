@@ -174,7 +174,7 @@ TEST_CASE("messprog check: an unreadable file is exit 1 naming it — bad argume
   CHECK_THAT(r.err, Catch::StartsWith("messprog: --travel '5:-5': MIN must be below MAX"));
   r = run_program(messprog({"check", txt, "--lang", "gcode", "--detached"}));
   CHECK(r.status == 2);
-  CHECK_THAT(r.err, Catch::StartsWith("messprog: unknown option '--detached' for check; accepted: --canon, --from X,Y,Z, --lang L, --axes"));
+  CHECK_THAT(r.err, Catch::StartsWith("messprog: unknown option '--detached' for check; accepted: --canon, --config FILE, --from X,Y,Z, --lang L, --axes"));
   r = run_program(messprog({"check", txt, "other.nc", "--lang", "gcode"}));
   CHECK(r.status == 2);
   CHECK_THAT(r.err, Catch::StartsWith("messprog: unexpected argument 'other.nc'; check takes one program FILE"));
@@ -660,4 +660,44 @@ TEST_CASE("ProgressView: percent of blocks done, a bar on a terminal, plain line
   CHECK(plain.update(b, t0 + std::chrono::milliseconds(900)).empty());
   CHECK_FALSE(plain.update(b, t0 + std::chrono::milliseconds(1000)).empty());
   CHECK(plain.done(true).empty());
+}
+
+TEST_CASE("messprog check and plot --config FILE: messd's machine — its travel, start, programs section and check") {
+  TempDir dir;
+  const std::string config = std::string(IMESS_SOURCE_DIR) + "/config/sim-servo-card.json";
+  // From where the simulation powers on (430 330 100), not from 0 0 0.
+  const auto file = write(dir, "near.ngc", "G91 G0 X10\n");
+  auto r = run_program(messprog({"check", file, "--config", config}));
+  INFO(r.out << r.err);
+  CHECK(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("path length 10.000 mm"));
+  CHECK_THAT(r.out, Catch::Contains("starting at 430 330 100 (where the simulation powers on)"));
+  CHECK_THAT(r.out, Catch::Contains("Z 0..600 150 mm/s 1000 mm/s²"));
+  // The machine's travel: Z 0..600, so Z-5 is outside (the generic machine has -1000..1000).
+  const auto low = write(dir, "low.ngc", "G0 Z-5\n");
+  CHECK(run_program(messprog({"check", low})).status == 0);
+  r = run_program(messprog({"check", low, "--config", config}));
+  CHECK(r.status == 1);
+  CHECK_THAT(r.err, Catch::Contains("low.ngc:1:"));
+  // The programs section: on the SHD machine HPGL's origin is 430 330 and the pen moves Z
+  // between 100 (up) and 90 (down); the generic machine draws from 0 0 with the pen at 5 / 0.
+  const auto plt = write(dir, "line.plt", "IN;PU0,0;PD400,0;PU;\n");
+  r = run_program(messprog({"check", plt, "--config", std::string(IMESS_SOURCE_DIR) + "/config/sim-parport-shd.json"}));
+  CHECK(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("  X      430.000 ..      440.000 mm\n"));
+  CHECK_THAT(r.out, Catch::Contains("  Z       90.000 ..      100.000 mm\n"));
+  r = run_program(messprog({"check", plt}));
+  CHECK_THAT(r.out, Catch::Contains("  Z        0.000 ..        5.000 mm\n"));
+  // --from overrides the start; --axes and --travel do not go with it; a bad file is exit 2.
+  r = run_program(messprog({"check", file, "--config", config, "--from", "0,0,0"}));
+  CHECK_THAT(r.out, Catch::Contains("starting at 0 0 0\n"));
+  r = run_program(messprog({"check", file, "--config", config, "--travel", "-5:5"}));
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::Contains("--travel with --config"));
+  r = run_program(messprog({"check", file, "--config", write(dir, "bad.json", "{\"axes\": 3}")}));
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::StartsWith("messprog: --config "));
+  const auto svg = dir.file("near.svg");
+  CHECK(run_program(messprog({"plot", file, "--config", config, "-o", svg})).status == 0);
+  CHECK_THAT(group(read_file(svg), "view-xy"), Catch::Contains("box: X 430.000 .. 440.000 mm"));
 }

@@ -4,13 +4,11 @@
 // gripper closes between two moves, after the first has arrived, and Outputs shows it.
 #include <catch2/catch.hpp>
 
-#include <filesystem>
 #include <optional>
-#include <fstream>
-#include <sstream>
 #include <unistd.h>
 
 #include "daemon_process.hpp"
+#include "private_config.hpp"
 
 using namespace imess::test;
 
@@ -24,24 +22,6 @@ bool seen(const LineClient& c, const std::string& line) {
   for (const auto& l : c.seen())
     if (l == line) return true;
   return false;
-}
-// The shipped arm configuration with a port space of its own (another test may run the
-// shipped one at the same time; the port file is locked by the messd that uses it).
-std::string private_arm_config() {
-  std::ifstream in(std::string(IMESS_SOURCE_DIR) + "/config/sim-mrm-arm.json");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string json = text.str();
-  // The port_io key's value, not the same path in the file's _comment.
-  const std::string shipped = "\"file\": \"/tmp/imess-ports-arm\"";
-  const auto at = json.find(shipped);
-  REQUIRE(at != std::string::npos);
-  const std::string dir = std::filesystem::temp_directory_path().string();
-  const std::string tag = std::to_string(getpid());
-  json.replace(at, shipped.size(), "\"file\": \"" + dir + "/imess-test-ports-arm-" + tag + "\"");
-  const std::string path = dir + "/imess-test-arm-" + tag + ".json";
-  std::ofstream(path) << json;
-  return path;
 }
 }  // namespace
 
@@ -92,7 +72,7 @@ TEST_CASE("probe power on the servo card: power edges are not hits, a Probe with
 }
 
 TEST_CASE("the MRM arm's gripper: SetOut between two moves switches after the first arrived and holds its settle time") {
-  const std::string config = private_arm_config();
+  const std::string config = private_port_config(std::string(IMESS_SOURCE_DIR) + "/config/sim-mrm-arm.json");
   DaemonProcess messd({"--config", config});
   LineClient c(messd.port());
   REQUIRE(c.request("Outputs") == std::string("Ok Outputs gripper off ProbeArmed yes"));

@@ -107,6 +107,24 @@ TEST_CASE("gcode: work offsets G54-G59 from the caller's table, G53 in machine c
   CHECK(run("G0 X0", o) == Lines{"1 LINE rapid X100 Y0 Z0 F100"});
 }
 
+TEST_CASE("gcode: G59.1 G59.2 G59.3 are the 7th to 9th work offsets, G10 P7 to P9 set them, P10 is refused") {
+  GcodeOptions o;
+  o.work_offsets[6] = {7, 0, 0};
+  o.work_offsets[7] = {0, 8, 0};
+  o.work_offsets[8] = {0, 0, 9};
+  CHECK(run("G59.1 G0 X0 Y0 Z0\nG59.2 X0 Y0 Z0\nG59.3 X0 Y0 Z0\nG10 L2 P7 X-1\nG59.1 X0 Y0 Z0\n", o) ==
+        Lines{"1 LINE rapid X7 Y0 Z0 F100", "2 LINE rapid X0 Y8 Z0 F100", "3 LINE rapid X0 Y0 Z9 F100",
+              "5 LINE rapid X-1 Y0 Z0 F100"});
+  o.work_offset = 8;  // G59.3 active at start
+  CHECK(run("G0 Z0", o) == Lines{"1 LINE rapid X0 Y0 Z9 F100"});
+  const auto t = translate_gcode("G10 L2 P10 X1\n");
+  REQUIRE_FALSE(t.ok);
+  CHECK_THAT(t.error.message(), Catch::Contains("P0 ... P9 (P0 the offset in force, P1 ... P9 G54 ... G59.3)"));
+  const auto g594 = translate_gcode("G59.4 X1\n");
+  REQUIRE_FALSE(g594.ok);
+  CHECK_THAT(g594.error.message(), Catch::Contains("G59.4"));
+}
+
 TEST_CASE("gcode: start pose is where incremental moves begin and unnamed axes stay") {
   GcodeOptions o;
   o.start = {5, 6, 7};

@@ -20,7 +20,7 @@ TEST_CASE("gcode errors: characters, numbers, words and codes") {
   CHECK(err("G0 X1\nG0 Y1\nG0 H1") == std::string("line 3:4: unsupported word: found H, accepted words ") + kAllWords);
   CHECK(err("G0 X1 /Y1") == std::string("line 1:7: bad character: found '/', accepted words ") + kAllWords + ", '(comment)', ';comment'");
   const std::string g =
-      "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G30 G38.2 G38.3 G40 G49 G53 G54 G55 G56 G57 G58 G59 G61 G61.1 G64 "
+      "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G30 G38.2 G38.3 G40 G49 G53 G54 G55 G56 G57 G58 G59 G59.1 G59.2 G59.3 G61 G61.1 G64 "
       "G80 G90 G91 G91.1 G92 G92.1 G92.2 G92.3 G94";
   CHECK(err("G81 X1") == "line 1:1: unsupported code: found G81, accepted " + g);
   CHECK(err("G38.4 Z1") == "line 1:1: unsupported code: found G38.4, accepted " + g);
@@ -34,7 +34,7 @@ TEST_CASE("gcode errors: modal groups, repeated words, N placement") {
   CHECK(err("G17 G18") == "line 1:5: two words of one modal group: found G18 after G17 at column 1, accepted one word of group plane (G17 G18 G19) per line");
   CHECK(err("G90 G91") == "line 1:5: two words of one modal group: found G91 after G90 at column 1, accepted one word of group distance (G90 G91) per line");
   CHECK(err("G20 G21") == "line 1:5: two words of one modal group: found G21 after G20 at column 1, accepted one word of group units (G20 G21) per line");
-  CHECK(err("G54 G55") == "line 1:5: two words of one modal group: found G55 after G54 at column 1, accepted one word of group work offset (G54-G59) per line");
+  CHECK(err("G54 G55") == "line 1:5: two words of one modal group: found G55 after G54 at column 1, accepted one word of group work offset (G54-G59.3) per line");
   CHECK(err("G4 P1 G28") == "line 1:7: two words of one modal group: found G28 after G4 at column 1, accepted one word of group non-modal (G4 G10 G28 G30 G53 G92 G92.1 G92.2 G92.3) per line");
   CHECK(err("M0 M2") == "line 1:4: two words of one modal group: found M2 after M0 at column 1, accepted one word of group stop (M0 M1 M2 M30) per line");
   CHECK(err("M3 M5") == "line 1:4: two words of one modal group: found M5 after M3 at column 1, accepted one word of group spindle (M3 M4 M5) per line");

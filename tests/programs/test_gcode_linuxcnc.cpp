@@ -172,7 +172,7 @@ TEST_CASE("linuxcnc: G10 L2 and L20 set a work offset for the rest of the progra
                                                   "5 LINE rapid X4 Y10 Z0 F100", "7 LINE rapid X101 Y10 Z0 F100"});
   CHECK(notes(t) == "G10@2x3 ");
   CHECK(err("G10 L1 P1 X1") == "line 1:1: missing word: found G10 L1, accepted G10 L2 or G10 L20");
-  CHECK(err("G10 L2 P7 X1") == "line 1:8: value out of range: found P7, accepted P0 ... P6 (P0 the offset in force, P1 ... P6 G54 ... G59)");
+  CHECK(err("G10 L2 P10 X1") == "line 1:8: value out of range: found P10, accepted P0 ... P9 (P0 the offset in force, P1 ... P9 G54 ... G59.3)");
   CHECK(err("G0 X1 L2") == "line 1:7: word not allowed here: found L2, accepted L only with G10");
 }
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <utility>
 
+#include "imess/core/path_machine.hpp"  // resolved_limits
+
 namespace imess::core {
 
 namespace st = hal::status;
@@ -19,18 +21,8 @@ bool moving_mode(Mode m) {
 int sign(double v) { return (v > 0) - (v < 0); }
 }  // namespace
 
-namespace {
-CoreConfig resolved(CoreConfig c) {
-  for (auto& a : c.axes) {  // the unused entries too: they are never moved
-    if (a.max_velocity <= 0) a.max_velocity = c.max_velocity;
-    if (a.max_accel <= 0) a.max_accel = c.params.max_accel;
-  }
-  return c;
-}
-}  // namespace
-
 MotionCore::MotionCore(hal::MotionBackend& hardware, CoreConfig config, hal::SimHooks* sim)
-    : loop_(hardware, resolved(std::move(config)), sim), limits_(loop_.config), params_out_(loop_.config.params) {
+    : loop_(hardware, resolved_limits(std::move(config)), sim), limits_(loop_.config), params_out_(loop_.config.params) {
   params_in_.back() = params_out_;
   params_in_.publish();
   prefault_ring(commands_);  // resident from the start: no RSS creep, no page fault in the cycle

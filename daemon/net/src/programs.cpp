@@ -12,6 +12,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "imess/net/program_check.hpp"
 #include "imess/net/server.hpp"
 #include "imess/net/wording.hpp"
 #include "imess/protocol/messages.hpp"
@@ -106,14 +107,14 @@ programs::Setup program_setup(const ProgramConfig& pc, const core::CoreConfig& c
 
 bool work_offsets_from_frames(const PartFrames& frames, const hal::AxisLayout& layout, programs::GcodeOptions& g,
                               std::string& error) {
-  for (int i = 0; i < 6; ++i) {
-    const std::string name = "G5" + std::to_string(4 + i);
+  for (int i = 0; i < programs::kWorkOffsets; ++i) {
+    const std::string name(programs::kWorkOffsetNames[static_cast<std::size_t>(i)]);
     const auto* f = frames.find(name);
     if (!f) continue;
     const double turned = Eigen::AngleAxisd(f->rotation()).angle();
     if (turned > 1e-9) {
       error = "line 1:1: not configured: found the part frame " + name + " turned by " + std::to_string(turned * 180 / std::numbers::pi) +
-              " degrees, accepted frames G54 to G59 that only shift the machine's axes (SetFrame " + name + " O x y z)";
+              " degrees, accepted frames G54 to G59.3 that only shift the machine's axes (SetFrame " + name + " O x y z)";
       return false;
     }
     for (int c = 0; c < 3; ++c)
@@ -156,33 +157,8 @@ bool resolve_program_outputs(std::vector<programs::Item>& items, const ProgramCo
 // Translates and checks the program from `start`; the items of the run in `items`.
 bool Server::check_program_text(const LoadedProgram& p, const planner::Pose& start, std::vector<programs::Item>& items,
                                 programs::Check& check, std::string& error) const {
-  programs::Setup setup = program_setup(config_.programs, core_.config(), planner_.machine(), start);
-  if (!work_offsets_from_frames(frames_, layout(), setup.gcode, error)) return false;
-  programs::Translation t;
-  try {
-    t = programs::translate(p.lang, p.text, setup);
-  } catch (const std::invalid_argument& e) {
-    // A translator refuses this machine as its set-up (docs/programs.md: e.g. HPGL with a Z
-    // pen on a machine without Z). Uncaught, this left the io handler and ended messd — an
-    // Upload or a Load of any .plt on config/sim-mrm-arm.json did (found by
-    // tests/golden/test_program_properties.cpp). It is a program this machine cannot run.
-    error = std::string("line 1:1: not configured: found a ") + programs::language_name(p.lang) +
-            " program, which this machine cannot run (" + e.what() + "), accepted programs in a language its axes and the programs section allow";
-    return false;
-  }
-  if (!t.ok) {
-    error = t.error.message();
-    return false;
-  }
-  if (!resolve_program_outputs(t.items, config_.programs, core_.config(), error)) return false;
-  check = programs::check_items(t.items, setup.machine, planner_.options(), start);
-  check.lines = programs::line_count(p.text);
-  if (!check.ok) {
-    error = check.error;
-    return false;
-  }
-  items = std::move(t.items);
-  return true;
+  return check_program_for({config_.programs, core_.config(), planner_.machine(), planner_.options(), &frames_}, p,
+                           start, items, check, error);
 }
 
 bool Server::program_busy(Session& s, std::uint32_t slot, std::string_view verb) {

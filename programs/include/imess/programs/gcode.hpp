@@ -9,11 +9,17 @@
 
 namespace imess::programs {
 
+// The work offsets: G54 ... G59, G59.1, G59.2, G59.3 (as LinuxCNC: nine).
+inline constexpr int kWorkOffsets = 9;
+// Their names, by index (0 = G54 ... 8 = G59.3): the part frames messd keeps them as.
+inline constexpr std::array<std::string_view, kWorkOffsets> kWorkOffsetNames = {"G54", "G55", "G56", "G57", "G58",
+                                                                              "G59", "G59.1", "G59.2", "G59.3"};
+
 struct GcodeOptions {
   planner::Machine machine = planner::make_machine("XYZ", -1000, 1000, 100, 1000);
   Pose start{};                        // machine pose when the program starts
-  std::array<Pose, 6> work_offsets{};  // G54 … G59: machine = program + offset (mm, deg)
-  int work_offset = 0;                 // active at start: 0 = G54
+  std::array<Pose, kWorkOffsets> work_offsets{};  // G54 … G59.3: machine = program + offset (mm, deg)
+  int work_offset = 0;                 // active at start: 0 = G54 … 8 = G59.3
   Pose home{};                         // where G28 goes (machine pose)
   Pose g30{};                          // where G30 goes (machine pose)
   bool block_delete = true;            // lines starting with '/' are skipped (the switch on)

@@ -7,6 +7,16 @@
 
 namespace imess::core {
 
+// The configuration with every axis' limits resolved: an axis without its own max_velocity
+// or max_accel (0) takes the machine's (MotionCore does this at construction).
+inline CoreConfig resolved_limits(CoreConfig c) {
+  for (auto& a : c.axes) {  // the unused entries too: they are never moved
+    if (a.max_velocity <= 0) a.max_velocity = c.max_velocity;
+    if (a.max_accel <= 0) a.max_accel = c.params.max_accel;
+  }
+  return c;
+}
+
 inline planner::Machine path_machine(const CoreConfig& resolved) {
   planner::Machine m;
   m.count = resolved.layout.count;

@@ -73,7 +73,7 @@ programs::Setup program_setup(const ProgramConfig& pc, const core::CoreConfig& c
                               const planner::Pose& start);
 // Every SetOutput of `items` gets the machine's output number and its settle time; false
 // (with `error` naming the line) when a program switches an output the machine lacks.
-// The stored part frames G54 ... G59 as the G-code work offsets on the machine's X Y Z (the
+// The stored part frames G54 ... G59.3 as the G-code work offsets on the machine's X Y Z (the
 // active one, if it is one of them, is active at the start). A turned frame is refused:
 // false with `error` in Err 213's form.
 class PartFrames;
