@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "config.hpp"
 #include "json_object.hpp"  // ConfigError
 #include "machine.hpp"
 

@@ -4,12 +4,12 @@
 #include <string>
 #include <vector>
 
-#include "backend_config.hpp"
 #include "imess/core/core_types.hpp"
 #include "imess/hal/servo_card_driver.hpp"
 #include "imess/journal/journal_config.hpp"
 #include "imess/net/server.hpp"
 #include "imess/sim/simulated_cmm.hpp"
+#include "port_backend_config.hpp"
 
 namespace imess::app {
 
@@ -21,7 +21,7 @@ struct DaemonConfig {
   bool home_on_start = false;
   std::string backend = "sim-servo-card";
   hal::ServoCardConfig card;
-  PortBackendConfig ports;  // parport / drive-kit backends (backend_config.hpp)
+  PortBackendConfig ports;  // parport / drive-kit backends (port_backend_config.hpp; read in backend_config.cpp)
   sim::SimulatedCmmConfig sim;
   journal::JournalConfig journal;  // dir empty: default_journal_dir()
   bool sim_probe_nc_set = false;  // sim.probe.normally_closed given explicitly

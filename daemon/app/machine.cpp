@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "backend_registry.hpp"
+#include "config.hpp"
 
 namespace imess::app {
 

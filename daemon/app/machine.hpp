@@ -4,7 +4,6 @@
 #include <memory>
 #include <string>
 
-#include "config.hpp"
 #include "imess/hal/motion_backend.hpp"
 
 namespace imess::sim {
@@ -12,6 +11,8 @@ class StepperMachine;
 }
 
 namespace imess::app {
+
+struct DaemonConfig;  // config.hpp
 
 class Machine {
  public:

@@ -1,6 +1,7 @@
 // Runtime parameters in the configuration: keys and ranges from the parameter registry.
 #include "param_config.hpp"
 
+#include "config.hpp"
 #include "imess/protocol/numbers.hpp"
 
 namespace imess::app {

@@ -3,11 +3,12 @@
 #pragma once
 #include <string>
 
-#include "config.hpp"
 #include "imess/net/params.hpp"
-#include "json_object.hpp"
+#include "json_object.hpp"  // JsonObject, ConfigError
 
 namespace imess::app {
+
+struct DaemonConfig;  // config.hpp
 
 // Where the configuration keeps a parameter's start value; null for ones it cannot set.
 double* config_place(const net::ParamSpec& spec, DaemonConfig& cfg);

@@ -1,5 +1,6 @@
 // "parport": a stepper machine on a real parallel port (x86 ports or ppdev), its base
 // routine in its own thread.
+#include "backend_config.hpp"
 #include "backend_registry.hpp"
 #include "base_thread.hpp"
 #include "imess/hal/parport_stepper_driver.hpp"

@@ -1,5 +1,6 @@
 // "portio-drive": DC servo drive kits on real port hardware (DAC and counter cards at x86
 // port addresses).
+#include "backend_config.hpp"
 #include "backend_registry.hpp"
 #include "imess/hal/drive_kit_driver.hpp"
 

@@ -1,5 +1,6 @@
 // "sim-parport": the real step/dir driver writing the simulated port space of a simulated
 // stepper CMM; base routine and stepper machine in lock-step virtual base periods.
+#include "backend_config.hpp"
 #include "backend_registry.hpp"
 #include "imess/hal/parport_stepper_driver.hpp"
 #include "imess/sim/port_device.hpp"

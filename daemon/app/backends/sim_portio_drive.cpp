@@ -1,5 +1,6 @@
 // "sim-portio-drive": the real drive-kit driver on the simulated port space of a CMM with
 // DC servo drive kits, which run in virtual kit periods up to each servo call.
+#include "backend_config.hpp"
 #include "backend_registry.hpp"
 #include "imess/hal/drive_kit_driver.hpp"
 #include "imess/sim/port_device.hpp"

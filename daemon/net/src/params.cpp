@@ -1,4 +1,4 @@
-// The parameter registry: one entry per name; Get lists them in this order.
+// The parameter registry: the core's table (core_params.hpp) and the io side's own entries.
 #include "imess/net/params.hpp"
 
 #include <array>
@@ -11,13 +11,12 @@
 
 namespace imess::net {
 namespace {
-using core::ParamId;
 
-constexpr ParamSpec core_param(std::string_view name, std::string_view unit, double min, double max, double initial,
-                               ParamId id, std::string_view config, std::string_view help) {
+// A core parameter: its row of the core's table (imess/core/core_params.hpp).
+constexpr ParamSpec core_param(const core::CoreParamSpec& c) {
   ParamSpec p;
-  p.name = name, p.unit = unit, p.min = min, p.max = max, p.initial = initial;
-  p.home = ParamHome::Core, p.core_id = id, p.config = config, p.help = help;
+  p.name = c.name, p.unit = c.unit, p.min = c.min, p.max = c.max, p.initial = c.initial();
+  p.home = ParamHome::Core, p.core_id = c.id, p.config = c.config, p.help = c.help;
   return p;
 }
 constexpr ParamSpec net_param(ParamSpec p, ParamHome home, bool read_only, int decimals, bool text = false) {
@@ -39,30 +38,8 @@ constexpr ParamSpec probe_offset(std::string_view name, int axis, std::string_vi
   return p;
 }
 
-const std::array kParams{
-    core_param("TipRadius", "mm", 0, 50, 2.0, ParamId::TipRadius, "motion.tip_radius",
-               "probe ball radius used for compensation; 0 = none"),
-    core_param("SpeedLevel", "", 0.01, 2, 1.0, ParamId::SpeedLevel, "motion.speed_level",
-               "multiplier for every speed (1996: 0.1 ... 1.5)"),
-    core_param("MaxSpeed", "mm/s", 0.1, 1000, 100, ParamId::MaxSpeed, "motion.max_speed", "speed of StartMv 100"),
-    core_param("MaxAccel", "mm/s2", 1, 20000, 1000, ParamId::MaxAccel, "motion.max_accel", "acceleration of every move"),
-    core_param("RetractDist", "mm", 0, 20, 0.5, ParamId::RetractDistance, "motion.retract_distance",
-               "retract behind the latched point"),
-    core_param("RetractSpeed", "mm/s", 0.1, 200, 10, ParamId::RetractSpeed, "motion.retract_speed", "speed of the retract"),
-    core_param("RetractTime", "s", 0.1, 60, 5, ParamId::RetractTimeout, "motion.retract_timeout_s",
-               "time for the tip to re-seat"),
-    core_param("IdleOpen", "s", 0.1, kUnbounded, 7, ParamId::IdleOpenTime, "motion.idle_open_s",
-               "loops open this long after the last stop"),
-    core_param("GoToSpeed", "mm/s", 0.1, 1000, 50, ParamId::GoToSpeed, "motion.goto_speed", "GoTo speed when none is given"),
-    core_param("HandTravel", "mm", 0.1, 50, 1.0, ParamId::HandMinTravel, "motion.hand_min_travel",
-               "travel that gives a hand hit its direction"),
-    core_param("HandInterval", "s", 0, 60, 1.0, ParamId::HandMinInterval, "motion.hand_min_interval_s",
-               "minimum time between hand hits"),
-    core_param("SearchDist", "mm", 0.1, 100, 10, ParamId::SearchDistance, "motion.search_distance",
-               "probing: searched past the target before the part counts as not found"),
-    core_param("PrehitDist", "mm", 0, 50, 2, ParamId::PrehitDistance, "motion.prehit_distance",
-               "probing: before the target, where the touch speed is reached"),
-    core_param("ProbeSpeed", "mm/s", 0.1, 50, 5, ParamId::ProbeSpeed, "motion.probe_speed", "probing: the touch speed"),
+// The parameters that do not live in the motion loop.
+constexpr std::array kOtherParams{
     probe_offset("ProbeOffX", 0, "motion.probe_offset_x"),
     probe_offset("ProbeOffY", 1, "motion.probe_offset_y"),
     probe_offset("ProbeOffZ", 2, "motion.probe_offset_z"),
@@ -75,6 +52,15 @@ const std::array kParams{
     net_param(plain("Backend", "", 0, 0, 0, "", "the machine behind the motion loop, from the configuration's backend.type"),
               ParamHome::Backend, true, 0, true),
 };
+
+// Get lists them in this order: the core's table, then the others.
+constexpr auto kParams = [] {
+  std::array<ParamSpec, core::kCoreParams.size() + kOtherParams.size()> all{};
+  std::size_t i = 0;
+  for (const auto& c : core::kCoreParams) all[i++] = core_param(c);
+  for (const auto& p : kOtherParams) all[i++] = p;
+  return all;
+}();
 
 std::string compact(double v) {
   char buf[32];

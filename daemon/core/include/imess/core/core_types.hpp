@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "imess/core/core_params.hpp"
 #include "imess/hal/types.hpp"
 
 namespace imess::core {
@@ -61,32 +62,6 @@ enum class FaultKind : std::uint8_t {
   StopInput,                                             // STOP pressed: steps may be lost, reference run needed
   SafetyInput1, SafetyInput2, SafetyInput3, SafetyInput4,  // a normally-closed safety input opened
 };
-
-// Runtime parameters (Set/Get). Ranges are checked by the daemon's parameter table.
-struct CoreParams {
-  double tip_radius = 2.0;         // mm; 0 = no radius correction (optical probe)
-  double speed_level = 1.0;        // multiplier for every speed
-  double max_speed = 100;          // mm/s at StartMv 100 % (the path speed stays within the axis limits)
-  double max_accel = 1000;         // mm/s², per axis; only lowers the axes' configured max_accel
-  double retract_distance = 0.5;   // mm behind the latched point
-  double retract_speed = 10;       // mm/s
-  double retract_timeout = 5;      // s to re-seat the tip
-  double idle_open_time = 7;       // s after the last stop until the loops open
-  double goto_speed = 50;          // mm/s when GoTo names none
-  double hand_min_travel = 1.0;    // mm of travel that gives a hand hit its direction
-  double hand_min_interval = 1.0;  // s between accepted hand hits
-  // The probing move (DirectCMM, BRIEF §2; the Probe cycle that uses them comes next):
-  double search_distance = 10;     // mm searched past the target before "part not found"
-  double prehit_distance = 2;      // mm before the target where the touch speed is reached
-  double probe_speed = 5;          // mm/s, the touch speed
-};
-
-enum class ParamId : std::uint8_t {
-  TipRadius, SpeedLevel, MaxSpeed, MaxAccel, RetractDistance, RetractSpeed, RetractTimeout,
-  IdleOpenTime, GoToSpeed, HandMinTravel, HandMinInterval, SearchDistance, PrehitDistance, ProbeSpeed,
-};
-double& param_ref(CoreParams& p, ParamId id) noexcept;
-double param_value(const CoreParams& p, ParamId id) noexcept;
 
 // Units: mm for a linear axis, degrees for a rotary one (speeds per second).
 struct AxisSettings {

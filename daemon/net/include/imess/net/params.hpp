@@ -1,6 +1,7 @@
 // The runtime parameter registry behind Get and Set (and the configuration's keys for the
 // same values): one entry per parameter — wire name, unit, range, default, read-only, help,
-// and where its value lives. Adding a parameter: one entry in params.cpp (+ its home).
+// and where its value lives. A motion-loop parameter is one row of the core's table
+// (imess/core/core_params.hpp); any other, one entry in params.cpp (+ its home).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -42,7 +43,7 @@ struct ParamSpec {
   std::string_view help;           // one line
 };
 
-inline constexpr double kUnbounded = 1e9;  // a max this large reads "any" in messages and docs
+inline constexpr double kUnbounded = core::kUnbounded;  // a max this large reads "any" in messages and docs
 
 std::span<const ParamSpec> param_table();
 const ParamSpec* find_param(std::string_view name);  // case-insensitive
