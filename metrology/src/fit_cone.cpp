@@ -24,7 +24,7 @@ namespace {
 
 using detail::ConeProblem;
 
-constexpr std::string_view kName = "cone";
+constexpr std::string_view kCone = "cone";
 
 std::string describe(const ConeProblem::State& s0, const Eigen::Vector3d& centroid) {
   const ConeProblem::State s = ConeProblem::oriented(s0);
@@ -69,7 +69,7 @@ std::optional<FitError> cylinder_check(const ConeProblem& pb, const Eigen::Matri
      << " deg: 3 standard deviations up to 1 deg, or a radius change of 1e-9 of the size over the probed "
         "length): the "
      << n << " points lie on a cylinder; fit a cylinder instead (fit_cylinder, messcap fit cylinder)";
-  return detail::make_error(FitErrorCode::ConeIsCylinder, kName, os.str());
+  return detail::make_error(FitErrorCode::ConeIsCylinder, kCone, os.str());
 }
 
 Fit<Cone> refine(std::span<const Eigen::Vector3d> points, const detail::PrincipalAxes<3>& pa,
@@ -84,7 +84,7 @@ Fit<Cone> refine(std::span<const Eigen::Vector3d> points, const detail::Principa
        << describe(best.ambiguous->first, pa.centroid) << "; " << describe(best.ambiguous->second, pa.centroid)
        << "), so they do not determine one (" << kMinPointsCone
        << " points are the minimum, but several cones pass through 6 points); probe more points";
-    return detail::make_error(FitErrorCode::AmbiguousSolution, kName, os.str());
+    return detail::make_error(FitErrorCode::AmbiguousSolution, kCone, os.str());
   }
   if (sample_starts && points.size() == kMinPointsCone) {
     // A minimal set has no redundancy: the search found one exact solution, but several cones
@@ -99,9 +99,9 @@ Fit<Cone> refine(std::span<const Eigen::Vector3d> points, const detail::Principa
       os << "no start converged to a cone through them, and several cones";
     os << " generally pass through 6 points, and the points cannot tell which one the workpiece is; probe more "
           "points (or refine from a nominal cone)";
-    return detail::make_error(FitErrorCode::AmbiguousSolution, kName, os.str());
+    return detail::make_error(FitErrorCode::AmbiguousSolution, kCone, os.str());
   }
-  if (!best.state) return detail::no_solution_error(best, options, starts.size(), points.size(), kName);
+  if (!best.state) return detail::no_solution_error(best, options, starts.size(), points.size(), kCone);
   // Orient the axis toward increasing radius.
   const ConeProblem::State st = ConeProblem::oriented(*best.state);
   if (auto e = cylinder_check(pb, q, st)) return *e;
@@ -118,20 +118,20 @@ Fit<Cone> refine(std::span<const Eigen::Vector3d> points, const detail::Principa
 
 Fit<Cone> fit_cone(std::span<const Eigen::Vector3d> points, const FitOptions& options) {
   detail::PrincipalAxes<3> pa;
-  if (auto e = detail::check_axial_input(points, kMinPointsCone, kName, pa)) return *e;
+  if (auto e = detail::check_axial_input(points, kMinPointsCone, kCone, pa)) return *e;
   const Eigen::Matrix3Xd q = detail::centred<3>(points, pa.centroid);
   const std::vector<ConeProblem::State> starts = detail::cone_starts(detail::start_sample(q), pa);
-  if (starts.empty()) return detail::no_start_error(kName);
+  if (starts.empty()) return detail::no_start_error(kCone);
   return refine(points, pa, q, starts, options, true);
 }
 
 Fit<Cone> fit_cone(std::span<const Eigen::Vector3d> points, const Cone& start, const FitOptions& options) {
   detail::PrincipalAxes<3> pa;
-  if (auto e = detail::check_axial_input(points, kMinPointsCone, kName, pa)) return *e;
+  if (auto e = detail::check_axial_input(points, kMinPointsCone, kCone, pa)) return *e;
   if (!start.point.allFinite() || !start.direction.allFinite() || !std::isfinite(start.distance) ||
       !std::isfinite(start.apex_angle_rad) || start.direction.norm() == 0.0 ||
       !(start.apex_angle_rad > -std::numbers::pi && start.apex_angle_rad < std::numbers::pi))
-    return detail::make_error(FitErrorCode::InvalidArgument, kName,
+    return detail::make_error(FitErrorCode::InvalidArgument, kCone,
                               "the starting cone needs a finite point, a non-zero direction, a "
                               "finite distance and an apex angle in (-pi, pi)");
   const Eigen::Matrix3Xd q = detail::centred<3>(points, pa.centroid);

@@ -16,7 +16,7 @@
 namespace imess::metrology {
 namespace {
 
-constexpr std::string_view kName = "cylinder";
+constexpr std::string_view kCylinder = "cylinder";
 
 // Parameters are linearised in a local frame [u v a] at the current axis point c (centred
 // coordinates): step = (shift along u, shift along v, tilt toward u, tilt toward v, d radius).
@@ -121,9 +121,9 @@ Fit<Cylinder> refine(std::span<const Eigen::Vector3d> points, const detail::Prin
        << describe(best.ambiguous->first, pa.centroid) << "; " << describe(best.ambiguous->second, pa.centroid)
        << "), so they do not determine one (" << kMinPointsCylinder
        << " points are the minimum, but up to 6 cylinders pass through 5 points); probe more points";
-    return detail::make_error(FitErrorCode::AmbiguousSolution, kName, os.str());
+    return detail::make_error(FitErrorCode::AmbiguousSolution, kCylinder, os.str());
   }
-  if (!best.state) return detail::no_solution_error(best, options, starts.size(), points.size(), kName);
+  if (!best.state) return detail::no_solution_error(best, options, starts.size(), points.size(), kCylinder);
   if (sample_starts && points.size() == kMinPointsCylinder) {
     // A minimal set has no redundancy: the search found one exact solution, but an even number
     // of cylinders (2, 4 or 6) passes through 5 points in general position when one does, and
@@ -133,7 +133,7 @@ Fit<Cylinder> refine(std::span<const Eigen::Vector3d> points, const detail::Prin
        << describe(*best.state, pa.centroid) << ", but an even number of cylinders (2, 4 or 6) passes through 5 points in general position "
           "when one does, and the points cannot tell which one "
        << "the workpiece is; probe more points (or refine from a nominal cylinder)";
-    return detail::make_error(FitErrorCode::AmbiguousSolution, kName, os.str());
+    return detail::make_error(FitErrorCode::AmbiguousSolution, kCylinder, os.str());
   }
   Cylinder cyl;
   cyl.point = pa.centroid + best.state->c;
@@ -147,24 +147,24 @@ Fit<Cylinder> refine(std::span<const Eigen::Vector3d> points, const detail::Prin
 
 Fit<Cylinder> fit_cylinder(std::span<const Eigen::Vector3d> points, const FitOptions& options) {
   detail::PrincipalAxes<3> pa;
-  if (auto e = detail::check_axial_input(points, kMinPointsCylinder, kName, pa)) return *e;
+  if (auto e = detail::check_axial_input(points, kMinPointsCylinder, kCylinder, pa)) return *e;
   const Eigen::Matrix3Xd q = detail::centred<3>(points, pa.centroid);
   const Eigen::Matrix3Xd qs = detail::start_sample(q);
   std::vector<CylinderProblem::State> starts;
   for (const Eigen::Vector3d& axis : detail::start_directions(qs, pa, detail::cylinder_on_direction)) {
     if (auto pos = detail::axis_position(qs, axis)) starts.push_back({pos->point, axis, pos->radius});
   }
-  if (starts.empty()) return detail::no_start_error(kName);
+  if (starts.empty()) return detail::no_start_error(kCylinder);
   return refine(points, pa, q, starts, options, true);
 }
 
 Fit<Cylinder> fit_cylinder(std::span<const Eigen::Vector3d> points, const Cylinder& start,
                            const FitOptions& options) {
   detail::PrincipalAxes<3> pa;
-  if (auto e = detail::check_axial_input(points, kMinPointsCylinder, kName, pa)) return *e;
+  if (auto e = detail::check_axial_input(points, kMinPointsCylinder, kCylinder, pa)) return *e;
   if (!start.point.allFinite() || !start.direction.allFinite() || !std::isfinite(start.diameter) ||
       start.direction.norm() == 0.0 || !(start.diameter > 0.0))
-    return detail::make_error(FitErrorCode::InvalidArgument, kName,
+    return detail::make_error(FitErrorCode::InvalidArgument, kCylinder,
                               "the starting cylinder needs a finite point, a non-zero direction "
                               "and a positive diameter");
   const Eigen::Matrix3Xd q = detail::centred<3>(points, pa.centroid);

@@ -71,5 +71,11 @@ std::string local_timestamp(const char* format) {
   return buf;
 }
 
+std::string real_with_point(double v, int decimals) {
+  std::string s = fixed(v, decimals);
+  if (s.find('.') == std::string::npos) s += '.';
+  return s;
+}
+
 }  // namespace writers
 }  // namespace imess::exchange

@@ -12,12 +12,6 @@ namespace {
 
 std::string hollerith(const std::string& s) { return std::to_string(s.size()) + "H" + s; }
 
-// An IGES real: always with a decimal point ("12." rather than "12").
-std::string real(double v, int decimals) {
-  std::string s = fixed(v, decimals);
-  if (s.find('.') == std::string::npos) s += '.';
-  return s;
-}
 
 class Section {
  public:
@@ -94,8 +88,8 @@ std::string iges(const ExportData& d) {
   for (int i = 0; i < d.decimals; ++i) resolution /= 10.0;
   global.packed({hollerith(","), hollerith(";"), hollerith("IMESS points"), hollerith(d.file_name),
                  hollerith("IMESS"), hollerith(d.source), "32", "38", "6", "308", "15", hollerith("IMESS points"),
-                 "1.0", "2", hollerith("MM"), "1", "1.0", hollerith(stamp), real(resolution, 12),
-                 real(max_coord, 3), hollerith("IMESS"), hollerith("IMESS"), "11", "0", hollerith(stamp)},
+                 "1.0", "2", hollerith("MM"), "1", "1.0", hollerith(stamp), real_with_point(resolution, 12),
+                 real_with_point(max_coord, 3), hollerith("IMESS"), hollerith("IMESS"), "11", "0", hollerith(stamp)},
                 ';', 72);
 
   // The points, logically dependent (status 00020000) on one group at the end: a reader
@@ -105,7 +99,7 @@ std::string iges(const ExportData& d) {
     const auto& p = d.points[i];
     members.push_back(std::to_string(directory.count() + 1));
     entity(directory, parameters, 116, 0, "00020000", "POINT", static_cast<int>(i + 1),
-           {"116", real(p.x(), d.decimals), real(p.y(), d.decimals), real(p.z(), d.decimals), "0"});
+           {"116", real_with_point(p.x(), d.decimals), real_with_point(p.y(), d.decimals), real_with_point(p.z(), d.decimals), "0"});
   }
   // 402 form 7: unordered group without back pointers — the measured point set.
   members.insert(members.begin(), {"402", std::to_string(d.points.size())});

@@ -16,11 +16,6 @@ std::string quoted(const std::string& s) {
   return out + "'";
 }
 
-std::string real(double v, int decimals) {
-  std::string s = fixed(v, decimals);
-  if (s.find('.') == std::string::npos) s += '.';
-  return s;
-}
 
 }  // namespace
 
@@ -54,8 +49,8 @@ std::string step(const ExportData& d) {
   int id = 19;
   std::string members;
   for (const auto& p : d.points) {
-    out += "#" + std::to_string(id) + "=CARTESIAN_POINT('',(" + real(p.x(), d.decimals) + "," +
-           real(p.y(), d.decimals) + "," + real(p.z(), d.decimals) + "));\n";
+    out += "#" + std::to_string(id) + "=CARTESIAN_POINT('',(" + real_with_point(p.x(), d.decimals) + "," +
+           real_with_point(p.y(), d.decimals) + "," + real_with_point(p.z(), d.decimals) + "));\n";
     members += (members.empty() ? "#" : ",#") + std::to_string(id);
     ++id;
   }

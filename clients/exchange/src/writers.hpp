@@ -25,6 +25,10 @@ std::string iges(const ExportData& d);
 std::string step(const ExportData& d);
 std::string dmis(const ExportData& d);
 
+// A real number as STEP and IGES write it: `decimals` places, always with a decimal point
+// ("12." rather than "12").
+std::string real_with_point(double v, int decimals);
+
 // "2024-05-01T14:03:07" in local time, for the headers that carry a date.
 std::string local_timestamp(const char* format = "%Y-%m-%dT%H:%M:%S");
 

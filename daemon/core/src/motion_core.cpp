@@ -18,7 +18,6 @@ bool moving_mode(Mode m) {
   return m == Mode::Jog || m == Mode::Move || m == Mode::Retract || m == Mode::Home || m == Mode::Stopping ||
          m == Mode::Path;
 }
-int sign(double v) { return (v > 0) - (v < 0); }
 }  // namespace
 
 MotionCore::MotionCore(hal::MotionBackend& hardware, CoreConfig config, hal::SimHooks* sim)

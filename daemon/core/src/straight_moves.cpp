@@ -10,7 +10,6 @@ namespace st = hal::status;
 
 namespace {
 constexpr double kFar = 1e5;  // mm: a jog target beyond any travel when no soft limits are known
-int sign(double v) { return (v > 0) - (v < 0); }
 }  // namespace
 
 bool StraightMoves::away_from_touch(const AxisVec& u) const noexcept {

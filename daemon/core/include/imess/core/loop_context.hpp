@@ -12,6 +12,9 @@
 
 namespace imess::core {
 
+// -1, 0 or +1: the side of zero v lies on (a direction's sense along one axis).
+constexpr int sign(double v) noexcept { return (v > 0) - (v < 0); }
+
 struct LoopContext {
   LoopContext(hal::MotionBackend& hardware, const CoreConfig& configured, hal::SimHooks* sim_hooks) noexcept
       : hw(hardware),
