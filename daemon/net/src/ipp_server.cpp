@@ -5,7 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include "imess/net/ipp_server.hpp"
-#include "imess/net/server.hpp"
+#include "imess/net/server_config.hpp"
 
 namespace imess::net {
 
@@ -57,16 +57,24 @@ ippdme::ToolBox make_tools(const IppConfig& config, double tip_radius, const ipp
 }
 }  // namespace
 
-IppServer::IppServer(asio::io_context& io, Server& server, IppConfig config)
-    : io_(io), server_(server), config_(std::move(config)), acceptor_(io), tools_([&] {
+IppServer::IppServer(asio::io_context& io, IppServices services, IppConfig config)
+    : io_(io),
+      gateway_(services.gateway),
+      control_(services.control),
+      frames_(services.frames),
+      programs_(services.programs),
+      hosts_(services.hosts),
+      config_(std::move(config)),
+      acceptor_(io),
+      tools_([&] {
         // The ranges every tool's values keep (docs/ippdme.md, "Tools and properties"): speeds
         // up to what every linear axis can do, the machine's one acceleration, the probing
         // distances the MESSD parameters also bound.
-        const auto& m = server.planner_.machine();
-        const auto& p = server.core_.params();
+        const auto& m = gateway_.machine();
+        const auto& p = gateway_.params();
         double vmax = 1e9, amax = 1e9;
         for (int c = 0; c < 3; ++c)
-          if (const int a = server.layout().cartesian_axis(c); a >= 0) {
+          if (const int a = gateway_.layout().cartesian_axis(c); a >= 0) {
             vmax = std::min(vmax, m.axes[a].max_velocity);
             amax = std::min(amax, m.axes[a].max_accel);
           }
@@ -105,7 +113,7 @@ void IppServer::accept() {
     if (!ec) {
       boost::system::error_code e2;
       const auto peer = socket.remote_endpoint(e2);
-      const bool may = !e2 && server_.config_.control.hosts.contains(peer.address());
+      const bool may = !e2 && hosts_.contains(peer.address());
       if (conn_ || !may) {
         // One session drives the machine; a second client, or a host that may not control
         // it (control.hosts), is told so and closed.
@@ -361,43 +369,38 @@ void IppServer::abort_queued() {
 // client only at StartSession and only while the machine stands (`at_start`). False (why
 // says) otherwise — e.g. an operator took it with Take force and has not released it.
 bool IppServer::claim_control(bool at_start, std::string& why) {
-  auto& control = server_.control_;
+  auto& control = control_;
   if (control.owns(kClientId)) return true;
   const Controller me{kClientId, kControllerName, conn_ ? conn_->address.to_string() : std::string("?")};
   if (!control.owner()) {
-    control.claim(me, true);
-    server_.announce_control();
+    control.claim(me, true);  // announced
     return true;
   }
-  const auto& snap = server_.core_.snapshot();
-  const bool standing = (snap.mode == core::Mode::Idle || snap.mode == core::Mode::Free) && !server_.planning_ &&
-                        server_.in_loop_.empty() && !server_.program_.running();
+  const auto& snap = gateway_.snapshot();
+  const bool standing = (snap.mode == core::Mode::Idle || snap.mode == core::Mode::Free) && !gateway_.planning() &&
+                        !gateway_.loop_holds_segments() && !programs_.running();
   if (!user_enabled_ && !(at_start && standing)) {
     why = "the machine is controlled by " + describe(*control.owner());
     return false;
   }
-  if (!standing) server_.stop_machine("I++ DME session takes control");
-  const Controller was = *control.owner();
-  control.take(me, true, true, true);
-  if (auto it = server_.sessions_.find(was.session); it != server_.sessions_.end())
-    server_.send(*it->second, control_taken_warning(me));
-  server_.announce_control();
+  if (!standing) gateway_.stop("I++ DME session takes control");
+  control.take_over(me);  // the one who had it is warned, everyone told
   return true;
 }
 
 void IppServer::release_control() {
-  if (!server_.control_.release(kClientId)) return;
-  server_.announce_control();
+  if (!control_.release(kClientId)) return;
+  control_.announce();
 }
 
 // EndSession or the connection gone: what the session moves stops, daemons end, the
 // machine's control is given back. Tools and coordinate systems stay for the next session.
 void IppServer::end_session(bool dropped) {
-  const bool owns = server_.control_.owns(kClientId);
+  const bool owns = control_.owns(kClientId);
   const bool moving = step_ != Step::None;
   step_ = Step::None;
-  if (owns && (moving || server_.planning_ || !server_.in_loop_.empty()))
-    server_.stop_machine(dropped ? "I++ DME client disconnected" : "EndSession");
+  if (owns && (moving || gateway_.planning() || gateway_.loop_holds_segments()))
+    gateway_.stop(dropped ? "I++ DME client disconnected" : "EndSession");
   if (daemon_) tags_.close(daemon_->tag);
   daemon_.reset();
   release_control();

@@ -1,8 +1,9 @@
 // IppServer: messd's I++ DME server (docs/ippdme.md, "Server") — one inspection-software
 // client on TCP 1294 driving the same motion core as the MESSD clients on 1066. It reads
 // lines with imess::ippdme, keeps the session, the two queues, the error state and the
-// daemons, and moves the machine through the Server's planner, control and stop (it is the
-// Server's friend: one io thread, one planner, one owner of the machine).
+// daemons, and moves the machine through the public interfaces of the services it shares
+// with the MESSD front end (MotionGateway, ControlService, FrameService, ProgramRunner); the
+// machine's events reach it as an observer (observers.hpp), like every front end.
 #pragma once
 #include <boost/asio.hpp>
 #include <array>
@@ -18,6 +19,13 @@
 #include "imess/core/core_types.hpp"
 #include "imess/ippdme/csy.hpp"
 #include "imess/net/control.hpp"
+#include "imess/net/control_service.hpp"
+#include "imess/net/frame_service.hpp"
+#include "imess/net/host_list.hpp"
+#include "imess/net/ipp_config.hpp"
+#include "imess/net/motion_gateway.hpp"
+#include "imess/net/observers.hpp"
+#include "imess/net/program_runner.hpp"
 #include "imess/ippdme/format.hpp"
 #include "imess/ippdme/line_framer.hpp"
 #include "imess/ippdme/parser.hpp"
@@ -27,22 +35,16 @@
 
 namespace imess::net {
 
-class Server;
-
-struct IppConfig {
-  bool on = true;                 // false: no I++ listener (ippdme_port 0)
-  std::uint16_t port = 1294;      // 0 with on: any free port (tests)
-  // Tools as configured; empty: one tool "RefTool" with the machine's tip radius. Ranges
-  // not given come from the machine (IppServer fills them).
-  struct Tool {
-    std::string name;
-    std::optional<double> radius;
-  };
-  std::vector<Tool> tools;
-  std::size_t max_queue_bytes = 1 << 20;  // output waiting for a client that does not read: dropped beyond
+// What the I++ DME front end drives and reads (all owned by net::Server).
+struct IppServices {
+  MotionGateway& gateway;
+  ControlService& control;
+  FrameService& frames;
+  const ProgramRunner& programs;
+  const HostList& hosts;  // control.hosts: who may connect (and so control the machine)
 };
 
-class IppServer {
+class IppServer : public MotionObserver {
  public:
   // The core's client number of the I++ session (its Home replies) and its control identity.
   static constexpr std::uint32_t kClientId = kIppSession;
@@ -50,29 +52,35 @@ class IppServer {
   static constexpr std::uint32_t kIdBase = 0xF0000000u;
   static bool is_own_id(std::uint32_t id) { return id >= kIdBase && id < kClientId; }
 
-  IppServer(boost::asio::io_context& io, Server& server, IppConfig config);
+  IppServer(boost::asio::io_context& io, IppServices services, IppConfig config);
   void start(const std::string& listen);  // throws std::runtime_error naming the address
   void stop();
   std::uint16_t port() const { return port_; }
   bool connected() const { return conn_ != nullptr; }
 
-  // From the Server's event pump (io thread).
-  void segment_end(const core::Event& e);      // Done / Failed of an own id
-  void hit(const core::Event& e);              // every measured point, after the journal
-  void core_reply(const core::Event& e);       // the loop's answer to the session's Home
-  void homed();
-  void home_failed();                          // Warn HomingFailed, a fault while homing
-  void dropped(core::FailReason why);          // the Server dropped what was planned
+  // The observer's hooks (ipp_observer.cpp): the machine's events, in the io thread.
+  bool owns_segment(std::uint32_t id) const override { return is_own_id(id); }
+  void segment_end(const core::Event& e) override;  // Done / Failed of an own id
+  bool core_reply(const core::Event& e) override;   // the loop's answer to the session's Home / Reset
+  void hit(const core::Event& point, const JournaledHit& journaled) override;  // after the journal
+  void state(core::Mode mode) override;              // a move waiting for the machine to stand: retry()
+  void warning(const core::Event& e) override;       // HomingFailed: home_failed()
+  void fault(const core::Event& e) override;         // home_failed()
+  void homed() override;
+  void dropped(core::FailReason why) override;       // the gateway dropped what was planned
+  void move_report() override { tick(); }
+  void frame_changed(const std::string& active) override;
+  bool listens_for_keys() const override { return listening_for_keys(); }
+  void key(const std::string& name) override;       // Key <name> from the jog panel: KeyPress
   void tick();                                 // the move report daemon, a waiting move (report timer / harness)
   void retry();                                // a move that waited for the machine to stand (State events)
-  void key(const std::string& name);           // Key <name> from the jog panel: KeyPress
   bool listening_for_keys() const { return conn_ && in_session_ && user_enabled_; }
   // The controller's active part frame changed (UseFrame, SetFrame, Align ...): PartCsy follows.
   void part_frame_changed();
   // The last resort: an exception from `f` (a line, a queued command, a hook above called by
-  // the Server) ends the session — logged, E0000 0511, the connection closed — never the
+  // the fan-out) ends the session — logged, E0000 0511, the connection closed — never the
   // daemon. False when it did.
-  bool guarded(std::string_view what, const std::function<void()>& f);
+  bool guarded(std::string_view what, const std::function<void()>& f) override;
 
  private:
   struct Connection;
@@ -120,7 +128,11 @@ class IppServer {
   void set_props(const ippdme::Tag& tag, const std::vector<ippdme::PropertySetting>& settings, std::string_view cause);
   std::string position_payload(const std::vector<ippdme::Item>& items) const;
   void change_tool(std::string_view name);
-  // ipp_motion.cpp: GoTo, PtMeas, Home on the Server's planner
+  // ipp_motion.cpp: GoTo, PtMeas, Home through the MotionGateway
+  void own_segment_end(const core::Event& e);  // Done / Failed of an own id
+  void loop_reply(const core::Event& e);       // the loop's answer to the session's Home / Reset
+  void hit(const core::Event& e);              // every measured point, after the journal
+  void home_failed();                          // Warn HomingFailed, a fault while homing
   bool take_machine(const Pending& p);
   bool start_goto(const Pending& p, const ippdme::GoTo& c);
   bool start_ptmeas(const Pending& p, const ippdme::PtMeas& c);
@@ -141,7 +153,11 @@ class IppServer {
   std::uint32_t next_id();
 
   boost::asio::io_context& io_;
-  Server& server_;
+  MotionGateway& gateway_;
+  ControlService& control_;
+  FrameService& frames_;
+  const ProgramRunner& programs_;
+  const HostList& hosts_;
   IppConfig config_;
   boost::asio::ip::tcp::acceptor acceptor_;
   std::uint16_t port_ = 0;

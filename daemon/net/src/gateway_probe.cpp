@@ -4,13 +4,12 @@
 // place the cycle ended (the retract from the hit, known only after the hit).
 #include <spdlog/spdlog.h>
 
-#include "imess/net/server.hpp"
+#include "imess/net/motion_gateway.hpp"
 #include "imess/planner/probe.hpp"
-#include "imess/net/wording.hpp"
 
 namespace imess::net {
 
-planner::AppendResult Server::plan_probe(const protocol::Probe& c) {
+planner::AppendResult MotionGateway::plan_probe(const protocol::Probe& c) {
   const planner::Pose start = planner_.position();
   const planner::Pose target = target_of(c.words, start);
   const auto& p = core_.params();
@@ -29,7 +28,7 @@ planner::AppendResult Server::plan_probe(const protocol::Probe& c) {
 }
 
 // Before the start is known: the axes the command names lie within the travel.
-planner::AppendResult Server::check_held(const QueuedCommand& c) const {
+planner::AppendResult MotionGateway::check_held(const QueuedCommand& c) const {
   const protocol::PathWords* w = words_of(c);
   const std::uint32_t id = std::visit([](const auto& q) { return q.id; }, c);
   if (!w) return {planner::PlanError::None, 0};
@@ -43,7 +42,7 @@ planner::AppendResult Server::check_held(const QueuedCommand& c) const {
 
 // The Probe ended at `from`: what waited is planned from there, up to the next Probe (which
 // holds the rest again). One the planner refuses now fails with the planner's reason.
-void Server::plan_held(const core::AxisVec& from) {
+void MotionGateway::plan_held(const core::AxisVec& from) {
   if (held_.empty()) return;
   planner_.set_position(pose_of(from));
   planning_ = true;
@@ -53,15 +52,15 @@ void Server::plan_held(const core::AxisVec& from) {
     auto res = plan(c);
     if (!res.ok()) {
       const bool travel = res.error == planner::PlanError::OutOfTravel;
-      log_limited(spdlog::level::warn, "held-refused", planner::describe(res, planner_.machine()));
-      broadcast(failed_line(res.id, travel ? core::FailReason::OutOfTravel : core::FailReason::Refused));
+      log_limited(log_, spdlog::level::warn, "held-refused", planner::describe(res, planner_.machine()));
+      failed_unsent(res.id, travel ? core::FailReason::OutOfTravel : core::FailReason::Refused);
     }
   }
   if (unsent_.empty() && in_loop_.empty() && planner_.pending() == 0 && planner_.ready() == 0) planning_ = false;
 }
 
-void Server::fail_held(core::FailReason why) {
-  for (const auto& c : held_) broadcast(failed_line(std::visit([](const auto& q) { return q.id; }, c), why));
+void MotionGateway::fail_held(core::FailReason why) {
+  for (const auto& c : held_) failed_unsent(std::visit([](const auto& q) { return q.id; }, c), why);
   held_.clear();
 }
 
