@@ -103,24 +103,12 @@ void MessdDispatch::stop_request(Session& s, std::uint32_t slot) {
   reply(s, slot, format_ok("StopMv"));
 }
 
-namespace {
-// What would move the machine besides the program: refused while one runs.
-bool moves_machine(const protocol::Command& cmd) {
-  return std::holds_alternative<protocol::StartMv>(cmd) || std::holds_alternative<protocol::GoTo>(cmd) ||
-         std::holds_alternative<protocol::Home>(cmd) || std::holds_alternative<protocol::Free>(cmd) ||
-         std::holds_alternative<protocol::Reset>(cmd) || std::holds_alternative<protocol::HandMv>(cmd) ||
-         std::holds_alternative<protocol::ForcePt>(cmd) || std::holds_alternative<protocol::MoveTo>(cmd) ||
-         std::holds_alternative<protocol::ArcTo>(cmd) || std::holds_alternative<protocol::Dwell>(cmd) ||
-         std::holds_alternative<protocol::Probe>(cmd) || std::holds_alternative<protocol::SetOut>(cmd) ||
-         std::holds_alternative<protocol::JogAx>(cmd);
-}
-}  // namespace
-
 void MessdDispatch::on_command(Session& s, std::uint32_t slot, const protocol::Command& cmd) {
   using core::CommandKind;
   s.info().commanded = true;  // no longer a candidate for control.no_command_drop_s
   if (!allowed(s, cmd, slot)) return;
-  if (moves_machine(cmd) && programs_.busy(protocol::verb_name(cmd), answer(s, slot))) return;
+  // What would move the machine besides the program (its declaration says so): refused while one runs.
+  if (protocol::moves_machine(cmd) && programs_.busy(protocol::verb_name(cmd), answer(s, slot))) return;
   // StartMv, GoTo, HandMv: x y z on the machine's X Y Z axes; GoTo leaves the others where they are.
   auto xyz_to_core = [&](CommandKind kind, const protocol::Xyz& p, double speed) {
     core::Command c{kind};
