@@ -9,9 +9,23 @@
 
 namespace imess::net {
 
+namespace {
+// Before the start is known: the axes the command names lie within the travel.
+planner::AppendResult check_held(const planner::Machine& m, const QueuedCommand& c) {
+  const protocol::PathWords* w = words_of(c);
+  const std::uint32_t id = std::visit([](const auto& q) { return q.id; }, c);
+  if (!w) return {planner::PlanError::None, 0};
+  for (int a = 0; a < m.count; ++a)
+    if (const auto& named = *w->axis(m.axes[a].letter);
+        named && (*named < m.axes[a].travel_min || *named > m.axes[a].travel_max))
+      return {planner::PlanError::OutOfTravel, id, static_cast<std::int8_t>(a), *named};
+  return {planner::PlanError::None, id};
+}
+}  // namespace
+
 planner::AppendResult MotionGateway::plan_probe(const protocol::Probe& c) {
   const planner::Pose start = planner_.position();
-  const planner::Pose target = target_of(c.words, start);
+  const planner::Pose target = target_of(layout(), c.words, start);
   const auto& p = core_.params();
   const auto cycle = planner::probe_cycle(
       c.id, start, target, {p.prehit_distance, p.search_distance, c.words.f.value_or(p.goto_speed * p.speed_level), p.probe_speed});
@@ -27,17 +41,11 @@ planner::AppendResult MotionGateway::plan_probe(const protocol::Probe& c) {
   return planner_.append(cycle->search);
 }
 
-// Before the start is known: the axes the command names lie within the travel.
-planner::AppendResult MotionGateway::check_held(const QueuedCommand& c) const {
-  const protocol::PathWords* w = words_of(c);
-  const std::uint32_t id = std::visit([](const auto& q) { return q.id; }, c);
-  if (!w) return {planner::PlanError::None, 0};
-  const auto& m = planner_.machine();
-  for (int a = 0; a < m.count; ++a)
-    if (const auto& named = *w->axis(m.axes[a].letter);
-        named && (*named < m.axes[a].travel_min || *named > m.axes[a].travel_max))
-      return {planner::PlanError::OutOfTravel, id, static_cast<std::int8_t>(a), *named};
-  return {planner::PlanError::None, id};
+// Behind an unfinished Probe: checked as far as can be, kept until its Done.
+planner::AppendResult MotionGateway::hold(const QueuedCommand& c) {
+  auto res = check_held(planner_.machine(), c);
+  if (res.ok()) held_.push_back(c);
+  return res;
 }
 
 // The Probe ended at `from`: what waited is planned from there, up to the next Probe (which

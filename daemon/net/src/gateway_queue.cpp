@@ -89,12 +89,6 @@ planner::AppendResult MotionGateway::queue(const QueuedCommand& c) {
   return res;
 }
 
-planner::AppendResult MotionGateway::hold(const QueuedCommand& c) {
-  auto res = check_held(c);
-  if (res.ok()) held_.push_back(c);
-  return res;
-}
-
 planner::AppendResult MotionGateway::append(const planner::Request& r) {
   planning_ = true;
   const auto res = planner_.append(r);
@@ -106,11 +100,7 @@ planner::AppendResult MotionGateway::append(const planner::Request& r) {
 void MotionGateway::start_at(const planner::Pose& pose) { planner_.set_position(pose); }
 
 void MotionGateway::end_plan_if_idle() {
-  if (nothing_planned()) planning_ = false;
-}
-
-bool MotionGateway::nothing_planned() const noexcept {
-  return unsent_.empty() && in_loop_.empty() && planner_.pending() == 0 && planner_.ready() == 0;
+  if (unsent_.empty() && in_loop_.empty() && planner_.pending() == 0 && planner_.ready() == 0) planning_ = false;
 }
 
 void MotionGateway::flush_and_feed() {
@@ -129,10 +119,6 @@ bool MotionGateway::in_loop_between(std::uint32_t first, std::uint32_t last) con
   return false;
 }
 
-const core::OutputSettings* MotionGateway::find_output(std::string_view name) const noexcept {
-  return core::find_output(core_.config(), name);
-}
-
 // The command's planner request(s) from where the planned path ends; its id into unsent_.
 planner::AppendResult MotionGateway::plan(const QueuedCommand& c) {
   const planner::Pose start = planner_.position();
@@ -142,7 +128,7 @@ planner::AppendResult MotionGateway::plan(const QueuedCommand& c) {
   if (const auto* m = std::get_if<protocol::MoveTo>(&c)) {
     planner::Line l;
     l.id = m->id;
-    l.target = target_of(m->words, start);
+    l.target = target_of(layout(), m->words, start);
     // F: the feed rule of the planner (axes.hpp): mm/s along X Y Z, else U V W, else deg/s.
     l.feed = m->words.f.value_or(move_feed);
     res = planner_.append(l);
@@ -157,7 +143,7 @@ planner::AppendResult MotionGateway::plan(const QueuedCommand& c) {
     const int ix = layout().cartesian_axis(0), iy = layout().cartesian_axis(1), iz = layout().cartesian_axis(2);
     planner::Arc a;
     a.id = c_arc->id;
-    a.target = target_of(w, start);
+    a.target = target_of(layout(), w, start);
     a.centre = {start[ix] + w.i.value_or(0), start[iy] + w.j.value_or(0), start[iz] + w.k.value_or(0)};
     a.normal = shape.normal;
     a.planar = w.n.has_value();
@@ -169,7 +155,7 @@ planner::AppendResult MotionGateway::plan(const QueuedCommand& c) {
   } else if (const auto* d = std::get_if<protocol::Dwell>(&c)) {
     res = planner_.append(planner::Dwell{d->id, d->seconds});
   } else if (const auto* o = std::get_if<protocol::SetOut>(&c)) {
-    const core::OutputSettings& out = *find_output(o->output);  // queue_command checked the name
+    const core::OutputSettings& out = *core::find_output(core_.config(), o->output);  // queue_command checked the name
     res = planner_.append(planner::SetOutput{o->id, static_cast<std::uint16_t>(out.number), o->on ? 1.0 : 0.0, out.settle_s});
   } else {
     res = plan_probe(std::get<protocol::Probe>(c));

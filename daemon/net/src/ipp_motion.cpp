@@ -282,7 +282,7 @@ void IppServer::end_step(std::optional<ErrorCode> error) {
   pump();
 }
 
-void IppServer::own_segment_end(const core::Event& e) {
+void IppServer::segment_end(const core::Event& e) {
   if (step_ == Step::None || step_ == Step::Home || step_ == Step::Reset || step_ == Step::Wait || e.id < first_id_ || e.id > wait_id_)
     return;  // a step ended before
   if (e.kind == core::EventKind::Failed) {
@@ -292,7 +292,7 @@ void IppServer::own_segment_end(const core::Event& e) {
   if (e.id != wait_id_) return;  // PtMeas: the move to the approach point
   if (step_ == Step::PtMeas) {
     rest_ = gateway_.pose_of(e.end);  // where the retract from the hit ended
-    if (!gateway_.loop_holds_segments() && gateway_.unsent_empty()) gateway_.set_planning(false);  // the retract starts there
+    if (gateway_.ids_queued() == 0) gateway_.set_planning(false);  // the retract starts there
     if (!hit_seen_) {
       step_failed(ErrorCode::NoTouch);
       return;
@@ -329,7 +329,7 @@ void IppServer::dropped(core::FailReason why) {
   step_failed(error_of(why));
 }
 
-void IppServer::loop_reply(const core::Event& e) {
+void IppServer::core_reply(const core::Event& e) {
   if (step_ == Step::Reset) {  // ClearAllErrors: the machine's fault is gone, or its cause remains
     if (e.refusal == core::Refusal::None) {
       error_state_ = false;

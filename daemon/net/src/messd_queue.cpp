@@ -26,8 +26,8 @@ std::string_view verb_of(const QueuedCommand& c) {
 // One queued command: Ok when planned (or held behind a running Probe), Err when refused.
 void MessdDispatch::queue_command(Session& s, std::uint32_t slot, const QueuedCommand& c) {
   const std::string_view verb = verb_of(c);
-  if (const auto* w = MotionGateway::words_of(c); w && !axes_known(s, slot, *w)) return;  // a letter the machine lacks
-  if (const auto* o = std::get_if<protocol::SetOut>(&c); o && !gateway_.find_output(o->output)) {
+  if (const auto* w = words_of(c); w && !axes_known(s, slot, *w)) return;  // a letter the machine lacks
+  if (const auto* o = std::get_if<protocol::SetOut>(&c); o && !core::find_output(gateway_.config(), o->output)) {
     reply(s, slot, format_err(ErrorCode::BadValue, "SetOut " + std::to_string(o->id) + ": no output '" + o->output +
                                                        "'; this machine has " + output_names()));
     return;

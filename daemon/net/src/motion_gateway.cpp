@@ -23,23 +23,25 @@ planner::Pose MotionGateway::pose_of(const core::AxisVec& v) const noexcept {
   return p;
 }
 
-planner::Pose MotionGateway::target_of(const protocol::PathWords& w, const planner::Pose& start) const noexcept {
+planner::Pose target_of(const hal::AxisLayout& layout, const protocol::PathWords& w, const planner::Pose& start) noexcept {
   planner::Pose target = start;
-  for (int a = 0; a < layout().count; ++a)
-    if (const auto& word = *w.axis(layout().letters[a])) target[a] = *word;
+  for (int a = 0; a < layout.count; ++a)
+    if (const auto& word = *w.axis(layout.letters[a])) target[a] = *word;
   return target;
 }
 
-const protocol::PathWords* MotionGateway::words_of(const QueuedCommand& c) noexcept {
+const protocol::PathWords* words_of(const QueuedCommand& c) noexcept {
   if (const auto* m = std::get_if<protocol::MoveTo>(&c)) return &m->words;
   if (const auto* a = std::get_if<protocol::ArcTo>(&c)) return &a->words;
   if (const auto* p = std::get_if<protocol::Probe>(&c)) return &p->words;
   return nullptr;
 }
 
-void MotionGateway::pump_events() {
+std::size_t MotionGateway::pump_events() {
   core::Event e;
+  std::size_t drained = 0;
   while (core_.events().pop(e)) {
+    ++drained;
     switch (e.kind) {
       case EventKind::Reply: {
         // The first observer whose client it was answers it (a client that left: nobody).
@@ -68,6 +70,7 @@ void MotionGateway::pump_events() {
     }
   }
   observers_.each("Drained", [](MotionObserver& o) { o.drained(); });
+  return drained;
 }
 
 }  // namespace imess::net

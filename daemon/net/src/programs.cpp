@@ -405,7 +405,7 @@ void ProgramRunner::feed_program() {
 void ProgramRunner::program_progress() {
   auto& pr = program_;
   if (!pr.running()) return;
-  const bool empty = gateway_.nothing_planned();
+  const bool empty = gateway_.ids_queued() == 0 && !gateway_.planner_holds();
   if (!empty || pr.probe) return;
   if (pr.pause_at && pr.state == ProgramState::Running) {
     pr.state = ProgramState::Paused;
@@ -429,7 +429,7 @@ bool ProgramRunner::program_segment_end(const core::Event& e) {
   // No queue of a client can start while a program runs or its last segments drain, so every
   // id the loop reports now is the program's.
   if (!pr.running()) {
-    if (!gateway_.loop_holds_segments() && gateway_.unsent_empty()) {
+    if (gateway_.ids_queued() == 0) {
       pr.tail = false;
       gateway_.set_planning(false);
     }
@@ -473,7 +473,7 @@ void ProgramRunner::end_program(ProgramOutcome how, int line, const std::string&
   pr.state = ProgramState::Ended;
   pr.probe.reset();
   pr.pause_at.reset();
-  pr.tail = gateway_.loop_holds_segments() || !gateway_.unsent_empty();
+  pr.tail = gateway_.ids_queued() > 0;
   if (!pr.tail) gateway_.set_planning(gateway_.planner_holds());
   const std::string event = pr.loaded->name + " " + outcome_name(how) + " " + std::to_string(line) + " " + text;
   log_limited(log_, how == ProgramOutcome::Ok ? spdlog::level::info : spdlog::level::warn, "program", "program " + event);

@@ -85,7 +85,7 @@ void Server::add_observers() {
   observers_.add(events_);
   observers_.set_fallback(events_);
   observers_.add(liveness_);
-  if (ipp_) observers_.add(*ipp_);
+  if (ipp_) observers_.add(ipp_->observer());
   observers_.add(programs_);
   observers_.add(stream_);
 }
@@ -117,8 +117,7 @@ void Server::wait_for_events() {
 }
 
 void Server::backstop_events() {
-  if (gateway_.events_waiting() > 0) ++backstop_found_;  // a wake-up was missed (or none is wired)
-  gateway_.pump_events();
+  if (gateway_.pump_events() > 0) ++backstop_found_;  // a wake-up was missed (or none is wired)
 }
 
 void Server::log_periodic() {

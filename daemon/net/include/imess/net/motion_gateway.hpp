@@ -28,6 +28,11 @@ namespace imess::net {
 // (its start is the Probe's end, known only after the hit).
 using QueuedCommand = std::variant<protocol::MoveTo, protocol::ArcTo, protocol::Dwell, protocol::Probe, protocol::SetOut>;
 
+// The words of a queued command (nullptr for Dwell, SetOut).
+const protocol::PathWords* words_of(const QueuedCommand& c) noexcept;
+// A pose from start with every axis the words name (on this layout) replaced.
+planner::Pose target_of(const hal::AxisLayout& layout, const protocol::PathWords& w, const planner::Pose& start) noexcept;
+
 // Why an ArcTo's words make no arc (wherever it starts); empty when they make one.
 std::string arc_refusal(const protocol::ArcTo& c);
 
@@ -41,11 +46,6 @@ class MotionGateway {
   const core::CoreParams& params() const noexcept { return core_.params(); }
   const hal::AxisLayout& layout() const noexcept { return core_.config().layout; }
   planner::Pose pose_of(const core::AxisVec& v) const noexcept;  // the machine's axes of v as a planner pose
-  // A pose from start with every axis the words name replaced; the words of a queued command (nullptr for Dwell).
-  planner::Pose target_of(const protocol::PathWords& w, const planner::Pose& start) const noexcept;
-  static const protocol::PathWords* words_of(const QueuedCommand& c) noexcept;
-  // The configured outputs (core config) by name.
-  const core::OutputSettings* find_output(std::string_view name) const noexcept;
 
   // Commands: into the command ring (false: full), the parameter lane, the stop lane.
   bool submit(const core::Command& c) { return core_.submit(c); }
@@ -76,23 +76,19 @@ class MotionGateway {
   const planner::Pose& planned_end() const noexcept { return planner_.position(); }
   const planner::Machine& machine() const noexcept { return planner_.machine(); }
   const planner::PlannerOptions& options() const noexcept { return planner_.options(); }
-  bool nothing_planned() const noexcept;               // no id unsent or in the loop, the planner empty
   bool planner_holds() const noexcept { return planner_.pending() > 0 || planner_.ready() > 0; }
-  std::size_t ids_queued() const noexcept { return unsent_.size() + in_loop_.size(); }
+  std::size_t ids_queued() const noexcept { return unsent_.size() + in_loop_.size(); }  // unsent or in the loop
   std::size_t ids_pending() const noexcept { return unsent_.size() + in_loop_.size() + held_.size(); }
   bool loop_holds_segments() const noexcept { return !in_loop_.empty(); }
-  bool unsent_empty() const noexcept { return unsent_.empty(); }
   std::optional<std::uint32_t> first_in_loop() const noexcept;
   bool in_loop_between(std::uint32_t first, std::uint32_t last) const noexcept;
 
-  // The event ring: drained on every wake-up (and by the backstop timer).
-  void pump_events();
-  std::size_t events_waiting() { return core_.events().read_available(); }
+  // The event ring: drained on every wake-up (and by the backstop timer); how many there were.
+  std::size_t pump_events();
 
  private:
   planner::AppendResult plan(const QueuedCommand& c);  // appended to planner_ from its position
   planner::AppendResult plan_probe(const protocol::Probe& c);
-  planner::AppendResult check_held(const QueuedCommand& c) const;  // what can be checked before the start is known
   void plan_held(const core::AxisVec& from);  // after the Probe's Done: plan what waited, from where it ended
   void fail_held(core::FailReason why);
   void flush_check();                     // flush when the loop holds too little motion
