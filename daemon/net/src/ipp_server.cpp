@@ -66,7 +66,6 @@ IppServer::IppServer(asio::io_context& io, IppServices services, IppConfig confi
       control_(services.control),
       frames_(services.frames),
       programs_(services.programs),
-      events_(*this, services.gateway),
       tools_([&] {
         // The ranges every tool's values keep (docs/ippdme.md, "Tools and properties"): speeds
         // up to what every linear axis can do, the machine's one acceleration, the probing

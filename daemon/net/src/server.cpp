@@ -53,6 +53,7 @@ void Server::start() {
       ipp_ = std::make_unique<IppServer>(io_, IppServices{gateway_, control_, frames_, programs_, config_.control.hosts},
                                          config_.ippdme);
       ipp_->start(config_.listen);
+      ipp_events_ = std::make_unique<IppEvents>(*ipp_, gateway_);
     } else {
       spdlog::info("I++ DME: off, this machine has no linear X Y Z axes (axes {})", layout.names());
     }
@@ -85,7 +86,7 @@ void Server::add_observers() {
   observers_.add(events_);
   observers_.set_fallback(events_);
   observers_.add(liveness_);
-  if (ipp_) observers_.add(ipp_->observer());
+  if (ipp_events_) observers_.add(*ipp_events_);
   observers_.add(programs_);
   observers_.add(stream_);
 }

@@ -24,7 +24,6 @@
 #include "imess/net/frame_service.hpp"
 #include "imess/net/host_list.hpp"
 #include "imess/net/ipp_config.hpp"
-#include "imess/net/ipp_events.hpp"
 #include "imess/net/ipp_transactions.hpp"
 #include "imess/net/motion_gateway.hpp"
 #include "imess/net/observers.hpp"
@@ -57,10 +56,8 @@ class IppServer : public IppTransactions {
 
   IppServer(boost::asio::io_context& io, IppServices services, IppConfig config);
   void start(const std::string& listen);  // throws std::runtime_error naming the address
-  // The session as an observer of the machine (ipp_events.hpp): what Server adds to the fan-out.
-  MotionObserver& observer() noexcept { return events_; }
 
-  // The machine's events, from the observer fan-out (IppEvents, io thread).
+  // The machine's events, from the observer fan-out (IppEvents, ipp_events.hpp; io thread).
   void segment_end(const core::Event& e);      // Done / Failed of an own id
   void hit(const core::Event& e);              // every measured point, after the journal
   void core_reply(const core::Event& e);       // the loop's answer to the session's Home
@@ -118,7 +115,6 @@ class IppServer : public IppTransactions {
   ControlService& control_;
   FrameService& frames_;
   const ProgramRunner& programs_;
-  IppEvents events_;
   bool user_enabled_ = false;
   std::vector<ippdme::Item> ptmeas_items_{ippdme::Item::X, ippdme::Item::Y, ippdme::Item::Z};
   std::optional<MoveDaemon> daemon_;

@@ -17,6 +17,7 @@
 #include "imess/net/frame_service.hpp"
 #include "imess/net/frame_verbs.hpp"
 #include "imess/net/hit_service.hpp"
+#include "imess/net/ipp_events.hpp"
 #include "imess/net/ipp_server.hpp"
 #include "imess/net/liveness.hpp"
 #include "imess/net/log_limiter.hpp"
@@ -82,6 +83,7 @@ class Server {
   MessdDispatch dispatch_;
   // The I++ DME front end (none: turned off, or no linear X Y Z).
   std::unique_ptr<IppServer> ipp_;
+  std::unique_ptr<IppEvents> ipp_events_;  // it as an observer
   PeriodicTimer event_timer_, log_timer_;
   bool running_ = false;
   std::uint64_t woken_ = 0, backstop_found_ = 0;  // drains by wake-up / events only the backstop found
