@@ -61,14 +61,14 @@ void MotionGateway::plan_held(const core::AxisVec& from) {
     if (!res.ok()) {
       const bool travel = res.error == planner::PlanError::OutOfTravel;
       log_limited(log_, spdlog::level::warn, "held-refused", planner::describe(res, planner_.machine()));
-      failed_unsent(res.id, travel ? core::FailReason::OutOfTravel : core::FailReason::Refused);
+      failed_held(res.id, travel ? core::FailReason::OutOfTravel : core::FailReason::Refused);
     }
   }
   if (unsent_.empty() && in_loop_.empty() && planner_.pending() == 0 && planner_.ready() == 0) planning_ = false;
 }
 
 void MotionGateway::fail_held(core::FailReason why) {
-  for (const auto& c : held_) failed_unsent(std::visit([](const auto& q) { return q.id; }, c), why);
+  for (const auto& c : held_) failed_held(std::visit([](const auto& q) { return q.id; }, c), why);
   held_.clear();
 }
 

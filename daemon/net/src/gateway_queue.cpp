@@ -232,6 +232,11 @@ void MotionGateway::on_segment_end(const core::Event& e) {
   flush_check();
 }
 
+// Held commands are MESSD's queued moves (the fallback's), whatever their id.
+void MotionGateway::failed_held(std::uint32_t id, core::FailReason why) {
+  if (MotionObserver* o = observers_.fallback()) o->guarded("Failed", [&] { o->unsent_failed(id, why); });
+}
+
 void MotionGateway::failed_unsent(std::uint32_t id, core::FailReason why) {
   if (MotionObserver* owner = observers_.owner_of(id)) owner->guarded("Failed", [&] { owner->unsent_failed(id, why); });
 }

@@ -95,6 +95,7 @@ class MotionGateway {
   void on_segment_end(const core::Event& e);  // Done / Failed
   void drop_planned(core::FailReason why);    // fail what the loop has not received, plan anew
   void failed_unsent(std::uint32_t id, core::FailReason why);  // to the id's owner
+  void failed_held(std::uint32_t id, core::FailReason why);    // to the fallback (MESSD's)
 
   boost::asio::io_context& io_;
   core::MotionCore& core_;
