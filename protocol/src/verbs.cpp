@@ -190,6 +190,11 @@ const VerbSpec* declaration_of(const Command& cmd) {
   return nullptr;
 }
 
+bool moves_machine(const Command& cmd) {
+  const VerbSpec* v = declaration_of(cmd);
+  return v && v->access == Access::Moving;
+}
+
 std::string_view verb_name(const Command& cmd) {
   const VerbSpec* v = declaration_of(cmd);
   return v ? v->name : "?";

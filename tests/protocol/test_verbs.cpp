@@ -1,6 +1,8 @@
 // Command parsing: every verb, case-insensitivity, and a clear Err for every bad input.
 #include <catch2/catch.hpp>
 
+#include <set>
+
 #include "imess/protocol/numbers.hpp"
 #include "imess/protocol/verbs.hpp"
 
@@ -249,4 +251,18 @@ TEST_CASE("Stats alone is since the start, Reset Interval Hist are the measuring
   CHECK(bad.code == ErrorCode::BadValue);
   CHECK(bad.text == "Stats takes nothing, Reset, Interval or Hist, got 'Clear'; usage: Stats [form]");
   CHECK(failed("Stats Reset now").code == ErrorCode::BadArguments);
+}
+
+TEST_CASE("the verbs that move the machine say so in their declaration (Access::Moving)") {
+  // The list the daemon kept by hand before (refused while a program runs); now read from the table.
+  const std::set<std::string_view> moving{"StartMv", "GoTo",  "Home",  "Free",  "Reset",  "HandMv", "ForcePt",
+                                          "MoveTo",  "ArcTo", "Dwell", "Probe", "SetOut", "JogAx"};
+  for (const auto& v : verb_table()) {
+    INFO(v.name);
+    CHECK((v.access == Access::Moving) == moving.contains(v.name));
+  }
+  CHECK(moves_machine(GoTo{}));
+  CHECK(moves_machine(Probe{}));
+  CHECK_FALSE(moves_machine(Set{}));
+  CHECK_FALSE(moves_machine(StopMv{}));
 }

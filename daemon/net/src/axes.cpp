@@ -1,8 +1,8 @@
-// The machine's axes on the wire: the 1996 X Y Z words mapped onto the configured axes, the
-// named-axis jog (JogAx), the AxPos event and the Help words of the machine's letters.
+// The machine's axes on the MESSD wire: the 1996 X Y Z words mapped onto the configured axes,
+// the named-axis jog (JogAx) and the Help words of the machine's letters.
 #include <cstdio>
 
-#include "imess/net/server.hpp"
+#include "imess/net/messd_dispatch.hpp"
 #include "imess/protocol/messages.hpp"
 #include "imess/protocol/numbers.hpp"
 #include "imess/protocol/verbs.hpp"
@@ -22,15 +22,13 @@ std::string spaced(const hal::AxisLayout& l) {
 }
 }  // namespace
 
-const hal::AxisLayout& Server::layout() const noexcept { return core_.config().layout; }
-
-std::string Server::no_axis_text(char letter) const {
+std::string MessdDispatch::no_axis_text(char letter) const {
   return std::string("this machine has no axis ") + letter + "; its axes are " + spaced(layout());
 }
 
 // StartMv / GoTo / HandMv x y z: onto the machine's linear X Y Z axes. A non-zero value for a
 // Cartesian axis the machine lacks is refused (its coordinate reads 0 in CurrCor).
-bool Server::machine_vector(Session& s, std::uint32_t slot, const protocol::Xyz& p, core::AxisVec& out,
+bool MessdDispatch::machine_vector(Session& s, std::uint32_t slot, const protocol::Xyz& p, core::AxisVec& out,
                             unsigned& given) {
   const double xyz[3] = {p.x, p.y, p.z};
   out = core::AxisVec::Zero();
@@ -51,7 +49,7 @@ bool Server::machine_vector(Session& s, std::uint32_t slot, const protocol::Xyz&
 }
 
 // Every axis word names an axis of this machine, else Err 105 naming it.
-bool Server::axes_known(Session& s, std::uint32_t slot, const protocol::PathWords& w) {
+bool MessdDispatch::axes_known(Session& s, std::uint32_t slot, const protocol::PathWords& w) {
   for (char letter : hal::kAxisLetters)
     if (w.axis(letter)->has_value() && layout().index_of(letter) < 0) {
       reply(s, slot, format_err(ErrorCode::BadValue, no_axis_text(letter)));
@@ -60,22 +58,8 @@ bool Server::axes_known(Session& s, std::uint32_t slot, const protocol::PathWord
   return true;
 }
 
-const protocol::PathWords* Server::words_of(const QueuedCommand& c) noexcept {
-  if (const auto* m = std::get_if<protocol::MoveTo>(&c)) return &m->words;
-  if (const auto* a = std::get_if<protocol::ArcTo>(&c)) return &a->words;
-  if (const auto* p = std::get_if<protocol::Probe>(&c)) return &p->words;
-  return nullptr;
-}
-
-planner::Pose Server::target_of(const protocol::PathWords& w, const planner::Pose& start) const noexcept {
-  planner::Pose target = start;
-  for (int a = 0; a < layout().count; ++a)
-    if (const auto& word = *w.axis(layout().letters[a])) target[a] = *word;
-  return target;
-}
-
 // JogAx C20 U-10: a StartMv of the named axes (the others stand), each within ±100 %.
-void Server::jog_axes(Session& s, std::uint32_t slot, const protocol::JogAx& c) {
+void MessdDispatch::jog_axes(Session& s, std::uint32_t slot, const protocol::JogAx& c) {
   if (!axes_known(s, slot, c.percent)) return;
   core::Command cmd{core::CommandKind::JogAx};
   for (int a = 0; a < layout().count; ++a) {
@@ -92,21 +76,9 @@ void Server::jog_axes(Session& s, std::uint32_t slot, const protocol::JogAx& c) 
   to_core(s, slot, cmd);
 }
 
-// "AxPos X430.000 Y330.000 C90.000 U0.000 V0.000": every axis by its letter, mm or degrees.
-std::string Server::ax_pos_line() const {
-  const auto& snap = core_.snapshot();
-  std::string text;
-  for (int a = 0; a < layout().count; ++a) {
-    if (a) text.push_back(' ');
-    text.push_back(layout().letters[a]);
-    protocol::append_mm(text, snap.position[a]);
-  }
-  return protocol::format_event("AxPos", text);
-}
-
 // Help as this machine takes it: on the X Y Z machine the 1996 list; on another, MoveTo's
 // words are its letters and JogAx is listed.
-std::string Server::machine_help_line(const protocol::VerbSpec& v) const {
+std::string MessdDispatch::machine_help_line(const protocol::VerbSpec& v) const {
   std::string line = protocol::help_line(v);
   if (layout().is_xyz()) return v.name == "JogAx" ? std::string() : line;
   const std::string declared = v.name == "MoveTo" ? "X.. Y.. Z.." : v.name == "JogAx" ? "X.. Y.. C.." : "";
@@ -117,12 +89,6 @@ std::string Server::machine_help_line(const protocol::VerbSpec& v) const {
     line.replace(at, declared.size(), words);
   }
   return line;
-}
-
-planner::Pose Server::pose_of(const core::AxisVec& v) const noexcept {
-  planner::Pose p{};
-  for (int a = 0; a < layout().count; ++a) p[a] = v[a];
-  return p;
 }
 
 }  // namespace imess::net

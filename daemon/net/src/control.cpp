@@ -14,7 +14,8 @@ CommandNeed command_need(const protocol::Command& cmd) {
   if (!verb) return CommandNeed::Controlling;
   switch (verb->access) {
     case protocol::Access::Open: return CommandNeed::Open;
-    case protocol::Access::Controlling: return CommandNeed::Controlling;  // ForcePt too: a point in everyone's capture
+    case protocol::Access::Controlling: return CommandNeed::Controlling;
+    case protocol::Access::Moving: return CommandNeed::Controlling;  // ForcePt too: a point in everyone's capture
     case protocol::Access::Stop: return CommandNeed::Stop;
     case protocol::Access::Own: return CommandNeed::Own;
   }

@@ -1,6 +1,6 @@
-// Part frames on the wire: Frames, Frame, PartPos, UseFrame, SetFrame, Align, DelFrame, and
-// the PartPt that follows every hit while a part frame is active (docs/protocol.md, "Part
-// frames"). The store is PartFrames; alignments fit journaled hits with the metrology library.
+// Part frames on the wire: Frames, Frame, PartPos, UseFrame, SetFrame, Align, DelFrame
+// (docs/protocol.md, "Part frames"). The store is FrameService's; alignments fit journaled
+// hits with the metrology library.
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -8,7 +8,9 @@
 #include "imess/metrology/alignment.hpp"
 #include "imess/metrology/fit.hpp"
 #include "imess/metrology/probe_compensation.hpp"
-#include "imess/net/server.hpp"
+#include "imess/net/frame_verbs.hpp"
+
+#include <spdlog/spdlog.h>
 #include "imess/protocol/hit_set.hpp"
 #include "imess/protocol/numbers.hpp"
 
@@ -56,33 +58,33 @@ struct HitGroup {
 
 }  // namespace
 
-bool Server::frames_usable(Session& s, std::uint32_t slot, std::string_view verb) {
+bool FrameVerbs::frames_usable(Session& s, std::uint32_t slot, std::string_view verb) {
   if (layout().cartesian_axis(0) >= 0 && layout().cartesian_axis(1) >= 0 && layout().cartesian_axis(2) >= 0) return true;
   reply(s, slot, format_err(ErrorCode::BadValue, std::string(verb) + ": part frames need linear X Y Z axes; this machine has " + layout().names()));
   return false;
 }
 
 // The frame of `name` (empty: the active one), or an Err 105 naming the frames there are.
-const metrology::Frame* Server::frame_named(Session& s, std::uint32_t slot, std::string_view verb, std::string& name) {
+const metrology::Frame* FrameVerbs::frame_named(Session& s, std::uint32_t slot, std::string_view verb, std::string& name) {
   if (name.empty()) name = frames_.active();
-  if (const auto* f = frames_.find(name)) return f;
-  reply(s, slot, format_err(ErrorCode::BadValue, std::string(verb) + ": no frame '" + name.substr(0, 40) + "'; the frames are" + names_text(frames_)));
+  if (const auto* f = frames_.frames().find(name)) return f;
+  reply(s, slot, format_err(ErrorCode::BadValue, std::string(verb) + ": no frame '" + name.substr(0, 40) + "'; the frames are" + names_text(frames_.frames())));
   return nullptr;
 }
 
-void Server::list_frames(Session& s, std::uint32_t slot) {
-  reply(s, slot, format_ok("Frames", "Active " + frames_.active() + " Names" + names_text(frames_)));
+void FrameVerbs::list_frames(Session& s, std::uint32_t slot) {
+  reply(s, slot, format_ok("Frames", "Active " + frames_.active() + " Names" + names_text(frames_.frames())));
 }
 
-void Server::show_frame(Session& s, std::uint32_t slot, std::string name) {
+void FrameVerbs::show_frame(Session& s, std::uint32_t slot, std::string name) {
   if (const auto* f = frame_named(s, slot, "Frame", name)) reply(s, slot, format_ok("Frame", name + ' ' + frame_text(*f)));
 }
 
-void Server::part_pos(Session& s, std::uint32_t slot, std::string name) {
+void FrameVerbs::part_pos(Session& s, std::uint32_t slot, std::string name) {
   if (!frames_usable(s, slot, "PartPos")) return;
   const auto* f = frame_named(s, slot, "PartPos", name);
   if (!f) return;
-  const Vec p = f->point_from_parent(layout().cartesian(core_.snapshot().position));
+  const Vec p = f->point_from_parent(layout().cartesian(gateway_.snapshot().position));
   std::string data = name;
   for (int c = 0; c < 3; ++c) {
     data += ' ';
@@ -91,39 +93,32 @@ void Server::part_pos(Session& s, std::uint32_t slot, std::string name) {
   reply(s, slot, format_ok("PartPos", data));
 }
 
-void Server::use_frame(Session& s, std::uint32_t slot, std::string name) {
+void FrameVerbs::use_frame(Session& s, std::uint32_t slot, std::string name) {
   if (!frames_usable(s, slot, "UseFrame") || !frame_named(s, slot, "UseFrame", name)) return;
   frames_.use(name);
   reply(s, slot, format_ok("UseFrame", name));
-  frame_changed();
+  frames_.changed();
 }
 
 // Stores `frame` under `name`, makes it active, answers `verb` with the frame and announces it.
-void Server::store_frame(Session& s, std::uint32_t slot, std::string_view verb, const std::string& name,
+void FrameVerbs::store_frame(Session& s, std::uint32_t slot, std::string_view verb, const std::string& name,
                          const metrology::Frame& frame, std::string_view extra) {
-  const std::string save_error = keep_frame(name, frame);
+  const std::string save_error = frames_.keep(name, frame);
   std::string data = name + ' ' + frame_text(frame);
   if (!extra.empty()) data += ' ' + std::string(extra);
   if (!save_error.empty()) data += " Stored no";
   reply(s, slot, format_ok(verb, data));
-  frame_changed();
+  frames_.changed();
 }
 
-std::string Server::keep_frame(const std::string& name, const metrology::Frame& frame) {
-  const std::string save_error = frames_.put(name, frame);
-  if (!save_error.empty())
-    log_limited(spdlog::level::err, "frames", "part frame " + name + " kept for this run only: " + save_error);
-  return save_error;
-}
-
-void Server::set_frame(Session& s, std::uint32_t slot, const protocol::SetFrame& c) {
+void FrameVerbs::set_frame(Session& s, std::uint32_t slot, const protocol::SetFrame& c) {
   if (!frames_usable(s, slot, "SetFrame")) return;
   if (auto why = PartFrames::refuse_name(c.name); !why.empty()) {
     reply(s, slot, format_err(ErrorCode::BadValue, "SetFrame " + c.name.substr(0, 40) + ": accepted " + why));
     return;
   }
   const Vec origin = c.origin ? Vec((*c.origin)[0], (*c.origin)[1], (*c.origin)[2])
-                              : Vec(layout().cartesian(core_.snapshot().position));
+                              : Vec(layout().cartesian(gateway_.snapshot().position));
   if (!(origin.cwiseAbs().maxCoeff() <= kMaxFrameOrigin)) {
     reply(s, slot, format_err(ErrorCode::BadValue, "SetFrame " + c.name + ": the origin's coordinates go from -1000000 to 1000000 mm"));
     return;
@@ -157,7 +152,7 @@ void Server::set_frame(Session& s, std::uint32_t slot, const protocol::SetFrame&
 }
 
 // Align name 321|holes plane line|hole point|hole: fits the journaled hits and builds the frame.
-void Server::align(Session& s, std::uint32_t slot, const protocol::Align& c) {
+void FrameVerbs::align(Session& s, std::uint32_t slot, const protocol::Align& c) {
   if (!frames_usable(s, slot, "Align")) return;
   const std::string head = "Align " + c.name.substr(0, 40) + ": ";
   if (auto why = PartFrames::refuse_name(c.name); !why.empty()) {
@@ -194,7 +189,7 @@ void Server::align(Session& s, std::uint32_t slot, const protocol::Align& c) {
           if (auto* h = std::get_if<protocol::HitMsg>(&m); h && h->seq == seqs[i]) hit = *h;
         }
       } catch (const journal::JournalError& e) {
-        log_limited(spdlog::level::err, "journal", e.what());
+        log_limited(log_, spdlog::level::err, "journal", e.what());
       }
       if (!hit && lost) {
         reply(s, slot, format_err(ErrorCode::BadValue, head + "hit " + std::to_string(seqs[i]) + " of the " + role +
@@ -272,40 +267,15 @@ void Server::align(Session& s, std::uint32_t slot, const protocol::Align& c) {
   }
 }
 
-void Server::del_frame(Session& s, std::uint32_t slot, const std::string& name) {
+void FrameVerbs::del_frame(Session& s, std::uint32_t slot, const std::string& name) {
   const bool was_active = frames_.active() == name;
   std::string save_error;
-  if (!frames_.remove(name, save_error)) {
-    reply(s, slot, format_err(ErrorCode::BadValue, "DelFrame: no stored frame '" + name.substr(0, 40) + "'; the stored frames are" + names_text(frames_, 1)));
+  if (!frames_.remove(name, save_error)) {  // a file not written is logged there
+    reply(s, slot, format_err(ErrorCode::BadValue, "DelFrame: no stored frame '" + name.substr(0, 40) + "'; the stored frames are" + names_text(frames_.frames(), 1)));
     return;
   }
-  if (!save_error.empty()) log_limited(spdlog::level::err, "frames", "deleting part frame " + name + ": " + save_error);
   reply(s, slot, format_ok("DelFrame", name));
-  if (was_active) frame_changed();
-}
-
-void Server::frame_changed() {
-  broadcast(protocol::format_event("Frame", frames_.active()));
-  to_ipp("PartFrameChanged", [&] { ipp_->part_frame_changed(); });
-}
-
-// After a hit's Hit and MeasPt: the same point in the active part frame.
-void Server::send_part_point(const protocol::HitMsg& hit) {
-  if (frames_.active() == kMachineFrame) return;
-  const auto& f = frames_.active_frame();
-  const Vec p = f.point_from_parent(Vec(hit.p.x, hit.p.y, hit.p.z));
-  const Vec d = f.direction_from_parent(Vec(hit.dir.x, hit.dir.y, hit.dir.z));
-  std::string line = "PartPt " + std::to_string(hit.seq) + ' ' + frames_.active();
-  for (int c = 0; c < 3; ++c) {
-    line += ' ';
-    protocol::append_fixed(line, p[c], 4);
-  }
-  for (int c = 0; c < 3; ++c) {
-    line += ' ';
-    protocol::append_fixed(line, d[c], 6);
-  }
-  line += '\n';
-  broadcast(line);
+  if (was_active) frames_.changed();
 }
 
 }  // namespace imess::net

@@ -6,7 +6,6 @@
 #include <cmath>
 
 #include "imess/net/ipp_server.hpp"
-#include "imess/net/server.hpp"
 #include "overloaded.hpp"
 
 namespace imess::net {
@@ -40,7 +39,7 @@ std::string IppServer::position_payload(const std::vector<Item>& items) const {
 
 void IppServer::change_tool(std::string_view name) {
   if (!tools_.change(name)) return;
-  server_.core_.set_param(core::ParamId::TipRadius, tools_.active()->radius);
+  gateway_.set_param(core::ParamId::TipRadius, tools_.active()->radius);
 }
 
 void IppServer::get_props(const Tag& tag, const std::vector<std::string>& paths, std::string_view cause) {
@@ -112,7 +111,7 @@ bool IppServer::execute(const Pending& p) {
             last_error_.reset();
             user_enabled_ = false;
             ptmeas_items_ = {Item::X, Item::Y, Item::Z};
-            if (tools_.active()) server_.core_.set_param(core::ParamId::TipRadius, tools_.active()->radius);
+            if (tools_.active()) gateway_.set_param(core::ParamId::TipRadius, tools_.active()->radius);
             return done();
           },
           [&](const ippdme::EndSession&) {
@@ -186,7 +185,7 @@ bool IppServer::execute(const Pending& p) {
           },
           [&](const ippdme::Home&) { return start_home(p); },
           [&](const ippdme::IsHomed&) {
-            flag("IsHomed", server_.core_.snapshot().referenced);  // the machine knows where it is
+            flag("IsHomed", gateway_.snapshot().referenced);  // the machine knows where it is
             return done();
           },
           [&](const ippdme::EnableUser&) {
@@ -217,7 +216,7 @@ bool IppServer::execute(const Pending& p) {
             return done();
           },
           [&](const ippdme::GetXtdErrStatus&) {
-            flag("IsHomed", server_.core_.snapshot().referenced);
+            flag("IsHomed", gateway_.snapshot().referenced);
             flag("IsUserEnabled", user_enabled_);
             if (error_state_ && last_error_) send(ippdme::format_error(tag, last_error_->first, last_error_->second));
             if (machine_faulted()) send(ippdme::format_error(tag, ErrorCode::MachineInErrorState, "Machine"));
@@ -323,7 +322,7 @@ void IppServer::execute_fast(const Pending& p) {
     std::optional<Pending> was;
     if (running) was = queue_.front();
     step_ = Step::None;
-    server_.stop_machine("AbortE");
+    gateway_.stop("AbortE");
     rest_.reset();
     if (was) {
       answer_aborted(*was);

@@ -5,7 +5,6 @@
 #include <optional>
 
 #include "imess/net/ipp_server.hpp"
-#include "imess/net/server.hpp"
 
 namespace imess::net {
 namespace {
@@ -30,8 +29,8 @@ bool IppServer::store_part_csy() {
     return false;
   }
   own_part_csy_ = true;
-  server_.keep_frame("PartCsy", *frame);
-  server_.frame_changed();
+  frames_.keep("PartCsy", *frame);
+  frames_.changed();
   own_part_csy_ = false;
   return true;
 }
@@ -40,7 +39,7 @@ void IppServer::part_frame_changed() {
   if (own_part_csy_) return;  // it is this session's own PartCsy: kept as the session gave it
   // The link from MoveableMachineCsy to PartCsy that puts the active frame's origin and axes
   // where they are in machine coordinates: q -> F^-1(parent(q)).
-  const metrology::Frame& f = server_.frames_.active_frame();
+  const metrology::Frame& f = frames_.active_frame();
   ippdme::CsyChain parent = csy_;
   parent.select(ippdme::CoordSystem::MoveableMachineCsy);
   auto link = [&](const Eigen::Vector3d& q) { return f.point_from_parent(vec(parent.to_machine(pt(q)))); };

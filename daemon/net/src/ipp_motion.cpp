@@ -9,7 +9,6 @@
 #include <optional>
 
 #include "imess/net/ipp_server.hpp"
-#include "imess/net/server.hpp"
 #include "imess/net/wording.hpp"
 #include "imess/planner/probe.hpp"
 
@@ -65,45 +64,40 @@ std::uint32_t IppServer::next_id() {
 }
 
 Point3 IppServer::tip_machine() const {
-  const hal::Vec3 p = server_.layout().cartesian(server_.core_.snapshot().position);
+  const hal::Vec3 p = gateway_.layout().cartesian(gateway_.snapshot().position);
   return {p.x(), p.y(), p.z()};
 }
 
 Point3 IppServer::tip_here() const { return csy_.from_machine(tip_machine()); }
 
 planner::Pose IppServer::pose_at(const Point3& xyz) const {
-  planner::Pose pose = rest_ ? *rest_ : server_.pose_of(server_.core_.snapshot().position);
-  for (int c = 0; c < 3; ++c) pose[server_.layout().cartesian_axis(c)] = xyz[c];
+  planner::Pose pose = rest_ ? *rest_ : gateway_.pose_of(gateway_.snapshot().position);
+  for (int c = 0; c < 3; ++c) pose[gateway_.layout().cartesian_axis(c)] = xyz[c];
   return pose;
 }
 
 // The lines planned from where the last step left the machine, all or none (a dry run
 // first), flushed to end at rest and fed to the loop.
 IppServer::Planned IppServer::plan_lines(std::vector<planner::Line> lines, std::string& why) {
-  Server& s = server_;
-  if (!s.planning_) {
-    const auto& snap = s.core_.snapshot();
-    if ((snap.mode != core::Mode::Idle && snap.mode != core::Mode::Free) || !s.in_loop_.empty()) {
+  MotionGateway& s = gateway_;
+  if (!s.planning()) {
+    const auto& snap = s.snapshot();
+    if ((snap.mode != core::Mode::Idle && snap.mode != core::Mode::Free) || s.loop_holds_segments()) {
       why = std::string("the machine is busy (State ") + std::string(mode_name(snap.mode)) + ")";
       // Braking, retracting: the step waits for rest; a fault does not pass by itself.
       return snap.mode == core::Mode::Fault ? Planned::Refused : Planned::Busy;
     }
-    s.planner_.set_position(rest_ ? *rest_ : s.pose_of(snap.position));
+    s.start_at(rest_ ? *rest_ : s.pose_of(snap.position));
   }
-  planner::Planner dry(s.planner_.machine(), s.planner_.options());
-  dry.set_position(s.planner_.position());
+  planner::Planner dry(s.machine(), s.options());
+  dry.set_position(s.planned_end());
   for (const auto& l : lines)
     if (auto r = dry.append(l); !r.ok()) {
-      why = planner::describe(r, s.planner_.machine());
+      why = planner::describe(r, s.machine());
       return r.error == planner::PlanError::OutOfTravel ? Planned::OutOfTravel : Planned::Refused;
     }
-  s.planning_ = true;
-  for (const auto& l : lines) {
-    s.planner_.append(l);
-    if (s.unsent_.empty() || s.unsent_.back() != l.id) s.unsent_.push_back(l.id);
-  }
-  s.planner_.flush();
-  s.feed_segments();
+  for (const auto& l : lines) s.append(l);  // the same id once (a probe's approach and search)
+  s.flush_and_feed();
   return Planned::Yes;
 }
 
@@ -224,7 +218,7 @@ bool IppServer::start_ptmeas(const Pending& p, const ippdme::PtMeas& c) {
   return false;
 }
 
-bool IppServer::machine_faulted() const { return server_.core_.snapshot().mode == core::Mode::Fault; }
+bool IppServer::machine_faulted() const { return gateway_.snapshot().mode == core::Mode::Fault; }
 
 // The machine's fault is cleared as MESSD's Reset clears it: the core resets the drives' faults
 // and frees the machine, or refuses while the cause remains (then 1000). Needs control.
@@ -238,7 +232,7 @@ bool IppServer::start_reset(const Pending& p) {
   }
   core::Command c{core::CommandKind::Reset};
   c.client = kClientId;
-  if (!server_.core_.submit(c)) {
+  if (!gateway_.submit(c)) {
     fail(p.tag, ErrorCode::MachineInErrorState, name);
     return true;
   }
@@ -252,7 +246,7 @@ bool IppServer::start_home(const Pending& p) {
   if (!take_machine(p)) return true;
   core::Command c{core::CommandKind::Home};
   c.client = kClientId;
-  if (!server_.core_.submit(c)) {
+  if (!gateway_.submit(c)) {
     fail(p.tag, ErrorCode::ErrorProcessingMethod, name);
     return true;
   }
@@ -300,8 +294,8 @@ void IppServer::segment_end(const core::Event& e) {
   }
   if (e.id != wait_id_) return;  // PtMeas: the move to the approach point
   if (step_ == Step::PtMeas) {
-    rest_ = server_.pose_of(e.end);  // where the retract from the hit ended
-    if (server_.in_loop_.empty() && server_.unsent_.empty()) server_.planning_ = false;  // the retract starts there
+    rest_ = gateway_.pose_of(e.end);  // where the retract from the hit ended
+    if (gateway_.ids_queued() == 0) gateway_.set_planning(false);  // the retract starts there
     if (!hit_seen_) {
       step_failed(ErrorCode::NoTouch);
       return;
@@ -311,7 +305,7 @@ void IppServer::segment_end(const core::Event& e) {
     const double r = tools_.act(Param::Retract);
     std::optional<Point3> target;
     if (r < 0) target = approach_m_;
-    else if (r > server_.core_.params().retract_distance + 1e-3)
+    else if (r > gateway_.params().retract_distance + 1e-3)
       target = Point3{hit_tip_m_[0] + normal_m_[0] * r, hit_tip_m_[1] + normal_m_[1] * r, hit_tip_m_[2] + normal_m_[2] * r};
     if (!target) {
       step_done();
@@ -335,8 +329,7 @@ void IppServer::segment_end(const core::Event& e) {
 void IppServer::dropped(core::FailReason why) {
   rest_.reset();
   if (step_ == Step::None || step_ == Step::Home || step_ == Step::Reset || step_ == Step::Wait) return;
-  for (const auto& [id, seconds] : server_.in_loop_)
-    if (id >= first_id_ && id <= wait_id_) return;  // its own Failed will come
+  if (gateway_.in_loop_between(first_id_, wait_id_)) return;  // its own Failed will come
   step_failed(error_of(why));
 }
 
@@ -412,7 +405,7 @@ void IppServer::tick() {
   retry();
   if (!daemon_ || !conn_) return;
   auto& d = *daemon_;
-  const auto now = server_.core_.snapshot().time;
+  const auto now = gateway_.snapshot().time;
   const double since = d.last_at ? std::chrono::duration<double>(now - *d.last_at).count() : 1e9;
   if (since < kMinReportPeriod) return;
   const Point3 p = tip_here();

@@ -5,7 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include "imess/net/ipp_server.hpp"
-#include "imess/net/server.hpp"
+#include "imess/net/server_config.hpp"
 
 namespace imess::net {
 
@@ -24,7 +24,7 @@ constexpr std::size_t kMaxUnackedBytes = 1u << 20;
 constexpr const char* kControllerName = "ippdme";
 }  // namespace
 
-struct IppServer::Connection {
+struct IppTransactions::Connection {
   explicit Connection(tcp::socket s) : socket(std::move(s)) {
     boost::system::error_code ec;
     const auto ep = socket.remote_endpoint(ec);
@@ -57,16 +57,24 @@ ippdme::ToolBox make_tools(const IppConfig& config, double tip_radius, const ipp
 }
 }  // namespace
 
-IppServer::IppServer(asio::io_context& io, Server& server, IppConfig config)
-    : io_(io), server_(server), config_(std::move(config)), acceptor_(io), tools_([&] {
+IppTransactions::IppTransactions(asio::io_context& io, const HostList& hosts, IppConfig config)
+    : io_(io), hosts_(hosts), config_(std::move(config)), acceptor_(io) {}
+
+IppServer::IppServer(asio::io_context& io, IppServices services, IppConfig config)
+    : IppTransactions(io, services.hosts, std::move(config)),
+      gateway_(services.gateway),
+      control_(services.control),
+      frames_(services.frames),
+      programs_(services.programs),
+      tools_([&] {
         // The ranges every tool's values keep (docs/ippdme.md, "Tools and properties"): speeds
         // up to what every linear axis can do, the machine's one acceleration, the probing
         // distances the MESSD parameters also bound.
-        const auto& m = server.planner_.machine();
-        const auto& p = server.core_.params();
+        const auto& m = gateway_.machine();
+        const auto& p = gateway_.params();
         double vmax = 1e9, amax = 1e9;
         for (int c = 0; c < 3; ++c)
-          if (const int a = server.layout().cartesian_axis(c); a >= 0) {
+          if (const int a = gateway_.layout().cartesian_axis(c); a >= 0) {
             vmax = std::min(vmax, m.axes[a].max_velocity);
             amax = std::min(amax, m.axes[a].max_accel);
           }
@@ -92,20 +100,20 @@ void IppServer::start(const std::string& listen) {
   accept();
 }
 
-void IppServer::stop() {
+void IppTransactions::stop() {
   boost::system::error_code ec;
   acceptor_.close(ec);
   if (conn_) conn_->socket.close(ec);
   conn_.reset();
 }
 
-void IppServer::accept() {
+void IppTransactions::accept() {
   acceptor_.async_accept([this](boost::system::error_code ec, tcp::socket socket) {
     if (ec == asio::error::operation_aborted || !acceptor_.is_open()) return;
     if (!ec) {
       boost::system::error_code e2;
       const auto peer = socket.remote_endpoint(e2);
-      const bool may = !e2 && server_.config_.control.hosts.contains(peer.address());
+      const bool may = !e2 && hosts_.contains(peer.address());
       if (conn_ || !may) {
         // One session drives the machine; a second client, or a host that may not control
         // it (control.hosts), is told so and closed.
@@ -130,7 +138,7 @@ void IppServer::accept() {
   });
 }
 
-void IppServer::read() {
+void IppTransactions::read() {
   if (!conn_ || conn_->broken || conn_->reading || unacked_bytes_ > kMaxUnackedBytes) return;
   conn_->reading = true;
   auto c = conn_;
@@ -150,7 +158,7 @@ void IppServer::read() {
   });
 }
 
-void IppServer::send(std::string bytes) {
+void IppTransactions::send(std::string bytes) {
   if (!conn_ || conn_->broken) return;
   if (conn_->out_bytes + bytes.size() > config_.max_queue_bytes) {
     // Closed from the io loop, not here: the command being answered is still on the stack.
@@ -166,7 +174,7 @@ void IppServer::send(std::string bytes) {
   write();
 }
 
-void IppServer::write() {
+void IppTransactions::write() {
   if (!conn_ || conn_->writing || conn_->out.empty()) return;
   conn_->writing = true;
   auto c = conn_;
@@ -183,7 +191,7 @@ void IppServer::write() {
   });
 }
 
-void IppServer::closed() {
+void IppTransactions::closed() {
   if (!conn_) return;
   spdlog::info("I++ DME: client {} disconnected", conn_->address.to_string());
   auto c = std::move(conn_);
@@ -201,7 +209,7 @@ void IppServer::closed() {
 // Every line whose tag can be read is acknowledged first (a refused one too: it is answered
 // with its error in its turn, so completions stay in the order sent); a line whose tag cannot
 // be read, or whose tag is open, is answered on E0000 alone.
-void IppServer::on_line(const ippdme::FramedLine& line) {
+void IppTransactions::on_line(const ippdme::FramedLine& line) {
   auto result = ippdme::parse_framed(line);
   Pending p;
   if (const auto* err = std::get_if<ippdme::LineError>(&result)) {
@@ -241,11 +249,11 @@ void IppServer::on_line(const ippdme::FramedLine& line) {
   pump();
 }
 
-std::string_view IppServer::cause_of(const Pending& p) {
+std::string_view IppTransactions::cause_of(const Pending& p) {
   return p.refused ? std::string_view(p.refused->second) : ippdme::method_name(p.command);
 }
 
-bool IppServer::guarded(std::string_view what, const std::function<void()>& f) {
+bool IppTransactions::guarded(std::string_view what, const std::function<void()>& f) {
   std::string why;
   try {
     f();
@@ -268,7 +276,7 @@ bool IppServer::guarded(std::string_view what, const std::function<void()>& f) {
 
 // Commands whose Ack waited for room: acknowledged and queued (all of them: `all`, before an
 // abort answers every queued command).
-void IppServer::admit_unacked(bool all) {
+void IppTransactions::admit_unacked(bool all) {
   while (!unacked_.empty() && (all || queue_.size() < kMaxQueued)) {
     Pending p = std::move(unacked_.front());
     unacked_.pop_front();
@@ -281,7 +289,7 @@ void IppServer::admit_unacked(bool all) {
 // Room is made before every command: also while aborted ones drain (an error admits every
 // waiting command at once, so the queue may hold more than kMaxQueued; the Acks still waiting
 // behind them come as soon as it has room again, not with the client's next line).
-void IppServer::pump() {
+void IppTransactions::pump() {
   for (;;) {
     admit_unacked(false);
     if (running_ || queue_.empty() || !conn_) break;
@@ -300,7 +308,7 @@ void IppServer::pump() {
 
 // Runs the queue's front; true when it was answered (it has left the queue), false when it
 // started a motion step (or waits for the machine to stand).
-bool IppServer::run_front() {
+bool IppTransactions::run_front() {
   const Pending p = queue_.front();
   bool answered = true;
   if (!guarded(cause_of(p), [&] { answered = execute(p); })) {
@@ -318,24 +326,24 @@ bool IppServer::run_front() {
   return true;
 }
 
-void IppServer::answer_aborted(const Pending& p) {
+void IppTransactions::answer_aborted(const Pending& p) {
   send(ippdme::format_error(p.tag, ErrorCode::TransactionAborted, cause_of(p)));
   finish(p.tag);
 }
 
-void IppServer::finish(const Tag& tag) {
+void IppTransactions::finish(const Tag& tag) {
   send(ippdme::format_done(tag));
   tags_.close(tag);
 }
 
-void IppServer::fail(const Tag& tag, ErrorCode code, std::string_view cause) {
+void IppTransactions::fail(const Tag& tag, ErrorCode code, std::string_view cause) {
   send(ippdme::format_error(tag, code, cause));
   finish(tag);
   // Outside a session there is no error state to enter (StartSession would clear it).
   if (ippdme::enters_error_state(code, cause) && in_session_ && !error_state_) enter_error(code, cause);
 }
 
-void IppServer::enter_error(ErrorCode code, std::string_view cause) {
+void IppTransactions::enter_error(ErrorCode code, std::string_view cause) {
   if (!error_state_) last_error_ = std::pair(code, std::string(cause));
   error_state_ = true;
   abort_queued();
@@ -344,7 +352,7 @@ void IppServer::enter_error(ErrorCode code, std::string_view cause) {
 // Every transaction waiting behind the running one: 0006 and its `%`, in the order sent —
 // at once when nothing runs, else each when its turn comes, so no `%` overtakes the running
 // command's (completions in the order started, IPPDME.md §3).
-void IppServer::abort_queued() {
+void IppTransactions::abort_queued() {
   admit_unacked(true);
   const bool behind = running_ && !queue_.empty();
   if (behind) {
@@ -361,43 +369,38 @@ void IppServer::abort_queued() {
 // client only at StartSession and only while the machine stands (`at_start`). False (why
 // says) otherwise — e.g. an operator took it with Take force and has not released it.
 bool IppServer::claim_control(bool at_start, std::string& why) {
-  auto& control = server_.control_;
+  auto& control = control_;
   if (control.owns(kClientId)) return true;
   const Controller me{kClientId, kControllerName, conn_ ? conn_->address.to_string() : std::string("?")};
   if (!control.owner()) {
-    control.claim(me, true);
-    server_.announce_control();
+    control.claim(me, true);  // announced
     return true;
   }
-  const auto& snap = server_.core_.snapshot();
-  const bool standing = (snap.mode == core::Mode::Idle || snap.mode == core::Mode::Free) && !server_.planning_ &&
-                        server_.in_loop_.empty() && !server_.program_.running();
+  const auto& snap = gateway_.snapshot();
+  const bool standing = (snap.mode == core::Mode::Idle || snap.mode == core::Mode::Free) && !gateway_.planning() &&
+                        !gateway_.loop_holds_segments() && !programs_.running();
   if (!user_enabled_ && !(at_start && standing)) {
     why = "the machine is controlled by " + describe(*control.owner());
     return false;
   }
-  if (!standing) server_.stop_machine("I++ DME session takes control");
-  const Controller was = *control.owner();
-  control.take(me, true, true, true);
-  if (auto it = server_.sessions_.find(was.session); it != server_.sessions_.end())
-    server_.send(*it->second, control_taken_warning(me));
-  server_.announce_control();
+  if (!standing) gateway_.stop("I++ DME session takes control");
+  control.take_over(me);  // the one who had it is warned, everyone told
   return true;
 }
 
 void IppServer::release_control() {
-  if (!server_.control_.release(kClientId)) return;
-  server_.announce_control();
+  if (!control_.release(kClientId)) return;
+  control_.announce();
 }
 
 // EndSession or the connection gone: what the session moves stops, daemons end, the
 // machine's control is given back. Tools and coordinate systems stay for the next session.
 void IppServer::end_session(bool dropped) {
-  const bool owns = server_.control_.owns(kClientId);
+  const bool owns = control_.owns(kClientId);
   const bool moving = step_ != Step::None;
   step_ = Step::None;
-  if (owns && (moving || server_.planning_ || !server_.in_loop_.empty()))
-    server_.stop_machine(dropped ? "I++ DME client disconnected" : "EndSession");
+  if (owns && (moving || gateway_.planning() || gateway_.loop_holds_segments()))
+    gateway_.stop(dropped ? "I++ DME client disconnected" : "EndSession");
   if (daemon_) tags_.close(daemon_->tag);
   daemon_.reset();
   release_control();

@@ -3,7 +3,7 @@
 // "Control" and "Connections and idle clients".
 #include <spdlog/spdlog.h>
 
-#include "imess/net/server.hpp"
+#include "imess/net/liveness.hpp"
 #include "imess/protocol/messages.hpp"
 
 namespace imess::net {
@@ -24,12 +24,12 @@ bool moving(core::Mode m) {
 }
 }  // namespace
 
-std::optional<Clock::time_point> Server::watch_deadline() const {
+std::optional<Clock::time_point> Liveness::watch_deadline() const {
   const auto& owner = control_.owner();
   if (!owner) return std::nullopt;
-  auto it = sessions_.find(owner->session);
-  if (it == sessions_.end()) return std::nullopt;
-  const Session& s = *it->second;
+  const Session* found = sessions_.find(owner->session);
+  if (!found) return std::nullopt;
+  const Session& s = *found;
   const auto& info = s.info();
   if (info.watch_ms <= 0) return std::nullopt;
   const auto ms = std::chrono::milliseconds(info.watch_ms);
@@ -39,7 +39,7 @@ std::optional<Clock::time_point> Server::watch_deadline() const {
   return s.last_received() + ms;
 }
 
-void Server::arm_housekeeping() {
+void Liveness::arm_housekeeping() {
   if (!running_) return;
   std::optional<Clock::time_point> next;
   auto earliest = [&](std::optional<Clock::time_point> t) {
@@ -56,39 +56,39 @@ void Server::arm_housekeeping() {
   });
 }
 
-void Server::housekeeping() {
+void Liveness::housekeeping() {
   housekeeping_at_.reset();
   check_watch();
   journal_.sync_if_due();
   arm_housekeeping();
 }
 
-void Server::check_watch() {
+void Liveness::check_watch() {
   const auto& owner = control_.owner();
   if (!owner) return;
-  auto it = sessions_.find(owner->session);
-  if (it == sessions_.end()) return;
-  Session& s = *it->second;
+  Session* found = sessions_.find(owner->session);
+  if (!found) return;
+  Session& s = *found;
   auto& info = s.info();
   if (info.watch_ms <= 0 || info.watch_fired_for == s.last_received()) return;  // off, or fired for this silence
   if (Clock::now() - s.last_received() < std::chrono::milliseconds(info.watch_ms)) return;
   info.watch_fired_for = s.last_received();  // once per silence; the next bytes re-arm it
-  const bool was_moving = moving(core_.snapshot().mode) || info.in_flight > 0;
-  stop_machine("Watch");
+  const bool was_moving = moving(gateway_.snapshot().mode) || info.in_flight > 0;
+  gateway_.stop("Watch");
   if (!was_moving) return;
-  log_limited(spdlog::level::warn, "watch",
+  log_limited(log_, spdlog::level::warn, "watch",
               "client " + std::to_string(s.id()) + " silent for " + std::to_string(info.watch_ms) + " ms (Watch): machine stopped");
-  send(s, protocol::format_event("Warn", "WatchExpired silent for " + std::to_string(info.watch_ms) +
+  sessions_.send(s, protocol::format_event("Warn", "WatchExpired silent for " + std::to_string(info.watch_ms) +
                                              " ms: the machine was stopped"));
 }
 
-void Server::check_clients() {
+void Liveness::check_clients() {
   const auto now = Clock::now();
-  for (const auto& [name, count] : log_limiter_.take_expired(now))
+  for (const auto& [name, count] : log_.take_expired(now))
     spdlog::warn("... suppressed {} similar '{}' lines", count, name);
   const auto& rules = config_.control;
   const auto reply_timeout = std::chrono::duration_cast<Clock::duration>(seconds(config_.reply_timeout_s));
-  auto sessions = sessions_;  // drops erase from sessions_
+  auto sessions = sessions_.all();  // drops erase from sessions_
   for (auto& [id, s] : sessions) {
     if (!s->open()) continue;
     // An answer from the motion loop that never came (its event ring overflowed) must not
@@ -96,10 +96,10 @@ void Server::check_clients() {
     if (auto lost = s->expire_replies(now, reply_timeout, lost_reply_line(config_.reply_timeout_s))) {
       auto& in_flight = s->info().in_flight;
       in_flight -= std::min<std::uint32_t>(in_flight, static_cast<std::uint32_t>(lost));
-      log_limited(spdlog::level::warn, "reply-lost",
+      log_limited(log_, spdlog::level::warn, "reply-lost",
                   "client " + std::to_string(id) + ": " + std::to_string(lost) + " replies not answered within " +
                       fmt::format("{:g}", config_.reply_timeout_s) + " s (events dropped: " +
-                      std::to_string(core_.snapshot().events_dropped) + "); answered Err 500");
+                      std::to_string(gateway_.snapshot().events_dropped) + "); answered Err 500");
       if (!s->open()) continue;
     }
     // Output that does not drain: the client stopped reading (or was stopped, SIGSTOP, and
@@ -127,10 +127,33 @@ void Server::check_clients() {
   }
 }
 
-void Server::drop(Session& s, std::string_view why) {
-  log_limited(spdlog::level::warn, "drop-silent", "client " + std::to_string(s.id()) + " (" + s.peer() + "): " + std::string(why));
-  lose_control(s, "dropped", true);
+void Liveness::drop(Session& s, std::string_view why) {
+  log_limited(log_, spdlog::level::warn, "drop-silent", "client " + std::to_string(s.id()) + " (" + s.peer() + "): " + std::string(why));
+  control_.lose(s.id(), "dropped", true);
   s.drop(protocol::format_err(protocol::ErrorCode::Dropped, why));
+}
+
+Liveness::Liveness(boost::asio::io_context& io, const ServerConfig& config, SessionHub& sessions, ControlService& control,
+                   MotionGateway& gateway, journal::Journal& journal, LogLimiter& log)
+    : config_(config),
+      sessions_(sessions),
+      control_(control),
+      gateway_(gateway),
+      journal_(journal),
+      log_(log),
+      housekeeping_timer_(io),
+      clients_timer_(io) {}
+
+void Liveness::start() {
+  running_ = true;
+  const std::chrono::microseconds every(250000);
+  clients_timer_.start(every, [every] { return every; }, [this] { check_clients(); });
+}
+
+void Liveness::stop() {
+  running_ = false;
+  housekeeping_timer_.cancel();
+  clients_timer_.cancel();
 }
 
 }  // namespace imess::net

@@ -1,6 +1,8 @@
 // A per-class one-second window, so a flooding client cannot fill the disk with log lines.
 #include "imess/net/log_limiter.hpp"
 
+#include <spdlog/spdlog.h>
+
 namespace imess::net {
 
 std::optional<std::uint64_t> LogLimiter::admit(std::string_view message_class, Clock::time_point now) {
@@ -29,6 +31,13 @@ std::vector<std::pair<std::string, std::uint64_t>> LogLimiter::take_expired(Cloc
       w.suppressed = 0;
     }
   return out;
+}
+
+void log_limited(LogLimiter& limiter, spdlog::level::level_enum level, std::string_view message_class, const std::string& text) {
+  auto held = limiter.admit(message_class, LogLimiter::Clock::now());
+  if (!held) return;
+  if (*held > 0) spdlog::log(level, "... suppressed {} similar '{}' lines", *held, message_class);
+  spdlog::log(level, "{}", text);
 }
 
 }  // namespace imess::net

@@ -5,7 +5,7 @@
 #include <cctype>
 #include <cstdio>
 
-#include "imess/core/motion_core.hpp"
+#include "imess/net/motion_gateway.hpp"
 #include "imess/protocol/numbers.hpp"
 #include "imess/protocol/words.hpp"
 
@@ -92,10 +92,10 @@ std::optional<double> parse_param_value(const ParamSpec& spec, std::string_view 
 std::string param_text(const ParamSpec& spec, const ParamPlaces& at) {
   double v = 0;
   switch (spec.home) {
-    case ParamHome::Core: v = core::param_value(at.core.params(), spec.core_id); break;
+    case ParamHome::Core: v = core::param_value(at.motion.params(), spec.core_id); break;
     case ParamHome::ReportHz: v = at.report_hz; break;
     case ParamHome::LoopPeriod: v = at.period_us; break;
-    case ParamHome::AxisCount: v = at.core.config().layout.count; break;
+    case ParamHome::AxisCount: v = at.motion.config().layout.count; break;
     case ParamHome::Backend: return std::string(at.backend);
     case ParamHome::ProbeOffset: v = at.probe_offset[static_cast<std::size_t>(spec.axis)]; break;
   }
@@ -106,7 +106,7 @@ std::string param_text(const ParamSpec& spec, const ParamPlaces& at) {
 
 void store_param(const ParamSpec& spec, ParamPlaces& at, double value) {
   switch (spec.home) {
-    case ParamHome::Core: at.core.set_param(spec.core_id, value); break;  // the parameter lane: no ring slot
+    case ParamHome::Core: at.motion.set_param(spec.core_id, value); break;  // the parameter lane: no ring slot
     case ParamHome::ReportHz: at.report_hz = value; break;
     case ParamHome::ProbeOffset: at.probe_offset[static_cast<std::size_t>(spec.axis)] = value; break;
     case ParamHome::LoopPeriod:

@@ -13,7 +13,7 @@
 #include <stdexcept>
 
 #include "imess/net/program_check.hpp"
-#include "imess/net/server.hpp"
+#include "imess/net/program_runner.hpp"
 #include "imess/net/wording.hpp"
 #include "imess/protocol/messages.hpp"
 #include "imess/protocol/numbers.hpp"
@@ -58,8 +58,10 @@ constexpr std::uint16_t kSpindleTag = 60000;
 constexpr std::uint16_t kMistTag = 60001, kFloodTag = 60002;
 constexpr std::uint16_t kDigitalTag = 61000;
 
+}  // namespace
+
 // A name in the programs folder: one file name, printable, no path.
-std::string name_problem(const std::string& name) {
+std::string program_name_problem(const std::string& name) {
   if (name.size() > 255) return "a name of at most 255 characters";
   for (char c : name)
     if (c == '/' || c == '\\' || static_cast<unsigned char>(c) < 33 || static_cast<unsigned char>(c) > 126)
@@ -69,8 +71,6 @@ std::string name_problem(const std::string& name) {
     return std::string("a name ending in one of ") + programs::kExtensions + " (it gives the language)";
   return {};
 }
-
-}  // namespace
 
 programs::Setup program_setup(const ProgramConfig& pc, const core::CoreConfig& core, const planner::Machine& machine,
                               const planner::Pose& start) {
@@ -154,47 +154,69 @@ bool resolve_program_outputs(std::vector<programs::Item>& items, const ProgramCo
   return true;
 }
 
-// Translates and checks the program from `start`; the items of the run in `items`.
-bool Server::check_program_text(const LoadedProgram& p, const planner::Pose& start, std::vector<programs::Item>& items,
-                                programs::Check& check, std::string& error) const {
-  return check_program_for({config_.programs, core_.config(), planner_.machine(), planner_.options(), &frames_}, p,
-                           start, items, check, error);
+ProgramRunner::ProgramRunner(MotionGateway& gateway, const ProgramConfig& config, const PartFrames& frames, LogLimiter& log,
+                             Announce announce)
+    : gateway_(gateway), config_(config), frames_(frames), log_(log), announce_(std::move(announce)) {}
+
+bool ProgramRunner::owns_segment(std::uint32_t) const { return program_.running() || program_.tail; }
+
+void ProgramRunner::segment_end(const core::Event& e) { program_segment_end(e); }
+
+void ProgramRunner::dropped(core::FailReason why) {
+  // A limit, a fault or an unexpected touch dropped the loop's queue: the program failed
+  // (a stop ends it as aborted, in stopped()).
+  if (program_.running() && why != core::FailReason::Stopped) {
+    const std::size_t block = std::max(program_.shown_block, program_.done_block + 1);
+    const int line = block >= 1 && block <= program_.items.size() ? program_.items[block - 1].line : 0;
+    end_program(ProgramOutcome::Failed, line, "Failed " + std::string(fail_wording(why).name));
+  }
 }
 
-bool Server::program_busy(Session& s, std::uint32_t slot, std::string_view verb) {
+void ProgramRunner::stopped(std::string_view who) {
+  if (program_.running()) end_program(ProgramOutcome::Aborted, program_.shown_block > 0 ? program_.items[program_.shown_block - 1].line : 0, std::string(who));
+}
+
+// Translates and checks the program from `start`; the items of the run in `items`.
+bool ProgramRunner::check_program_text(const LoadedProgram& p, const planner::Pose& start, std::vector<programs::Item>& items,
+                                programs::Check& check, std::string& error) const {
+  return check_program_for({config_, gateway_.config(), gateway_.machine(), gateway_.options(), &frames_}, p, start, items,
+                           check, error);
+}
+
+bool ProgramRunner::busy(std::string_view verb, const Answer& answer) const {
   if (!program_.running()) return false;
-  reply(s, slot, format_err(ErrorCode::Busy, std::string(verb) + ": program " + program_.loaded->name +
+  answer(format_err(ErrorCode::Busy, std::string(verb) + ": program " + program_.loaded->name +
                                                  " is running; Pause, Abort or wait for its ProgEnd"));
   return true;
 }
 
-void Server::list_programs(Session& s, std::uint32_t slot) {
-  const std::string& folder = config_.programs.folder;
+void ProgramRunner::list(const Answer& answer) const {
+  const std::string& folder = config_.folder;
   if (folder.empty()) {
-    reply(s, slot, format_ok("Programs"));
+    answer(format_ok("Programs"));
     return;
   }
   std::vector<std::string> names;
   std::error_code ec;
   for (std::filesystem::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (it->is_regular_file(ec) && name_problem(name).empty()) names.push_back(name);
+    if (it->is_regular_file(ec) && program_name_problem(name).empty()) names.push_back(name);
   }
   std::sort(names.begin(), names.end());
   std::string line;
   for (const auto& n : names) line += (line.empty() ? "" : " ") + n;
-  reply(s, slot, format_ok("Programs", line));
+  answer(format_ok("Programs", line));
 }
 
-void Server::load_program(Session& s, std::uint32_t slot, const std::string& name) {
-  if (program_busy(s, slot, "Load")) return;
-  if (auto why = name_problem(name); !why.empty()) {
-    reply(s, slot, format_err(ErrorCode::BadValue, "Load " + name + ": expected " + why));
+void ProgramRunner::load(std::uint32_t client, const std::string& name, const Answer& answer) {
+  if (busy("Load", answer)) return;
+  if (auto why = program_name_problem(name); !why.empty()) {
+    answer(format_err(ErrorCode::BadValue, "Load " + name + ": expected " + why));
     return;
   }
-  const std::string& folder = config_.programs.folder;
+  const std::string& folder = config_.folder;
   if (folder.empty()) {
-    reply(s, slot, format_err(ErrorCode::BadValue, "Load " + name +
+    answer(format_err(ErrorCode::BadValue, "Load " + name +
                                                        ": no programs folder is configured (programs.folder); Upload sends a program over the connection"));
     return;
   }
@@ -202,7 +224,7 @@ void Server::load_program(Session& s, std::uint32_t slot, const std::string& nam
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
   if (ec || !std::filesystem::is_regular_file(path, ec)) {
-    reply(s, slot, format_err(ErrorCode::BadValue, "Load " + name + ": no such program in the programs folder; Programs lists them"));
+    answer(format_err(ErrorCode::BadValue, "Load " + name + ": no such program in the programs folder; Programs lists them"));
     return;
   }
   // A symbolic link may point anywhere; only a file inside the folder is a program (an error
@@ -211,32 +233,33 @@ void Server::load_program(Session& s, std::uint32_t slot, const std::string& nam
   const auto root = std::filesystem::canonical(folder, ec);
   const auto rel = real.lexically_relative(root);
   if (ec || rel.empty() || *rel.begin() == "..") {
-    reply(s, slot, format_err(ErrorCode::BadValue, "Load " + name + ": the file lies outside the programs folder (a link); accepted: files in the folder"));
+    answer(format_err(ErrorCode::BadValue, "Load " + name + ": the file lies outside the programs folder (a link); accepted: files in the folder"));
     return;
   }
-  if (size > config_.programs.max_bytes) {
-    reply(s, slot, format_err(ErrorCode::BadProgram, "Load " + name + ": " + std::to_string(size) + " bytes; accepted up to " +
-                                                         std::to_string(config_.programs.max_bytes)));
+  if (size > config_.max_bytes) {
+    answer(format_err(ErrorCode::BadProgram, "Load " + name + ": " + std::to_string(size) + " bytes; accepted up to " +
+                                                         std::to_string(config_.max_bytes)));
     return;
   }
   std::ifstream in(path, std::ios::binary);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in.good() && !in.eof()) {
-    reply(s, slot, format_err(ErrorCode::BadValue, "Load " + name + ": the file could not be read"));
+    answer(format_err(ErrorCode::BadValue, "Load " + name + ": the file could not be read"));
     return;
   }
-  finish_load(s, slot, "Load", name, std::move(text));
+  finish_load(client, "Load", name, std::move(text), answer);
 }
 
 // Load and the end of an Upload: translated and checked from where the machine stands.
-void Server::finish_load(Session& s, std::uint32_t slot, std::string_view verb, const std::string& name, std::string text) {
-  if (program_busy(s, slot, verb)) return;
+void ProgramRunner::finish_load(std::uint32_t client, std::string_view verb, const std::string& name, std::string text,
+                                const Answer& answer) {
+  if (busy(verb, answer)) return;
   LoadedProgram p{name, *programs::language_of(name), std::move(text), {}};
   std::vector<programs::Item> items;
   std::string error;
-  const auto& snap = core_.snapshot();
-  if (!check_program_text(p, pose_of(snap.position), items, p.check, error)) {
-    reply(s, slot, format_err(ErrorCode::BadProgram, std::string(verb) + " " + name + ": " + error));
+  const auto& snap = gateway_.snapshot();
+  if (!check_program_text(p, gateway_.pose_of(snap.position), items, p.check, error)) {
+    answer(format_err(ErrorCode::BadProgram, std::string(verb) + " " + name + ": " + error));
     return;
   }
   const auto& c = p.check;
@@ -248,71 +271,33 @@ void Server::finish_load(Session& s, std::uint32_t slot, std::string_view verb, 
   program_.loaded = std::move(p);
   program_.state = ProgramState::Loaded;
   program_.items.clear();
-  log_limited(spdlog::level::info, "program", "client " + std::to_string(s.id()) + " loaded program " + summary);
-  reply(s, slot, format_ok("Load", summary));
+  log_limited(log_, spdlog::level::info, "program", "client " + std::to_string(client) + " loaded program " + summary);
+  answer(format_ok("Load", summary));
 }
 
-void Server::begin_upload(Session& s, std::uint32_t slot, const std::string& name) {
-  if (auto why = name_problem(name); !why.empty()) {
-    reply(s, slot, format_err(ErrorCode::BadValue, "Upload " + name + ": expected " + why));
-    return;
-  }
-  s.info().upload = ProgramUpload{name, {}, 0, {}};
-  reply(s, slot, format_ok("Upload", name + " send the lines, then a line '.'"));
-}
-
-// A line while an Upload is open: part of the program, or its end '.'.
-void Server::upload_line(Session& s, const protocol::FramedLine& line) {
-  auto& up = *s.info().upload;
-  const auto& pc = config_.programs;
-  if (line.text != ".") {
-    if (!up.refused.empty()) return;  // keep reading to the '.', answer then
-    const std::string at = "line " + std::to_string(up.lines + 1) + ": ";
-    if (line.overlong) up.refused = at + "longer than " + std::to_string(protocol::kMaxLineLength) + " characters";
-    else if (up.lines >= pc.max_lines) up.refused = at + "more than " + std::to_string(pc.max_lines) + " lines";
-    else if (up.text.size() + line.text.size() + 1 > pc.max_bytes) up.refused = at + "more than " + std::to_string(pc.max_bytes) + " bytes";
-    if (!up.refused.empty()) return;
-    up.text.append(line.text);
-    up.text.push_back('\n');
-    ++up.lines;
-    return;
-  }
-  ProgramUpload done = std::move(up);
-  s.info().upload.reset();
-  const std::uint32_t slot = s.reserve_reply();
-  if (!done.refused.empty()) {
-    reply(s, slot, format_err(ErrorCode::BadProgram, "Upload " + done.name + ": " + done.refused + "; accepted up to " +
-                                                         std::to_string(pc.max_lines) + " lines, " + std::to_string(pc.max_bytes) +
-                                                         " bytes, lines of " + std::to_string(protocol::kMaxLineLength) +
-                                                         " characters; the program was discarded"));
-    return;
-  }
-  finish_load(s, slot, "Upload", done.name, std::move(done.text));
-}
-
-void Server::run_program(Session& s, std::uint32_t slot, bool detached) {
-  if (program_busy(s, slot, "Run")) return;
+void ProgramRunner::run(std::uint32_t client, bool detached, const Answer& answer) {
+  if (busy("Run", answer)) return;
   if (!program_.loaded) {
-    reply(s, slot, format_err(ErrorCode::BadValue, "Run: no program loaded; Load or Upload one first"));
+    answer(format_err(ErrorCode::BadValue, "Run: no program loaded; Load or Upload one first"));
     return;
   }
-  const auto& snap = core_.snapshot();
-  if ((snap.mode != core::Mode::Idle && snap.mode != core::Mode::Free) || planning_ || !in_loop_.empty() || program_.tail) {
-    reply(s, slot, format_err(ErrorCode::Busy, "Run: the machine is busy (State " + std::string(mode_name(snap.mode)) +
+  const auto& snap = gateway_.snapshot();
+  if ((snap.mode != core::Mode::Idle && snap.mode != core::Mode::Free) || gateway_.planning() || gateway_.loop_holds_segments() || program_.tail) {
+    answer(format_err(ErrorCode::Busy, "Run: the machine is busy (State " + std::string(mode_name(snap.mode)) +
                                                    (snap.mode == core::Mode::Fault
                                                         ? "); clear the fault with Reset first"
                                                         : "); run when it stands and the queue is empty, or StopMv")));
     return;
   }
-  const planner::Pose here = pose_of(snap.position);
+  const planner::Pose here = gateway_.pose_of(snap.position);
   std::vector<programs::Item> items;
   std::string error;
   if (!check_program_text(*program_.loaded, here, items, program_.loaded->check, error)) {
-    reply(s, slot, format_err(ErrorCode::BadProgram, "Run " + program_.loaded->name + ": from where the machine stands: " + error));
+    answer(format_err(ErrorCode::BadProgram, "Run " + program_.loaded->name + ": from where the machine stands: " + error));
     return;
   }
-  planner_.set_position(here);
-  planning_ = true;
+  gateway_.start_at(here);
+  gateway_.set_planning(true);
   program_.items = std::move(items);
   program_.next = 0;
   program_.detached = detached;
@@ -322,92 +307,81 @@ void Server::run_program(Session& s, std::uint32_t slot, bool detached) {
   program_.shown_block = 0;
   program_.done_block = 0;
   program_.state = ProgramState::Running;
-  log_limited(spdlog::level::info, "program", "client " + std::to_string(s.id()) + " runs program " + program_.loaded->name +
+  log_limited(log_, spdlog::level::info, "program", "client " + std::to_string(client) + " runs program " + program_.loaded->name +
                                                   (detached ? " detached" : ""));
-  reply(s, slot, format_ok("Run", program_.loaded->name));
+  answer(format_ok("Run", program_.loaded->name));
   feed_program();
-  feed_segments();
+  gateway_.feed_segments();
   show_block(false);
   program_progress();
-  schedule_flush_check();
+  gateway_.schedule_flush_check();
 }
 
-void Server::abort_program(Session& s, std::uint32_t slot) {
-  // Abort is a stop for anyone, program or not: without a program it is a StopMv, so it
-  // also drops what the planner holds. (It was core_.request_stop() alone: the loop failed
-  // the segments it had, then the queue's tail that the planner still held was sent after
-  // the stop and moved the machine again — found by tests/golden/test_program_properties.cpp.)
-  stop_machine("Abort");
-  reply(s, slot, format_ok("Abort"));
-}
-
-void Server::program_status(Session& s, std::uint32_t slot) {
+void ProgramRunner::status(const Answer& answer) const {
   if (!program_.loaded) {
-    reply(s, slot, format_ok("Program", "none none Line 0 Block 0/0"));
+    answer(format_ok("Program", "none none Line 0 Block 0/0"));
     return;
   }
   const std::size_t block = program_.shown_block;
   const std::size_t total = program_.running() || program_.state == ProgramState::Ended ? program_.items.size()
                                                                                          : program_.loaded->check.blocks;
   const int line = block > 0 && block <= program_.items.size() ? program_.items[block - 1].line : 0;
-  const bool held = program_.state == ProgramState::Running && core_.snapshot().path_held;
-  reply(s, slot, format_ok("Program", program_.loaded->name + " " + (held ? "paused" : state_name(program_.state)) +
+  const bool held = program_.state == ProgramState::Running && gateway_.snapshot().path_held;
+  answer(format_ok("Program", program_.loaded->name + " " + (held ? "paused" : state_name(program_.state)) +
                                           " Line " + std::to_string(line) + " Block " + std::to_string(block) + "/" +
                                           std::to_string(total)));
 }
 
 // Resume: a program waiting at its M0 goes on (the feed hold, if any, is ended by the loop).
-void Server::resume_program() {
+void ProgramRunner::resume() {
   if (program_.state != ProgramState::Paused) return;
   program_.state = ProgramState::Running;
   program_.pause_at.reset();
   feed_program();
-  feed_segments();
+  gateway_.feed_segments();
   show_block(false);
   program_progress();
-  schedule_flush_check();
+  gateway_.schedule_flush_check();
 }
 
 // Items into the planner while the loop holds less than kPlanAhead of them; never past a
 // probe whose end has not come (the rest starts where it ended) or an M0.
-void Server::feed_program() {
+void ProgramRunner::feed_program() {
   auto& pr = program_;
   while (pr.state == ProgramState::Running && !pr.feeding_done && !pr.probe && !pr.pause_at &&
-         unsent_.size() + in_loop_.size() < kPlanAhead) {
+         gateway_.ids_queued() < kPlanAhead) {
     const std::size_t i = pr.next;
     if (i >= pr.items.size() || std::holds_alternative<programs::End>(pr.items[i].step)) {
       pr.feeding_done = true;
-      planner_.flush();
+      gateway_.flush();
       break;
     }
     const programs::Item& item = pr.items[i];
     ++pr.next;
     if (std::holds_alternative<programs::Pause>(item.step)) {
       pr.pause_at = i;
-      planner_.flush();
+      gateway_.flush();
       break;
     }
-    const auto req = programs::request_of(item, programs::item_id(i), planner_.position(), planner_.machine());
+    const auto req = programs::request_of(item, programs::item_id(i), gateway_.planned_end(), gateway_.machine());
     if (!req) continue;
-    planning_ = true;
-    if (const auto res = planner_.append(*req); !res.ok()) {  // the check passed from the start: only after a probe
-      const std::string why = planner::describe(res, planner_.machine());
+    if (const auto res = gateway_.append(*req); !res.ok()) {  // the check passed from the start: only after a probe
+      const std::string why = planner::describe(res, gateway_.machine());
       fail_program(item.line, "refused " + why.substr(why.find(": ") + 2));
       return;
     }
-    unsent_.push_back(programs::item_id(i));
     if (std::holds_alternative<programs::Probe>(item.step)) {
       pr.probe = programs::item_id(i);
-      planner_.flush();  // the machine stops at the hit: the probe ends at rest
+      gateway_.flush();  // the machine stops at the hit: the probe ends at rest
     }
   }
 }
 
 // After every step of the run: an M0 reached (everything before it done), or the end.
-void Server::program_progress() {
+void ProgramRunner::program_progress() {
   auto& pr = program_;
   if (!pr.running()) return;
-  const bool empty = unsent_.empty() && in_loop_.empty() && planner_.pending() == 0 && planner_.ready() == 0;
+  const bool empty = gateway_.ids_queued() == 0 && !gateway_.planner_holds();
   if (!empty || pr.probe) return;
   if (pr.pause_at && pr.state == ProgramState::Running) {
     pr.state = ProgramState::Paused;
@@ -415,7 +389,7 @@ void Server::program_progress() {
     pr.shown_block = *pr.pause_at + 1;  // Program names the M0 while it waits there
     const auto& item = pr.items[*pr.pause_at];
     const auto* pause = std::get_if<programs::Pause>(&item.step);
-    broadcast(format_event("ProgPause", pr.loaded->name + " " + std::to_string(item.line) + " " + (pause ? pause->reason : "M0")));
+    announce_(format_event("ProgPause", pr.loaded->name + " " + std::to_string(item.line) + " " + (pause ? pause->reason : "M0")));
     return;
   }
   if (pr.feeding_done) {
@@ -425,15 +399,15 @@ void Server::program_progress() {
 }
 
 // A Done or Failed of the program's ids (true), or not the program's (false).
-bool Server::program_segment_end(const core::Event& e) {
+bool ProgramRunner::program_segment_end(const core::Event& e) {
   auto& pr = program_;
   if (!pr.running() && !pr.tail) return false;
   // No queue of a client can start while a program runs or its last segments drain, so every
   // id the loop reports now is the program's.
   if (!pr.running()) {
-    if (in_loop_.empty() && unsent_.empty()) {
+    if (gateway_.ids_queued() == 0) {
       pr.tail = false;
-      planning_ = false;
+      gateway_.set_planning(false);
     }
     return true;
   }
@@ -443,14 +417,14 @@ bool Server::program_segment_end(const core::Event& e) {
     pr.done_block = std::max(pr.done_block, static_cast<std::size_t>(e.id));
     if (pr.probe && *pr.probe == e.id) {
       pr.probe.reset();
-      planner_.set_position(pose_of(e.end));  // where the probe stopped
+      gateway_.start_at(gateway_.pose_of(e.end));  // where the probe stopped
     }
   } else {
     const auto* probe = item ? std::get_if<programs::Probe>(&item->step) : nullptr;
     if (probe && pr.probe && *pr.probe == e.id && e.fail == core::FailReason::PartNotFound && !probe->error_on_miss) {
       pr.probe.reset();  // G38.3: a miss is no error; the machine stands at the target
       pr.done_block = std::max(pr.done_block, static_cast<std::size_t>(e.id));
-      planner_.set_position(probe->target);
+      gateway_.start_at(probe->target);
     } else {
       fail_program(item ? item->line : 0, "Failed " + std::string(fail_wording(e.fail).name));
       return true;
@@ -463,44 +437,43 @@ bool Server::program_segment_end(const core::Event& e) {
 }
 
 // The program cannot go on: stop, drop what is planned, ProgEnd failed.
-void Server::fail_program(int line, const std::string& why) {
-  core_.request_stop();
-  drop_planned(core::FailReason::Stopped);
+void ProgramRunner::fail_program(int line, const std::string& why) {
+  gateway_.abandon_plan();
   end_program(ProgramOutcome::Failed, line, why);
 }
 
-void Server::end_program(ProgramOutcome how, int line, const std::string& text) {
+void ProgramRunner::end_program(ProgramOutcome how, int line, const std::string& text) {
   auto& pr = program_;
   if (!pr.running()) return;
   show_block(true);
   pr.state = ProgramState::Ended;
   pr.probe.reset();
   pr.pause_at.reset();
-  pr.tail = !in_loop_.empty() || !unsent_.empty();
-  if (!pr.tail) planning_ = planner_.pending() > 0 || planner_.ready() > 0;
+  pr.tail = gateway_.ids_queued() > 0;
+  if (!pr.tail) gateway_.set_planning(gateway_.planner_holds());
   const std::string event = pr.loaded->name + " " + outcome_name(how) + " " + std::to_string(line) + " " + text;
-  log_limited(how == ProgramOutcome::Ok ? spdlog::level::info : spdlog::level::warn, "program", "program " + event);
-  broadcast(format_event("ProgEnd", event));
+  log_limited(log_, how == ProgramOutcome::Ok ? spdlog::level::info : spdlog::level::warn, "program", "program " + event);
+  announce_(format_event("ProgEnd", event));
 }
 
 // The block executing now, at most every kBlockEvery (always when `now_or_never`, before a
 // ProgPause or ProgEnd, if it changed). Called on every Done of the program and by the
 // position report timer (which catches a block whose Block was held back by the rate).
-void Server::show_block(bool now_or_never) {
+void ProgramRunner::show_block(bool now_or_never) {
   auto& pr = program_;
   if (!pr.running()) return;
-  const auto& snap = core_.snapshot();
+  const auto& snap = gateway_.snapshot();
   // The segment in the loop's hand; before the loop took the first, the first one sent.
   std::size_t block = pr.shown_block;
   if (snap.path_running && snap.path_id >= 1 && snap.path_id <= pr.items.size()) block = snap.path_id;
-  else if (!in_loop_.empty() && in_loop_.front().first <= pr.items.size()) block = in_loop_.front().first;
+  else if (const auto first = gateway_.first_in_loop(); first && *first <= pr.items.size()) block = *first;
   if (now_or_never && pr.done_block > block) block = pr.done_block;
   if (block == pr.shown_block || block == 0) return;
   const auto now = snap.time;
   if (!now_or_never && now - pr.shown_at < kBlockEvery) return;
   pr.shown_block = block;
   pr.shown_at = now;
-  broadcast(format_event("Block", pr.loaded->name + " " + std::to_string(pr.items[block - 1].line) + " " +
+  announce_(format_event("Block", pr.loaded->name + " " + std::to_string(pr.items[block - 1].line) + " " +
                                       std::to_string(block) + "/" + std::to_string(pr.items.size())));
 }
 

@@ -3,25 +3,23 @@
 // <newest>`. At most kMaxReplayHits hits per request: one reply stays small and quick.
 #include <spdlog/spdlog.h>
 
-#include "imess/net/server.hpp"
+#include "imess/net/hit_service.hpp"
 #include "imess/protocol/messages.hpp"
 
 namespace imess::net {
 
-void Server::on_replay(Session& s, std::uint32_t slot, std::uint64_t from) {
+std::string HitService::replay(std::uint32_t client, std::uint64_t from) const {
   journal::ReadResult r;
   try {
     r = journal_.read(from, protocol::kMaxReplayHits);
   } catch (const journal::JournalError& e) {
-    spdlog::error("Replay {} for client {}: {}", from, s.id(), e.what());
-    reply(s, slot, protocol::format_err(protocol::ErrorCode::Internal, "the journal could not be read; see the daemon's log"));
-    return;
+    spdlog::error("Replay {} for client {}: {}", from, client, e.what());
+    return protocol::format_err(protocol::ErrorCode::Internal, "the journal could not be read; see the daemon's log");
   }
   if (r.rotated_away) {
-    reply(s, slot, protocol::format_err(protocol::ErrorCode::NotInJournal,
-                                        "hit " + std::to_string(from) + " is no longer in the journal; the oldest kept is " +
-                                            std::to_string(r.oldest)));
-    return;
+    return protocol::format_err(protocol::ErrorCode::NotInJournal,
+                                "hit " + std::to_string(from) + " is no longer in the journal; the oldest kept is " +
+                                    std::to_string(r.oldest));
   }
   std::string lines;
   auto lost = r.lost.begin();
@@ -30,7 +28,7 @@ void Server::on_replay(Session& s, std::uint32_t slot, std::uint64_t from) {
     if (i < r.lines.size()) lines += r.lines[i];
   }
   // count: the numbers from from-seq on that this answer covers, given or named lost.
-  reply(s, slot, lines + protocol::format_ok("Replay", std::to_string(r.covered) + " " + std::to_string(r.newest)));
+  return lines + protocol::format_ok("Replay", std::to_string(r.covered) + " " + std::to_string(r.newest));
 }
 
 }  // namespace imess::net

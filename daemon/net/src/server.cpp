@@ -1,7 +1,6 @@
-// Accepting, session bookkeeping, broadcasting and the periodic timers.
+// The io side put together: the services and front ends built and wired, the event drain's
+// wake-up and backstop, the periodic debug log.
 #include "imess/net/server.hpp"
-
-#include "imess/core/path_machine.hpp"
 
 #include <spdlog/spdlog.h>
 #include <unistd.h>
@@ -9,66 +8,58 @@
 #include <cerrno>
 #include <cstring>
 
-#include "imess/protocol/messages.hpp"
-
 namespace imess::net {
 
 namespace asio = boost::asio;
-using asio::ip::tcp;
 
 Server::Server(asio::io_context& io, ServerConfig config, core::MotionCore& core, core::LoopRunner* runner,
                journal::Journal& journal, core::EventFd* wake)
     : io_(io),
       config_(std::move(config)),
-      core_(core),
-      runner_(runner),
       journal_(journal),
-      acceptor_(io),
       wake_(wake),
+      gateway_(io, core, observers_, log_limiter_, config_.log_motion),
+      frames_(observers_, log_limiter_),
+      programs_(gateway_, config_.programs, frames_.frames(), log_limiter_,
+                [this](const std::string& line) { sessions_.broadcast(line); }),
+      control_(gateway_, programs_, observers_, log_limiter_),
+      hits_(journal, observers_, config_.probe_offset, {config_.log_motion, config_.beep}),
+      sessions_(io, config_, log_limiter_),
+      stream_(io, config_, gateway_, sessions_,
+              [this] {
+                programs_.show_block(false);
+                move_reports();
+              }),
+      liveness_(io, config_, sessions_, control_, gateway_, journal, log_limiter_),
+      stats_(io, runner, sessions_),
+      frame_verbs_(sessions_, frames_, gateway_, journal, log_limiter_),
+      events_(sessions_, gateway_, frames_, log_limiter_, config_.log_motion),
+      dispatch_(config_, {sessions_, gateway_, control_, hits_, programs_, frame_verbs_, stream_, stats_, observers_, log_limiter_}),
       event_timer_(io),
-      housekeeping_timer_(io),
-      report_timer_(io),
-      log_timer_(io),
-      clients_timer_(io),
-      accept_timer_(io),
-      planner_(core::path_machine(core.config()), core::path_options(core.config())) {}
-
-// Opens, binds and listens; the port bound. Throws std::runtime_error naming the address,
-// with `busy_hint` when the port is taken.
-std::uint16_t open_listener(tcp::acceptor& acceptor, const std::string& listen, std::uint16_t port, std::string_view what,
-                            std::string_view busy_hint) {
-  boost::system::error_code ec;
-  auto address = asio::ip::make_address(listen, ec);
-  if (ec) throw std::runtime_error("listen address '" + listen + "' is not an IPv4 or IPv6 address");
-  tcp::endpoint ep(address, port);
-  const std::string where = listen + ":" + std::to_string(port);
-  acceptor.open(ep.protocol(), ec);
-  if (!ec) acceptor.set_option(tcp::acceptor::reuse_address(true), ec);
-  if (!ec) acceptor.bind(ep, ec);
-  if (!ec) acceptor.listen(asio::socket_base::max_listen_connections, ec);
-  if (ec)
-    throw std::runtime_error("cannot listen" + std::string(what) + " on " + where + ": " + ec.message() +
-                             (ec == asio::error::address_in_use ? std::string(busy_hint) : std::string()));
-  return acceptor.local_endpoint().port();
+      log_timer_(io) {
+  sessions_.set_handlers({[this](Session& s, const protocol::FramedLine& l) {
+                            dispatch_.on_line(s, l);
+                            liveness_.arm_housekeeping();  // a Watch, a new owner, a hit to sync: each may bring a deadline
+                          },
+                          [this](Session& s) { stream_.connected(s); }, [this](Session& s) { dispatch_.gone(s); }});
 }
 
 void Server::start() {
-  frames_ = PartFrames(config_.frames_file);  // a store that does not load is a start-up error naming it
-  port_ = open_listener(acceptor_, config_.listen, config_.port, "", " - is another messd running? (--port chooses another)");
+  frames_.open(config_.frames_file);  // a store that does not load is a start-up error naming it
+  sessions_.start();
+  const auto& layout = gateway_.layout();
   if (config_.ippdme.on) {
-    if (layout().cartesian_axis(0) >= 0 && layout().cartesian_axis(1) >= 0 && layout().cartesian_axis(2) >= 0) {
-      ipp_ = std::make_unique<IppServer>(io_, *this, config_.ippdme);
+    if (layout.cartesian_axis(0) >= 0 && layout.cartesian_axis(1) >= 0 && layout.cartesian_axis(2) >= 0) {
+      ipp_ = std::make_unique<IppServer>(io_, IppServices{gateway_, control_, frames_, programs_, config_.control.hosts},
+                                         config_.ippdme);
       ipp_->start(config_.listen);
+      ipp_events_ = std::make_unique<IppEvents>(*ipp_, gateway_);
     } else {
-      spdlog::info("I++ DME: off, this machine has no linear X Y Z axes (axes {})", layout().names());
+      spdlog::info("I++ DME: off, this machine has no linear X Y Z axes (axes {})", layout.names());
     }
   }
+  add_observers();
   running_ = true;
-  const auto& snap = core_.snapshot();  // clients get the position on connect; report changes only
-  const hal::Vec3 p = layout().cartesian(snap.position);
-  last_curr_cor_ = protocol::format_curr_cor({p.x(), p.y(), p.z()});
-  if (!layout().is_xyz()) last_ax_pos_ = ax_pos_line();
-  accept();
   if (wake_) {
     int fd = ::dup(wake_->fd());  // the descriptor object closes its own copy
     if (fd < 0) throw std::runtime_error("cannot duplicate the event descriptor: " + std::string(std::strerror(errno)));
@@ -77,162 +68,69 @@ void Server::start() {
   }
   // Without an EventFd the timer is the only drain, so it keeps the old millisecond.
   const double drain_ms = wake_ ? config_.event_backstop_ms : 1.0;
-  schedule(event_timer_, std::chrono::microseconds(static_cast<long>(drain_ms * 1000)), &Server::backstop_events);
-  schedule(clients_timer_, std::chrono::microseconds(250000), &Server::check_clients);
-  if (config_.stream_position)
-    schedule(report_timer_, std::chrono::microseconds(static_cast<long>(1e6 / config_.report_hz)), &Server::report_position);
-  if (config_.log_status || config_.log_timing) schedule(log_timer_, std::chrono::seconds(5), &Server::log_periodic);
+  const std::chrono::microseconds drain_every(static_cast<long>(drain_ms * 1000));
+  event_timer_.start(drain_every, [drain_every] { return drain_every; }, [this] { backstop_events(); });
+  liveness_.start();
+  stream_.start();
+  if (config_.log_status || config_.log_timing) {
+    const std::chrono::microseconds every = std::chrono::seconds(5);
+    log_timer_.start(every, [every] { return every; }, [this] { log_periodic(); });
+  }
+}
+
+// The order every fan-out follows: the journal first (HitService), then the MESSD clients'
+// lines (MessdEvents, also the owner of the queued ids nobody else claims), the housekeeping
+// a hit may arm, the I++ DME session, the program, the position stream.
+void Server::add_observers() {
+  observers_.add(hits_);
+  observers_.add(events_);
+  observers_.set_fallback(events_);
+  observers_.add(liveness_);
+  if (ipp_events_) observers_.add(*ipp_events_);
+  observers_.add(programs_);
+  observers_.add(stream_);
 }
 
 void Server::stop() {
   running_ = false;
-  boost::system::error_code ec;
-  acceptor_.close(ec);
   if (ipp_) ipp_->stop();
   event_timer_.cancel();
-  housekeeping_timer_.cancel();
+  liveness_.stop();
+  boost::system::error_code ec;
   if (wake_wait_) wake_wait_->close(ec);
-  report_timer_.cancel();
+  stream_.stop();
   log_timer_.cancel();
-  clients_timer_.cancel();
-  accept_timer_.cancel();
-  auto sessions = sessions_;
-  for (auto& [id, s] : sessions) s->close();
+  sessions_.stop();
 }
 
-void Server::schedule(asio::steady_timer& t, std::chrono::microseconds every, void (Server::*fn)()) {
-  t.expires_after(every);
-  rearm(t, every, fn);
+void Server::move_reports() {
+  observers_.each("MoveReport", [](MotionObserver& o) { o.move_report(); });
 }
 
-// Fixed schedule: the next deadline is the previous one plus the period, not "now" plus the
-// period (that lost the handler's own time each round: ReportHz 100 to 200 clients gave 84
-// lines a second). More than a whole period late, it skips ahead instead of bursting.
-void Server::rearm(asio::steady_timer& t, std::chrono::microseconds every, void (Server::*fn)()) {
-  t.async_wait([this, &t, every, fn](boost::system::error_code ec) {
+void Server::wait_for_events() {
+  wake_wait_->async_wait(boost::asio::posix::stream_descriptor::wait_read, [this](boost::system::error_code ec) {
     if (ec || !running_) return;
-    (this->*fn)();
-    // The report rate may change at run time (Set ReportHz).
-    // The report timer runs at the fastest rate a client needs (ReportHz, Stream).
-    auto period = &t == &report_timer_ ? std::chrono::microseconds(static_cast<long>(1e6 / report_timer_hz())) : every;
-    auto next = t.expiry() + period;
-    const auto now = asio::steady_timer::clock_type::now();
-    if (next + period < now) next = now + period;
-    t.expires_at(next);
-    rearm(t, every, fn);
+    wake_->drain();  // before the drain: a notify after this point wakes us again
+    ++woken_;
+    gateway_.pump_events();
+    wait_for_events();
   });
 }
 
-void Server::accept() {
-  acceptor_.async_accept([this](boost::system::error_code ec, tcp::socket socket) {
-    if (!running_) return;
-    if (!ec) {
-      admit(std::move(socket));
-      accept();
-      return;
-    }
-    // Out of descriptors or memory: accepting again at once would spin on the same error
-    // (100 % of a core, a log line each time), so pause; the backlog keeps the callers waiting.
-    const bool exhausted = ec == asio::error::no_descriptors || ec.value() == ENFILE ||
-                           ec == asio::error::no_buffer_space || ec == asio::error::no_memory;
-    log_limited(spdlog::level::warn, "accept", "accept failed: " + ec.message() + (exhausted ? "; pausing 100 ms" : ""));
-    if (!exhausted) {
-      accept();
-      return;
-    }
-    accept_timer_.expires_after(std::chrono::milliseconds(100));
-    accept_timer_.async_wait([this](boost::system::error_code tec) {
-      if (!tec && running_) accept();
-    });
-  });
+void Server::backstop_events() {
+  if (gateway_.pump_events() > 0) ++backstop_found_;  // a wake-up was missed (or none is wired)
 }
 
-void Server::refuse(tcp::socket& socket, std::string line) {
-  boost::system::error_code ec;
-  socket.non_blocking(true, ec);  // one line into an empty socket buffer; never wait for it
-  asio::write(socket, asio::buffer(line), ec);
-  socket.close(ec);
-}
-
-void Server::admit(tcp::socket socket) {
-  boost::system::error_code ec;
-  auto remote = socket.remote_endpoint(ec);
-  if (ec) return;  // already gone
-  const auto& rules = config_.control;
-  auto address = remote.address();
-  if (address.is_v6() && address.to_v6().is_v4_mapped())  // a dual-stack "::" listener: show and match as IPv4
-    address = asio::ip::make_address_v4(asio::ip::v4_mapped, address.to_v6());
-  const bool may_control = rules.hosts.contains(address);
-  const std::string host = address.to_string();
-  if (!may_control && !rules.observe_hosts.contains(address)) {
-    log_limited(spdlog::level::warn, "refused-host", "refused a connection from " + host + ": not in control.hosts or control.observe_hosts");
-    refuse(socket, protocol::format_err(protocol::ErrorCode::HostNotAllowed,
-                                        "host " + host + " may not connect: it is in neither control.hosts nor "
-                                        "control.observe_hosts of the daemon's configuration"));
-    return;
-  }
-  // Observers may fill only max_clients - reserved_slots, so they never lock out a controller.
-  const std::size_t reserved = std::min(rules.reserved_slots, config_.max_clients - 1);
-  const std::size_t limit = may_control ? config_.max_clients : config_.max_clients - reserved;
-  if (sessions_.size() >= limit) {
-    log_limited(spdlog::level::warn, "refused-full",
-                "refused a connection from " + host + ": " + std::to_string(sessions_.size()) + " clients connected");
-    refuse(socket, protocol::format_err(protocol::ErrorCode::TooManyClients,
-                                        "connection limit of " + std::to_string(limit) + " clients reached" +
-                                            (may_control ? "" : " for hosts that may only observe")));
-    return;
-  }
-  auto id = next_id_++;
-  auto session = std::make_shared<Session>(
-      std::move(socket), id, config_.max_queue_bytes,
-      [this](Session& s, const protocol::FramedLine& l) {
-        on_line(s, l);
-        arm_housekeeping();  // a Watch, a new owner, a hit to sync: each may bring a deadline
-      },
-      [this](Session& s) { closed(s); });
-  session->info().may_control = may_control;
-  session->info().may_force = may_control && rules.force_hosts.contains(address);
-  session->info().connected_at = Session::Clock::now();
-  sessions_[id] = session;
-  log_limited(spdlog::level::info, "connect",
-              "client " + std::to_string(id) + " connected from " + session->peer() + (may_control ? "" : " (observer host)"));
-  session->start();
-  send_position(*session, position_lines());  // the position on connect; changes only from then on
-}
-
-void Server::closed(Session& s) {
-  const std::string text = "client " + std::to_string(s.id()) + " (" + s.peer() + ") " + s.close_reason();
-  if (s.failed())  // a bug met by this client's line: the session ended, the daemon did not
-    log_limited(spdlog::level::err, "session-error", text + "; messd goes on");
-  else
-    log_limited(spdlog::level::info, "disconnect", text);
-  auto keep = sessions_[s.id()];  // s lives until this handler returns
-  sessions_.erase(s.id());
-  lose_control(s, "disconnected", true);
-}
-
-void Server::log_limited(spdlog::level::level_enum level, std::string_view message_class, const std::string& text) {
-  auto held = log_limiter_.admit(message_class, LogLimiter::Clock::now());
-  if (!held) return;
-  if (*held > 0) spdlog::log(level, "... suppressed {} similar '{}' lines", *held, message_class);
-  spdlog::log(level, "{}", text);
-}
-
-void Server::send(Session& s, std::string line) {
-  if (config_.log_traffic) spdlog::info("[{}] < {}", s.id(), std::string_view(line).substr(0, line.size() - 1));
-  s.send(std::move(line));
-}
-
-void Server::reply(Session& s, std::uint32_t slot, std::string lines) {
-  if (config_.log_traffic) spdlog::info("[{}] < {}", s.id(), std::string_view(lines).substr(0, lines.size() - 1));
-  s.fill_reply(slot, std::move(lines));
-}
-
-void Server::broadcast(const std::string& line) {
-  if (config_.log_traffic) spdlog::info("[all] < {}", std::string_view(line).substr(0, line.size() - 1));
-  auto shared = std::make_shared<const std::string>(line);  // one buffer in every queue
-  auto sessions = sessions_;  // a send may drop a slow client and erase it
-  for (auto& [id, s] : sessions) s->send(shared);
+void Server::log_periodic() {
+  const auto& snap = gateway_.snapshot();
+  if (config_.log_status)
+    spdlog::info("status X {:#07x} Y {:#07x} Z {:#07x} inputs {:#04x} {:#04x} {:#04x} hw errors {} events dropped {}",
+                 snap.status[0], snap.status[1], snap.status[2], snap.inputs[0], snap.inputs[1], snap.inputs[2],
+                 snap.hardware_errors, snap.events_dropped);
+  if (config_.log_timing) spdlog::info("loop: {}", stats_.stats_line());
+  if (config_.log_timing)
+    spdlog::info("io: {} wake-ups, {} times the {:g} ms backstop found events first", woken_, backstop_found_,
+                 config_.event_backstop_ms);
 }
 
 }  // namespace imess::net

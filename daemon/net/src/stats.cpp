@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "imess/net/server.hpp"
+#include "imess/net/stats_report.hpp"
 #include "imess/protocol/messages.hpp"
 
 namespace imess::net {
@@ -19,7 +19,7 @@ std::string fixed(double v, int decimals) {
 }
 }  // namespace
 
-std::string Server::stats_line() {
+std::string StatsReport::stats_line() {
   core::LoopStats st;
   if (runner_) st = runner_->stats();
   return "Period " + fixed(st.period_us, 0) + " Cycles " + std::to_string(st.cycles) + " LatP50 " +
@@ -32,10 +32,10 @@ std::string Server::stats_line() {
 // Ok Stats Reset once the loop has begun the new interval (within a period), so that whatever
 // a client asks after the reply is of the new interval; a loop that stands still longer than
 // kMaxWaits polls gets the reply anyway (its interval then begins at its next cycle).
-void Server::reply_when_restarted(std::weak_ptr<Session> ws, std::uint32_t slot, int waited) {
+void StatsReport::reply_when_restarted(std::weak_ptr<Session> ws, std::uint32_t slot, int waited) {
   constexpr int kMaxWaits = 10000;  // of 200 µs: 2 s
   if (runner_->interval_restarted() || waited >= kMaxWaits) {
-    if (auto s = ws.lock()) reply(*s, slot, protocol::format_ok("Stats", "Reset"));
+    if (auto s = ws.lock()) sessions_.reply(*s, slot, protocol::format_ok("Stats", "Reset"));
     return;
   }
   auto timer = std::make_shared<boost::asio::steady_timer>(io_, std::chrono::microseconds(200));
@@ -44,14 +44,14 @@ void Server::reply_when_restarted(std::weak_ptr<Session> ws, std::uint32_t slot,
   });
 }
 
-void Server::stats(Session& s, std::uint32_t slot, const protocol::Stats& c) {
+void StatsReport::stats(Session& s, std::uint32_t slot, const protocol::Stats& c) {
   using Form = protocol::Stats::Form;
   using protocol::format_ok;
   switch (c.form) {
-    case Form::SinceStart: reply(s, slot, format_ok("Stats", stats_line())); return;
+    case Form::SinceStart: sessions_.reply(s, slot, format_ok("Stats", stats_line())); return;
     case Form::Reset:
       if (!runner_) {
-        reply(s, slot, format_ok("Stats", "Reset"));
+        sessions_.reply(s, slot, format_ok("Stats", "Reset"));
         return;
       }
       runner_->restart_interval();
@@ -64,7 +64,7 @@ void Server::stats(Session& s, std::uint32_t slot, const protocol::Stats& c) {
   if (runner_) runner_->interval(*snap);
   if (c.form == Form::Interval) {
     const bool rt = runner_ && runner_->realtime();
-    reply(s, slot,
+    sessions_.reply(s, slot,
           format_ok("Stats", "Interval Period " + fixed(runner_ ? runner_->period_us() : 0, 0) + " Cycles " +
                                  std::to_string(snap->cycles) + " LatP50 " + fixed(snap->percentile(0.5), 1) +
                                  " LatP99 " + fixed(snap->percentile(0.99), 1) + " LatP999 " +
@@ -75,7 +75,7 @@ void Server::stats(Session& s, std::uint32_t slot, const protocol::Stats& c) {
   std::string lines;
   for (std::size_t b = 0; b < snap->buckets.size(); ++b)
     if (snap->buckets[b] != 0) lines += "Stats Hist " + std::to_string(b) + " " + std::to_string(snap->buckets[b]) + "\n";
-  reply(s, slot,
+  sessions_.reply(s, slot,
         lines + format_ok("Stats", "Hist Cycles " + std::to_string(snap->cycles) + " LatMax " +
                                        fixed(snap->latency_max_us, 1) + " Overruns " + std::to_string(snap->overruns)));
 }

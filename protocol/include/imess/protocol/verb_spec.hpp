@@ -73,6 +73,7 @@ struct ArgList {
 enum class Access : std::uint8_t {
   Open,         // anyone: it neither moves nor changes the machine
   Controlling,  // the client in control (the first such command takes control when free)
+  Moving,       // as Controlling, and it moves the machine: refused while a program runs
   Stop,         // anyone, always (StopMv)
   Own,          // changes who controls (Take, Release)
 };

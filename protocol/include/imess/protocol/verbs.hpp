@@ -37,6 +37,8 @@ bool is_blank(std::string_view line);
 // The declaration a command was built from (null only for a Command nobody declared, which
 // the verb tests rule out).
 const VerbSpec* declaration_of(const Command& cmd);
+// Whether the command moves the machine, as its declaration says (Access::Moving).
+bool moves_machine(const Command& cmd);
 
 // The canonical verb name of a command (for `Ok <verb>` replies).
 std::string_view verb_name(const Command& cmd);

@@ -1,8 +1,10 @@
 // IppServer: messd's I++ DME server (docs/ippdme.md, "Server") — one inspection-software
 // client on TCP 1294 driving the same motion core as the MESSD clients on 1066. It reads
 // lines with imess::ippdme, keeps the session, the two queues, the error state and the
-// daemons, and moves the machine through the Server's planner, control and stop (it is the
-// Server's friend: one io thread, one planner, one owner of the machine).
+// daemons, and moves the machine through the public interfaces of the services it shares
+// with the MESSD front end (MotionGateway, ControlService, FrameService, ProgramRunner); the
+// machine's events reach it as an observer (IppEvents), like every front end. The connection
+// and transaction rules are IppTransactions'.
 #pragma once
 #include <boost/asio.hpp>
 #include <array>
@@ -18,6 +20,14 @@
 #include "imess/core/core_types.hpp"
 #include "imess/ippdme/csy.hpp"
 #include "imess/net/control.hpp"
+#include "imess/net/control_service.hpp"
+#include "imess/net/frame_service.hpp"
+#include "imess/net/host_list.hpp"
+#include "imess/net/ipp_config.hpp"
+#include "imess/net/ipp_transactions.hpp"
+#include "imess/net/motion_gateway.hpp"
+#include "imess/net/observers.hpp"
+#include "imess/net/program_runner.hpp"
 #include "imess/ippdme/format.hpp"
 #include "imess/ippdme/line_framer.hpp"
 #include "imess/ippdme/parser.hpp"
@@ -27,22 +37,16 @@
 
 namespace imess::net {
 
-class Server;
-
-struct IppConfig {
-  bool on = true;                 // false: no I++ listener (ippdme_port 0)
-  std::uint16_t port = 1294;      // 0 with on: any free port (tests)
-  // Tools as configured; empty: one tool "RefTool" with the machine's tip radius. Ranges
-  // not given come from the machine (IppServer fills them).
-  struct Tool {
-    std::string name;
-    std::optional<double> radius;
-  };
-  std::vector<Tool> tools;
-  std::size_t max_queue_bytes = 1 << 20;  // output waiting for a client that does not read: dropped beyond
+// What the I++ DME front end drives and reads (all owned by net::Server).
+struct IppServices {
+  MotionGateway& gateway;
+  ControlService& control;
+  FrameService& frames;
+  const ProgramRunner& programs;
+  const HostList& hosts;  // control.hosts: who may connect (and so control the machine)
 };
 
-class IppServer {
+class IppServer : public IppTransactions {
  public:
   // The core's client number of the I++ session (its Home replies) and its control identity.
   static constexpr std::uint32_t kClientId = kIppSession;
@@ -50,42 +54,24 @@ class IppServer {
   static constexpr std::uint32_t kIdBase = 0xF0000000u;
   static bool is_own_id(std::uint32_t id) { return id >= kIdBase && id < kClientId; }
 
-  IppServer(boost::asio::io_context& io, Server& server, IppConfig config);
+  IppServer(boost::asio::io_context& io, IppServices services, IppConfig config);
   void start(const std::string& listen);  // throws std::runtime_error naming the address
-  void stop();
-  std::uint16_t port() const { return port_; }
-  bool connected() const { return conn_ != nullptr; }
 
-  // From the Server's event pump (io thread).
+  // The machine's events, from the observer fan-out (IppEvents, ipp_events.hpp; io thread).
   void segment_end(const core::Event& e);      // Done / Failed of an own id
   void hit(const core::Event& e);              // every measured point, after the journal
   void core_reply(const core::Event& e);       // the loop's answer to the session's Home
   void homed();
   void home_failed();                          // Warn HomingFailed, a fault while homing
-  void dropped(core::FailReason why);          // the Server dropped what was planned
+  void dropped(core::FailReason why);          // the gateway dropped what was planned
   void tick();                                 // the move report daemon, a waiting move (report timer / harness)
   void retry();                                // a move that waited for the machine to stand (State events)
   void key(const std::string& name);           // Key <name> from the jog panel: KeyPress
   bool listening_for_keys() const { return conn_ && in_session_ && user_enabled_; }
   // The controller's active part frame changed (UseFrame, SetFrame, Align ...): PartCsy follows.
   void part_frame_changed();
-  // The last resort: an exception from `f` (a line, a queued command, a hook above called by
-  // the Server) ends the session — logged, E0000 0511, the connection closed — never the
-  // daemon. False when it did.
-  bool guarded(std::string_view what, const std::function<void()>& f);
 
  private:
-  struct Connection;
-  struct Pending {
-    ippdme::Tag tag;
-    ippdme::Command command;
-    bool aborted = false;  // an error came while a move ran: 0006 when its turn comes, after that move's `%`
-    std::size_t bytes = 0;  // its line's length while its Ack waits
-    // A line the library refused (its tag readable): acknowledged like a command, answered
-    // with this error in its turn (docs/ippdme.md, "Lines the library refuses").
-    std::optional<std::pair<ippdme::ErrorCode, std::string>> refused;
-  };
-  enum class Step : unsigned char { None, Wait, GoTo, PtMeas, Retract, Home, Reset };
   struct MoveDaemon {
     ippdme::Tag tag;
     std::optional<double> time, dis;
@@ -94,33 +80,18 @@ class IppServer {
     ippdme::Point3 last{};
   };
 
-  // ipp_server.cpp: connections, lines, queues, error state, session and control
-  void accept();
-  void read();
-  void write();
-  void send(std::string bytes);
-  void closed();
-  void on_line(const ippdme::FramedLine& line);
-  void pump();                                  // runs the normal queue's front while it can
-  void finish(const ippdme::Tag& tag);          // the `%`, the tag closed
-  void fail(const ippdme::Tag& tag, ippdme::ErrorCode code, std::string_view cause);  // `!` + `%`
-  void enter_error(ippdme::ErrorCode code, std::string_view cause);
-  void abort_queued();
-  bool run_front();                             // the queue's front: answered (true) or a motion step started
-  void answer_aborted(const Pending& p);        // 0006 and its `%`
-  static std::string_view cause_of(const Pending& p);  // F3: the method, or what a refused line began with
-  void admit_unacked(bool all);                          // every queued transaction: 0006 + `%`
+  // ipp_server.cpp: the session and control
   bool claim_control(bool at_start, std::string& why);  // the session owns the machine
   void release_control();
-  void end_session(bool dropped);
+  void end_session(bool dropped) override;
   // ipp_commands.cpp: one command, answered at once (true) or started (false: a motion step)
-  bool execute(const Pending& p);
-  void execute_fast(const Pending& p);
+  bool execute(const Pending& p) override;
+  void execute_fast(const Pending& p) override;
   void get_props(const ippdme::Tag& tag, const std::vector<std::string>& paths, std::string_view cause);
   void set_props(const ippdme::Tag& tag, const std::vector<ippdme::PropertySetting>& settings, std::string_view cause);
   std::string position_payload(const std::vector<ippdme::Item>& items) const;
   void change_tool(std::string_view name);
-  // ipp_motion.cpp: GoTo, PtMeas, Home on the Server's planner
+  // ipp_motion.cpp: GoTo, PtMeas, Home through the MotionGateway
   bool take_machine(const Pending& p);
   bool start_goto(const Pending& p, const ippdme::GoTo& c);
   bool start_ptmeas(const Pending& p, const ippdme::PtMeas& c);
@@ -140,19 +111,11 @@ class IppServer {
   std::vector<ippdme::Value> hit_values(const core::Event& e) const;  // as OnPtMeasReport asks
   std::uint32_t next_id();
 
-  boost::asio::io_context& io_;
-  Server& server_;
-  IppConfig config_;
-  boost::asio::ip::tcp::acceptor acceptor_;
-  std::uint16_t port_ = 0;
-  std::shared_ptr<Connection> conn_;
-  ippdme::TagTracker tags_;
-  std::deque<Pending> queue_;
-  std::deque<Pending> unacked_;  // received while queue_ was full: not acknowledged yet
-  std::size_t unacked_bytes_ = 0;
-  bool running_ = false;       // the queue's front has started and not finished
-  bool in_session_ = false, error_state_ = false, user_enabled_ = false;
-  std::optional<std::pair<ippdme::ErrorCode, std::string>> last_error_;  // what put the session into the error state
+  MotionGateway& gateway_;
+  ControlService& control_;
+  FrameService& frames_;
+  const ProgramRunner& programs_;
+  bool user_enabled_ = false;
   std::vector<ippdme::Item> ptmeas_items_{ippdme::Item::X, ippdme::Item::Y, ippdme::Item::Z};
   std::optional<MoveDaemon> daemon_;
   ippdme::ToolBox tools_;
@@ -161,8 +124,7 @@ class IppServer {
   // stored) when the chain gives no usable frame.
   bool store_part_csy();
   bool own_part_csy_ = false;  // this session's SetCsyTransformation(PartCsy) is being stored
-  // The motion step of the queue's front.
-  Step step_ = Step::None;
+  // The motion step of the queue's front (its kind: step_).
   std::uint32_t wait_id_ = 0;              // its last segment: its Done completes the step
   std::uint32_t first_id_ = 0;             // its first segment (ids first_id_..wait_id_ are its own)
   std::uint32_t next_id_ = kIdBase;

@@ -1,6 +1,8 @@
 // LogLimiter: at most N log lines per message class per second; what is held back is
 // counted and reported once ("... suppressed N similar lines") when the class next speaks.
 #pragma once
+#include <spdlog/common.h>
+
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -34,5 +36,8 @@ class LogLimiter {
   int per_second_;
   std::map<std::string, Window, std::less<>> windows_;
 };
+
+// Logs through the limiter: at most its lines a second per message class, then the count.
+void log_limited(LogLimiter& limiter, spdlog::level::level_enum level, std::string_view message_class, const std::string& text);
 
 }  // namespace imess::net

@@ -12,11 +12,9 @@
 
 #include "imess/core/core_types.hpp"
 
-namespace imess::core {
-class MotionCore;
-}
-
 namespace imess::net {
+
+class MotionGateway;
 
 // Where a parameter's value lives.
 enum class ParamHome : std::uint8_t {
@@ -53,7 +51,7 @@ std::optional<double> parse_param_value(const ParamSpec& spec, std::string_view 
 
 // The places the values live, as the io thread sees them for one Get or Set.
 struct ParamPlaces {
-  core::MotionCore& core;
+  MotionGateway& motion;  // core parameters: read from and set through it
   double& report_hz;
   double period_us;
   std::string_view backend;

@@ -82,6 +82,10 @@ bool work_offsets_from_frames(const PartFrames& frames, const hal::AxisLayout& l
 bool resolve_program_outputs(std::vector<programs::Item>& items, const ProgramConfig& pc, const core::CoreConfig& core,
                              std::string& error);
 
+// Empty when `name` may name a program in the folder (one printable file name, no path, a
+// language's extension), else what is accepted.
+std::string program_name_problem(const std::string& name);
+
 const char* state_name(ProgramState s);
 const char* outcome_name(ProgramOutcome o);
 

@@ -1,10 +1,10 @@
-// Client lines -> replies (answered here) or motion-loop commands (answered by the loop).
+// MESSD client lines -> replies (answered here or by a service) or motion-loop commands (answered by the loop).
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
 
 #include "imess/net/params.hpp"
-#include "imess/net/server.hpp"
+#include "imess/net/messd_dispatch.hpp"
 #include "overloaded.hpp"
 #include "imess/net/wording.hpp"
 #include "imess/protocol/messages.hpp"
@@ -25,7 +25,22 @@ std::string fixed(double v, int decimals = 3) {
 }
 }  // namespace
 
-void Server::on_line(Session& s, const protocol::FramedLine& line) {
+MessdDispatch::MessdDispatch(ServerConfig& config, MessdServices services)
+    : config_(config),
+      sessions_(services.sessions),
+      gateway_(services.gateway),
+      control_(services.control),
+      hits_(services.hits),
+      programs_(services.programs),
+      frames_(services.frames),
+      stream_(services.stream),
+      stats_(services.stats),
+      observers_(services.observers),
+      log_(services.log) {}
+
+void MessdDispatch::gone(Session& s) { control_.lose(s.id(), "disconnected", true); }
+
+void MessdDispatch::on_line(Session& s, const protocol::FramedLine& line) {
   if (s.dropping()) return;
   if (config_.log_traffic) spdlog::info("[{}] > {}", s.id(), line.text);
   if (s.info().upload) {  // the lines of a program being uploaded, up to '.'
@@ -58,7 +73,7 @@ void Server::on_line(Session& s, const protocol::FramedLine& line) {
   on_command(s, slot, std::get<protocol::Command>(parsed));
 }
 
-bool Server::to_core(Session& s, std::uint32_t slot, core::Command c) {
+bool MessdDispatch::to_core(Session& s, std::uint32_t slot, core::Command c) {
   c.client = s.id();
   c.seq = slot;
   if (config_.log_motion)
@@ -72,8 +87,8 @@ bool Server::to_core(Session& s, std::uint32_t slot, core::Command c) {
                                                         " waiting for the motion loop; retry when answered"));
     return false;
   }
-  if (!core_.submit(c)) {
-    log_limited(spdlog::level::warn, "queue-full", "client " + std::to_string(s.id()) + ": the motion loop's command queue is full");
+  if (!gateway_.submit(c)) {
+    log_limited(log_, spdlog::level::warn, "queue-full", "client " + std::to_string(s.id()) + ": the motion loop's command queue is full");
     reply(s, slot, format_err(ErrorCode::QueueFull, "the motion loop's command queue is full; retry"));
     return false;
   }
@@ -83,29 +98,17 @@ bool Server::to_core(Session& s, std::uint32_t slot, core::Command c) {
 
 // StopMv from anyone, always accepted and answered at once: the stop lane takes no ring
 // slot, so neither a crowd pressing stop nor a full ring can delay or refuse a stop.
-void Server::stop_request(Session& s, std::uint32_t slot) {
-  stop_machine("StopMv");
+void MessdDispatch::stop_request(Session& s, std::uint32_t slot) {
+  gateway_.stop("StopMv");
   reply(s, slot, format_ok("StopMv"));
 }
 
-namespace {
-// What would move the machine besides the program: refused while one runs.
-bool moves_machine(const protocol::Command& cmd) {
-  return std::holds_alternative<protocol::StartMv>(cmd) || std::holds_alternative<protocol::GoTo>(cmd) ||
-         std::holds_alternative<protocol::Home>(cmd) || std::holds_alternative<protocol::Free>(cmd) ||
-         std::holds_alternative<protocol::Reset>(cmd) || std::holds_alternative<protocol::HandMv>(cmd) ||
-         std::holds_alternative<protocol::ForcePt>(cmd) || std::holds_alternative<protocol::MoveTo>(cmd) ||
-         std::holds_alternative<protocol::ArcTo>(cmd) || std::holds_alternative<protocol::Dwell>(cmd) ||
-         std::holds_alternative<protocol::Probe>(cmd) || std::holds_alternative<protocol::SetOut>(cmd) ||
-         std::holds_alternative<protocol::JogAx>(cmd);
-}
-}  // namespace
-
-void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command& cmd) {
+void MessdDispatch::on_command(Session& s, std::uint32_t slot, const protocol::Command& cmd) {
   using core::CommandKind;
   s.info().commanded = true;  // no longer a candidate for control.no_command_drop_s
   if (!allowed(s, cmd, slot)) return;
-  if (moves_machine(cmd) && program_busy(s, slot, protocol::verb_name(cmd))) return;
+  // What would move the machine besides the program (its declaration says so): refused while one runs.
+  if (protocol::moves_machine(cmd) && programs_.busy(protocol::verb_name(cmd), answer(s, slot))) return;
   // StartMv, GoTo, HandMv: x y z on the machine's X Y Z axes; GoTo leaves the others where they are.
   auto xyz_to_core = [&](CommandKind kind, const protocol::Xyz& p, double speed) {
     core::Command c{kind};
@@ -126,10 +129,10 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Hello& c) { hello(s, slot, c); },
           [&](const protocol::Help&) { help(s, slot); },
           [&](const protocol::Status&) { reply(s, slot, format_ok("Status", status_line())); },
-          [&](const protocol::Stats& c) { stats(s, slot, c); },
+          [&](const protocol::Stats& c) { stats_.stats(s, slot, c); },
           [&](const protocol::Get& c) { get_param(s, slot, c); },
           [&](const protocol::Set& c) { set_param(s, slot, c); },
-          [&](const protocol::Replay& c) { on_replay(s, slot, c.from); },
+          [&](const protocol::Replay& c) { reply(s, slot, hits_.replay(s.id(), c.from)); },
           [&](const protocol::Quit&) {
             reply(s, slot, format_ok("Quit"));
             s.close_after_flush();
@@ -151,57 +154,57 @@ void Server::on_command(Session& s, std::uint32_t slot, const protocol::Command&
           [&](const protocol::Queue&) { queue_status(s, slot); },
           [&](const protocol::Pause&) { to_core(s, slot, {CommandKind::Pause}); },
           [&](const protocol::Resume&) {
-            resume_program();
+            programs_.resume();
             to_core(s, slot, {CommandKind::Resume});
           },
           [&](const protocol::JogAx& c) { jog_axes(s, slot, c); },
-          [&](const protocol::Programs&) { list_programs(s, slot); },
-          [&](const protocol::Load& c) { load_program(s, slot, c.name); },
+          [&](const protocol::Programs&) { programs_.list(answer(s, slot)); },
+          [&](const protocol::Load& c) { programs_.load(s.id(), c.name, answer(s, slot)); },
           [&](const protocol::Upload& c) { begin_upload(s, slot, c.name); },
-          [&](const protocol::Run& c) { run_program(s, slot, c.detached); },
+          [&](const protocol::Run& c) { programs_.run(s.id(), c.detached, answer(s, slot)); },
           [&](const protocol::Abort&) { abort_program(s, slot); },
-          [&](const protocol::Program&) { program_status(s, slot); },
+          [&](const protocol::Program&) { programs_.status(answer(s, slot)); },
           [&](const protocol::Key& c) { press_key(s, slot, c.name); },
-          [&](const protocol::Frames&) { list_frames(s, slot); },
-          [&](const protocol::Frame& c) { show_frame(s, slot, c.name); },
-          [&](const protocol::PartPos& c) { part_pos(s, slot, c.name); },
-          [&](const protocol::UseFrame& c) { use_frame(s, slot, c.name); },
-          [&](const protocol::SetFrame& c) { set_frame(s, slot, c); },
-          [&](const protocol::Align& c) { align(s, slot, c); },
-          [&](const protocol::DelFrame& c) { del_frame(s, slot, c.name); },
+          [&](const protocol::Frames&) { frames_.list_frames(s, slot); },
+          [&](const protocol::Frame& c) { frames_.show_frame(s, slot, c.name); },
+          [&](const protocol::PartPos& c) { frames_.part_pos(s, slot, c.name); },
+          [&](const protocol::UseFrame& c) { frames_.use_frame(s, slot, c.name); },
+          [&](const protocol::SetFrame& c) { frames_.set_frame(s, slot, c); },
+          [&](const protocol::Align& c) { frames_.align(s, slot, c); },
+          [&](const protocol::DelFrame& c) { frames_.del_frame(s, slot, c.name); },
           [&](const protocol::Qualify& c) { qualify(s, slot, c); },
-          [&](const protocol::Stream& c) { reply(s, slot, set_stream_rate(s, c.hz)); },
+          [&](const protocol::Stream& c) { reply(s, slot, stream_.set_stream_rate(s, c.hz)); },
       },
       cmd);
 }
 
 // Key <name>: the operator's key for the I++ DME session that enabled the user (it arrives
 // there as E0000 # KeyPress("name")); refused when no session listens for keys.
-void Server::press_key(Session& s, std::uint32_t slot, const std::string& name) {
-  if (!ipp_ || !ipp_->listening_for_keys()) {
+void MessdDispatch::press_key(Session& s, std::uint32_t slot, const std::string& name) {
+  if (!observers_.any_listens_for_keys()) {
     reply(s, slot, format_err(ErrorCode::BadValue, "Key " + name + ": no I++ DME session has enabled the user; keys go to it only then"));
     return;
   }
-  to_ipp("KeyPress", [&] { ipp_->key(name); });
+  observers_.each("KeyPress", [&](MotionObserver& o) { o.key(name); });
   reply(s, slot, format_ok("Key"));
 }
 
 // Hello [name]: the client's name (the control event shows the owner under it), then the
 // daemon's capabilities.
-void Server::hello(Session& s, std::uint32_t slot, const protocol::Hello& c) {
+void MessdDispatch::hello(Session& s, std::uint32_t slot, const protocol::Hello& c) {
   if (!c.client.empty()) {
-    log_limited(spdlog::level::info, "hello", "client " + std::to_string(s.id()) + " is '" + c.client + "'");
+    log_limited(log_, spdlog::level::info, "hello", "client " + std::to_string(s.id()) + " is '" + c.client + "'");
     s.info().name = c.client;
     const bool owner = control_.owner() && control_.owner()->session == s.id();
     control_.rename(s.id(), controller_name(s.id(), c.client));
-    if (owner) announce_control();  // everyone sees the owner under its new name
+    if (owner) control_.announce();  // everyone sees the owner under its new name
   }
-  const bool sim = core_.snapshot().simulated;
+  const bool sim = gateway_.snapshot().simulated;
   reply(s, slot, format_ok("Hello", "IMESS 1 messd " + config_.version + " Caps jog goto home probe hand stats journal queue programs" +
                                  (sim ? " sim" : "")));
 }
 
-void Server::help(Session& s, std::uint32_t slot) {
+void MessdDispatch::help(Session& s, std::uint32_t slot) {
   std::string lines;
   for (const auto& v : protocol::verb_table())
     if (auto line = machine_help_line(v); !line.empty()) lines += line + "\n";
@@ -215,8 +218,8 @@ std::string unknown_param(const std::string& name) {
 }  // namespace
 
 // Get [name]: one parameter, or all of them in one line.
-void Server::get_param(Session& s, std::uint32_t slot, const protocol::Get& c) {
-  ParamPlaces at{core_, config_.report_hz, config_.period_us, config_.backend, config_.probe_offset};
+void MessdDispatch::get_param(Session& s, std::uint32_t slot, const protocol::Get& c) {
+  ParamPlaces at{gateway_, config_.report_hz, config_.period_us, config_.backend, hits_.probe_offset()};
   if (c.name.empty()) {
     std::string all;
     for (const auto& p : param_table()) all += (all.empty() ? "" : " ") + std::string(p.name) + " " + param_text(p, at);
@@ -231,7 +234,7 @@ void Server::get_param(Session& s, std::uint32_t slot, const protocol::Get& c) {
   reply(s, slot, format_ok("Get", std::string(p->name) + " " + param_text(*p, at)));
 }
 
-void Server::set_param(Session& s, std::uint32_t slot, const protocol::Set& c) {
+void MessdDispatch::set_param(Session& s, std::uint32_t slot, const protocol::Set& c) {
   const ParamSpec* p = find_param(c.name);
   if (!p) {
     reply(s, slot, unknown_param(c.name));
@@ -249,13 +252,31 @@ void Server::set_param(Session& s, std::uint32_t slot, const protocol::Set& c) {
     return;
   }
   spdlog::debug("client {} sets {} to {}", s.id(), p->name, *v);  // debug: a flood must not fill the disk
-  ParamPlaces at{core_, config_.report_hz, config_.period_us, config_.backend, config_.probe_offset};
+  ParamPlaces at{gateway_, config_.report_hz, config_.period_us, config_.backend, hits_.probe_offset()};
   store_param(*p, at, *v);
   reply(s, slot, format_ok("Set"));
 }
 
-std::string Server::status_line() {
-  const auto& snap = core_.snapshot();
+// Qualify radius form dx dy dz: TipRadius through the parameter lane (as Set does, so the
+// next hit already uses it) and the probe offset here, then the Qualified event to everyone.
+void MessdDispatch::qualify(Session& s, std::uint32_t slot, const protocol::Qualify& c) {
+  gateway_.set_param(core::ParamId::TipRadius, c.radius);
+  hits_.probe_offset() = {c.offset.x, c.offset.y, c.offset.z};
+  reply(s, slot, protocol::format_ok("Qualify"));
+  std::string text = "TipRadius ";
+  protocol::append_fixed(text, c.radius, 4);
+  text += " Offset";
+  for (double v : hits_.probe_offset()) {
+    text += ' ';
+    protocol::append_fixed(text, v, 4);
+  }
+  text += " Form ";
+  protocol::append_fixed(text, c.form, 4);
+  sessions_.broadcast(protocol::format_event("Qualified", text));
+}
+
+std::string MessdDispatch::status_line() {
+  const auto& snap = gateway_.snapshot();
   std::string limits;
   const int n = layout().count;
   for (int a = 0; a < n; ++a)

@@ -1,5 +1,6 @@
-// Queued moves on the io thread: MoveTo / ArcTo / Dwell / SetOut become planner requests, final
-// segments go into the motion loop's segment ring, Done / Failed come back as events.
+// The gateway's queued moves: MoveTo / ArcTo / Dwell / SetOut (and every front end's planner
+// requests) become planned segments, final segments go into the motion loop's segment ring,
+// Done / Failed come back as events to the id's owner.
 // Flush rule: the planner's tail is made final (ending at rest) when the loop holds less than
 // kFlushLead of motion — checked after the lines that arrived together, on every Done and
 // Failed, and at once when the loop reports QueueLow — so moves sent in one burst are linked
@@ -11,26 +12,16 @@
 #include <cmath>
 #include <cstdio>
 
-#include "imess/net/server.hpp"
+#include "imess/net/motion_gateway.hpp"
 #include "imess/net/wording.hpp"
-#include "imess/protocol/messages.hpp"
 
 namespace imess::net {
-
-using protocol::ErrorCode;
-using protocol::format_err;
-using protocol::format_ok;
 
 namespace {
 constexpr double kFlushLead = 0.05;  // s of motion the loop should hold before the plan must end at rest
 
 std::uint32_t id_of(const QueuedCommand& c) {
   return std::visit([](const auto& q) { return q.id; }, c);
-}
-
-std::string_view verb_of(const QueuedCommand& c) {
-  static constexpr std::string_view kVerbs[] = {"MoveTo", "ArcTo", "Dwell", "Probe", "SetOut"};
-  return kVerbs[c.index()];
 }
 
 // A number as a person typed it: 2.5, 0, 1e+06.
@@ -73,7 +64,13 @@ ArcShape arc_shape(const protocol::ArcTo& c, std::string& why) {
 }
 }  // namespace
 
-bool Server::plan_from_here(std::string& why) {
+std::string arc_refusal(const protocol::ArcTo& c) {
+  std::string why;
+  arc_shape(c, why);
+  return why;
+}
+
+bool MotionGateway::plan_from_here(std::string& why) {
   if (planning_) return true;
   const auto& snap = core_.snapshot();
   if ((snap.mode != core::Mode::Idle && snap.mode != core::Mode::Free) || !in_loop_.empty()) {
@@ -86,57 +83,44 @@ bool Server::plan_from_here(std::string& why) {
   return true;
 }
 
-// One queued command: Ok when planned (or held behind a running Probe), Err when refused.
-void Server::queue_command(Session& s, std::uint32_t slot, const QueuedCommand& c) {
-  const std::string_view verb = verb_of(c);
-  if (const auto* w = words_of(c); w && !axes_known(s, slot, *w)) return;  // a letter the machine lacks
-  if (const auto* o = std::get_if<protocol::SetOut>(&c); o && !find_output(o->output)) {
-    reply(s, slot, format_err(ErrorCode::BadValue, "SetOut " + std::to_string(o->id) + ": no output '" + o->output +
-                                                       "'; this machine has " + output_names()));
-    return;
-  }
-  if (std::holds_alternative<protocol::ArcTo>(c) &&
-      (layout().cartesian_axis(0) < 0 || layout().cartesian_axis(1) < 0 || layout().cartesian_axis(2) < 0)) {
-    reply(s, slot, format_err(ErrorCode::BadValue, "ArcTo needs the linear axes X Y Z; this machine has " + layout().names()));
-    return;
-  }
-  if (const auto* arc = std::get_if<protocol::ArcTo>(&c)) {  // words that make no arc, wherever it starts
-    std::string bad;
-    arc_shape(*arc, bad);
-    if (!bad.empty()) {
-      reply(s, slot, format_err(ErrorCode::BadValue, bad));
-      return;
-    }
-  }
-  if (probe_open_) {  // its start is the Probe's end: checked now as far as possible, planned then
-    if (auto res = check_held(c); !res.ok()) {
-      reply(s, slot, format_err(ErrorCode::OutOfTravel, planner::describe(res, planner_.machine())));
-      return;
-    }
-    held_.push_back(c);
-    if (config_.log_motion) spdlog::info("client {}: {} {} held until Probe {} is done", s.id(), verb, id_of(c), *probe_open_);
-    reply(s, slot, format_ok(std::string(verb)));
-    return;
-  }
-  std::string why;
-  if (!plan_from_here(why)) {
-    reply(s, slot, format_err(ErrorCode::Busy, why));
-    return;
-  }
+planner::AppendResult MotionGateway::queue(const QueuedCommand& c) {
   auto res = plan(c);
-  if (!res.ok()) {
-    const auto code = res.error == planner::PlanError::OutOfTravel ? ErrorCode::OutOfTravel : ErrorCode::BadValue;
-    reply(s, slot, format_err(code, planner::describe(res, planner_.machine())));
-    if (unsent_.empty() && in_loop_.empty()) planning_ = false;
-    return;
-  }
-  if (config_.log_motion) spdlog::info("client {}: {} {} queued", s.id(), verb, id_of(c));
-  reply(s, slot, format_ok(std::string(verb)));
-  schedule_flush_check();
+  if (!res.ok() && unsent_.empty() && in_loop_.empty()) planning_ = false;
+  return res;
+}
+
+planner::AppendResult MotionGateway::append(const planner::Request& r) {
+  planning_ = true;
+  const auto res = planner_.append(r);
+  const std::uint32_t id = std::visit([](const auto& q) { return q.id; }, r);
+  if (res.ok() && (unsent_.empty() || unsent_.back() != id)) unsent_.push_back(id);
+  return res;
+}
+
+void MotionGateway::start_at(const planner::Pose& pose) { planner_.set_position(pose); }
+
+void MotionGateway::end_plan_if_idle() {
+  if (unsent_.empty() && in_loop_.empty() && planner_.pending() == 0 && planner_.ready() == 0) planning_ = false;
+}
+
+void MotionGateway::flush_and_feed() {
+  planner_.flush();
+  feed_segments();
+}
+
+std::optional<std::uint32_t> MotionGateway::first_in_loop() const noexcept {
+  if (in_loop_.empty()) return std::nullopt;
+  return in_loop_.front().first;
+}
+
+bool MotionGateway::in_loop_between(std::uint32_t first, std::uint32_t last) const noexcept {
+  for (const auto& [id, seconds] : in_loop_)
+    if (id >= first && id <= last) return true;
+  return false;
 }
 
 // The command's planner request(s) from where the planned path ends; its id into unsent_.
-planner::AppendResult Server::plan(const QueuedCommand& c) {
+planner::AppendResult MotionGateway::plan(const QueuedCommand& c) {
   const planner::Pose start = planner_.position();
   const auto& p = core_.params();
   const double move_feed = p.goto_speed * p.speed_level;
@@ -144,7 +128,7 @@ planner::AppendResult Server::plan(const QueuedCommand& c) {
   if (const auto* m = std::get_if<protocol::MoveTo>(&c)) {
     planner::Line l;
     l.id = m->id;
-    l.target = target_of(m->words, start);
+    l.target = target_of(layout(), m->words, start);
     // F: the feed rule of the planner (axes.hpp): mm/s along X Y Z, else U V W, else deg/s.
     l.feed = m->words.f.value_or(move_feed);
     res = planner_.append(l);
@@ -159,7 +143,7 @@ planner::AppendResult Server::plan(const QueuedCommand& c) {
     const int ix = layout().cartesian_axis(0), iy = layout().cartesian_axis(1), iz = layout().cartesian_axis(2);
     planner::Arc a;
     a.id = c_arc->id;
-    a.target = target_of(w, start);
+    a.target = target_of(layout(), w, start);
     a.centre = {start[ix] + w.i.value_or(0), start[iy] + w.j.value_or(0), start[iz] + w.k.value_or(0)};
     a.normal = shape.normal;
     a.planar = w.n.has_value();
@@ -171,7 +155,7 @@ planner::AppendResult Server::plan(const QueuedCommand& c) {
   } else if (const auto* d = std::get_if<protocol::Dwell>(&c)) {
     res = planner_.append(planner::Dwell{d->id, d->seconds});
   } else if (const auto* o = std::get_if<protocol::SetOut>(&c)) {
-    const core::OutputSettings& out = *find_output(o->output);  // queue_command checked the name
+    const core::OutputSettings& out = *core::find_output(core_.config(), o->output);  // queue_command checked the name
     res = planner_.append(planner::SetOutput{o->id, static_cast<std::uint16_t>(out.number), o->on ? 1.0 : 0.0, out.settle_s});
   } else {
     res = plan_probe(std::get<protocol::Probe>(c));
@@ -181,39 +165,7 @@ planner::AppendResult Server::plan(const QueuedCommand& c) {
   return res;
 }
 
-const core::OutputSettings* Server::find_output(std::string_view name) const noexcept {
-  return core::find_output(core_.config(), name);
-}
-
-std::string Server::output_names() const {
-  const auto& cfg = core_.config();
-  if (cfg.output_count == 0) return "no outputs";
-  std::string names = "the outputs";
-  for (int i = 0; i < cfg.output_count; ++i) names += (i ? ", " : " ") + std::string(cfg.outputs[i].name_view());
-  return names;
-}
-
-// Outputs: every output by name with its state as last switched, then whether the probe is
-// armed (powered and past its arming time).
-void Server::outputs_status(Session& s, std::uint32_t slot) {
-  const auto& cfg = core_.config();
-  const auto& snap = core_.snapshot();
-  std::string line;
-  for (int i = 0; i < cfg.output_count; ++i)
-    line += std::string(cfg.outputs[i].name_view()) + ((snap.outputs >> i) & 1u ? " on " : " off ");
-  line += std::string("ProbeArmed ") + (snap.probe_armed ? "yes" : "no");
-  reply(s, slot, format_ok("Outputs", line));
-}
-
-void Server::queue_status(Session& s, std::uint32_t slot) {
-  const auto& snap = core_.snapshot();
-  const std::size_t pending = unsent_.size() + in_loop_.size() + held_.size();
-  reply(s, slot, format_ok("Queue", "Pending " + std::to_string(pending) + " Running " +
-                                        (snap.path_running ? std::to_string(snap.path_id) : std::string("none")) +
-                                        " Held " + (snap.path_held ? "yes" : "no")));
-}
-
-void Server::feed_segments() {
+void MotionGateway::feed_segments() {
   planner::PlannedSegment seg;
   while (core_.segment_room() > 0 && planner_.take(seg)) {
     // A Probe's search whose approach has already been answered (it failed before the
@@ -223,7 +175,7 @@ void Server::feed_segments() {
       continue;
     if (!core_.submit_segment({seg, core_.stop_ticket(), drops_})) {
       // cannot happen (room was checked, one producer); never lose an id silently
-      broadcast(failed_line(seg.id, core::FailReason::Faulted));
+      failed_unsent(seg.id, core::FailReason::Faulted);
       if (!unsent_.empty()) unsent_.pop_front();
       continue;
     }
@@ -237,7 +189,7 @@ void Server::feed_segments() {
   }
 }
 
-void Server::schedule_flush_check() {
+void MotionGateway::schedule_flush_check() {
   if (flush_check_posted_) return;
   flush_check_posted_ = true;
   boost::asio::post(io_, [this] {
@@ -246,7 +198,7 @@ void Server::schedule_flush_check() {
   });
 }
 
-void Server::flush_check() {
+void MotionGateway::flush_check() {
   if (planner_.pending() > 0) {
     double lead = planner_.ready_duration();
     for (const auto& [id, seconds] : in_loop_) lead += seconds;
@@ -255,30 +207,21 @@ void Server::flush_check() {
   feed_segments();
 }
 
-void Server::on_segment_end(const core::Event& e) {
+// The Done / Failed goes to the id's owner: a front end's own ids (the I++ DME session's, a
+// program's) to it alone; the rest are MESSD's queued moves (the fallback), after whose
+// answer the plan may end and a closed Probe releases what it held.
+void MotionGateway::on_segment_end(const core::Event& e) {
   auto it = std::find_if(in_loop_.begin(), in_loop_.end(), [&](const auto& x) { return x.first == e.id; });
   if (it != in_loop_.end()) in_loop_.erase(it);
-  if (IppServer::is_own_id(e.id)) {  // the I++ session's: it answers for them
-    if (unsent_.empty() && in_loop_.empty() && planner_.pending() == 0 && planner_.ready() == 0) planning_ = false;
-    to_ipp("SegmentEnd", [&] { ipp_->segment_end(e); });
-    flush_check();
-    return;
-  }
-  if (program_segment_end(e)) {  // a program's: Block and ProgEnd speak for it
+  MotionObserver* owner = observers_.owner_of(e.id);
+  if (owner && owner != observers_.fallback()) {
+    owner->guarded("SegmentEnd", [&] { owner->segment_end(e); });
     flush_check();
     return;
   }
   const bool probe_closed = probe_open_ && *probe_open_ == e.id && (e.kind == core::EventKind::Failed || e.probe_end);
-  if (e.kind == core::EventKind::Done) {
-    broadcast(protocol::format_event("Done", std::to_string(e.id)));
-    if (config_.log_motion) spdlog::info("move {} done", e.id);
-  } else {
-    broadcast(failed_line(e.id, e.fail));
-    log_limited(spdlog::level::warn, "move-failed", "move " + std::to_string(e.id) + " failed: " +
-                                                        std::string(fail_wording(e.fail).name));
-  }
-  if (unsent_.empty() && in_loop_.empty() && planner_.pending() == 0 && planner_.ready() == 0)
-    planning_ = false;  // the queue ran out: the next one starts where the machine stands
+  if (owner) owner->guarded("SegmentEnd", [&] { owner->segment_end(e); });
+  end_plan_if_idle();  // the queue ran out: the next one starts where the machine stands
   if (probe_closed) {
     probe_open_.reset();
     if (e.kind == core::EventKind::Done)
@@ -289,25 +232,36 @@ void Server::on_segment_end(const core::Event& e) {
   flush_check();
 }
 
-void Server::drop_planned(core::FailReason why) {
-  const bool program = program_.running() || program_.tail;  // its ids are not broadcast
-  if (!program)
-    for (auto id : unsent_)
-      if (!IppServer::is_own_id(id)) broadcast(failed_line(id, why));
+// Held commands are MESSD's queued moves (the fallback's), whatever their id.
+void MotionGateway::failed_held(std::uint32_t id, core::FailReason why) {
+  if (MotionObserver* o = observers_.fallback()) o->guarded("Failed", [&] { o->unsent_failed(id, why); });
+}
+
+void MotionGateway::failed_unsent(std::uint32_t id, core::FailReason why) {
+  if (MotionObserver* owner = observers_.owner_of(id)) owner->guarded("Failed", [&] { owner->unsent_failed(id, why); });
+}
+
+void MotionGateway::drop_planned(core::FailReason why) {
+  for (auto id : unsent_) failed_unsent(id, why);  // each owner answers for its own (a program's are not broadcast)
   unsent_.clear();
   probe_open_.reset();
   fail_held(why);
   planner::Pose here{};
   planner_.set_position(here);  // discards what was not taken; the next queue starts anew
   planning_ = false;
-  to_ipp("Dropped", [&] { ipp_->dropped(why); });
-  // A limit, a fault or an unexpected touch dropped the loop's queue: the program failed
-  // (a stop ends it as aborted, in stop_machine).
-  if (program_.running() && why != core::FailReason::Stopped) {
-    const std::size_t block = std::max(program_.shown_block, program_.done_block + 1);
-    const int line = block >= 1 && block <= program_.items.size() ? program_.items[block - 1].line : 0;
-    end_program(ProgramOutcome::Failed, line, "Failed " + std::string(fail_wording(why).name));
-  }
+  observers_.each("Dropped", [&](MotionObserver& o) { o.dropped(why); });
+}
+
+// The stop lane (read first in every motion cycle); the queued moves the loop has not
+// received fail here, those it has fail there (their ids were stamped before this stop).
+void MotionGateway::stop(std::string_view who) {
+  abandon_plan();
+  observers_.each("Stopped", [&](MotionObserver& o) { o.stopped(who); });
+}
+
+void MotionGateway::abandon_plan() {
+  core_.request_stop();
+  drop_planned(core::FailReason::Stopped);
 }
 
 }  // namespace imess::net
