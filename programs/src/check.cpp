@@ -227,6 +227,7 @@ Check check_program(Language lang, std::string_view text, const Setup& setup, co
   Check r = check_items(t.items, setup.machine, options, setup.start, rapid, visit);
   r.lines = c.lines;
   r.notes = t.notes;
+  r.offset_writes = t.offset_writes;
   return r;
 }
 

@@ -92,6 +92,7 @@ class GcodeTranslator {
   }
   const std::vector<Note>& notes() const { return notes_; }
   const std::vector<Frame>& frames() const { return frames_; }
+  const std::vector<OffsetWrite>& offset_writes() const { return writes_; }
 
  private:
   int axis_index(char letter) const {
@@ -448,7 +449,8 @@ class GcodeTranslator {
       }
     }
     set_frame();
-    note("G10", "work offsets set by G10 last for this program; messd's offset table is not changed");
+    writes_.push_back(OffsetWrite{items_.size(), line_, static_cast<int>(k), offsets_[k]});
+    note("G10", "work offsets written by G10: messd stores each as its part frame (G54 ... G59.3) when a run reaches the line");
   }
 
   // G28 / G30: with axis words a rapid to that point (in the current G90/G91), then those
@@ -642,6 +644,7 @@ class GcodeTranslator {
   bool cancel_line_ = false;           // G80 cancelled the motion mode
   bool started_ = false, percent_ = false;  // a line that is not blank came; the first was '%'
   std::vector<Note> notes_;
+  std::vector<OffsetWrite> writes_;  // G10 L2 / L20
   std::vector<Frame> frames_;
   double speed_ = 0;
   bool speed_set_ = false;

@@ -36,6 +36,7 @@ Translation translate_with(Translator& t, std::string_view text) {
     r.items = t.run(text);
     if constexpr (requires { t.notes(); }) r.notes = t.notes();
     if constexpr (requires { t.frames(); }) r.frames = t.frames();
+    if constexpr (requires { t.offset_writes(); }) r.offset_writes = t.offset_writes();
     return r;
   } catch (const Failure& f) {
     return fail(f.error.kind, f.error.line, f.error.column, f.error.found, f.error.accepted);

@@ -164,11 +164,25 @@ TEST_CASE("linuxcnc: G92 makes the position read the axis words, G92.1 clears, G
   CHECK(err("G38.2 Z-5 F60\nG92 Z0\n").substr(0, 74) == "line 2:5: position known only at run time: found Z0 with G92 after the pro");
 }
 
-TEST_CASE("linuxcnc: G10 L2 and L20 set a work offset for the rest of the program, noted as not stored") {
+TEST_CASE("linuxcnc: G10 L2 and L20 set a work offset for the rest of the program, and list it as a write to store") {
   const auto t = translate_gcode("G0 X10 Y10\nG10 L2 P1 X5\nG0 X0\nG10 L20 P1 X1\nG0 X0\nG10 L2 P2 X100\nG55 G0 X1\n");
   CHECK(lines(t, GcodeOptions{}.machine) == Lines{"1 LINE rapid X10 Y10 Z0 F100", "3 LINE rapid X5 Y10 Z0 F100",
                                                   "5 LINE rapid X4 Y10 Z0 F100", "7 LINE rapid X101 Y10 Z0 F100"});
   CHECK(notes(t) == "G10@2x3 ");
+  // Each write: before which item, its line, which offset, the whole offset afterwards.
+  REQUIRE(t.offset_writes.size() == 3);
+  CHECK(t.offset_writes[0].before_item == 1);
+  CHECK(t.offset_writes[0].line == 2);
+  CHECK(t.offset_writes[0].offset == 0);
+  CHECK(t.offset_writes[0].origin[0] == 5);
+  CHECK(t.offset_writes[1].before_item == 2);
+  CHECK(t.offset_writes[1].offset == 0);
+  CHECK(t.offset_writes[1].origin[0] == 4);  // L20: X reads 1 where the machine stands (5)
+  CHECK(t.offset_writes[2].before_item == 3);
+  CHECK(t.offset_writes[2].line == 6);
+  CHECK(t.offset_writes[2].offset == 1);
+  CHECK(t.offset_writes[2].origin[0] == 100);
+  CHECK(t.offset_writes[2].origin[1] == 0);  // an axis not named keeps its value
   CHECK(err("G10 L1 P1 X1") == "line 1:1: missing word: found G10 L1, accepted G10 L2 or G10 L20");
   CHECK(err("G10 L2 P10 X1") == "line 1:8: value out of range: found P10, accepted P0 ... P9 (P0 the offset in force, P1 ... P9 G54 ... G59.3)");
   CHECK(err("G0 X1 L2") == "line 1:7: word not allowed here: found L2, accepted L only with G10");

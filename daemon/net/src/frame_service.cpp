@@ -5,8 +5,16 @@
 
 namespace imess::net {
 
-std::string FrameService::keep(const std::string& name, const metrology::Frame& frame) {
-  const std::string save_error = frames_.put(name, frame);
+std::string FrameService::keep(const std::string& name, const metrology::Frame& frame) { return put(name, frame, true); }
+
+std::string FrameService::store(const std::string& name, const metrology::Frame& frame) {
+  std::string save_error = put(name, frame, false);
+  if (frames_.active() == name) changed();
+  return save_error;
+}
+
+std::string FrameService::put(const std::string& name, const metrology::Frame& frame, bool activate) {
+  std::string save_error = frames_.put(name, frame, activate);
   if (!save_error.empty())
     log_limited(log_, spdlog::level::err, "frames", "part frame " + name + " kept for this run only: " + save_error);
   return save_error;

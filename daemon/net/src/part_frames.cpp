@@ -41,9 +41,9 @@ std::string PartFrames::refuse_name(std::string_view name) {
   return {};
 }
 
-std::string PartFrames::put(const std::string& name, const metrology::Frame& frame) {
+std::string PartFrames::put(const std::string& name, const metrology::Frame& frame, bool activate) {
   store_.set(name, frame.matrix());
-  active_ = name;
+  if (activate) active_ = name;
   return save();
 }
 

@@ -27,9 +27,11 @@ bool check_program_for(const MachineForPrograms& m, const LoadedProgram& p, cons
     return false;
   }
   if (!resolve_program_outputs(t.items, m.programs, m.core, error)) return false;
+  if (!offset_writes_storable(t.offset_writes, m.core.layout, error)) return false;
   check = programs::check_items(t.items, setup.machine, m.options, start, 0, visit);
   check.lines = programs::line_count(p.text);
   check.notes = std::move(t.notes);
+  check.offset_writes = std::move(t.offset_writes);
   if (!check.ok) {
     error = check.error;
     return false;

@@ -124,6 +124,27 @@ bool work_offsets_from_frames(const PartFrames& frames, const hal::AxisLayout& l
   return true;
 }
 
+metrology::Frame frame_of_offset_write(const programs::OffsetWrite& w, const hal::AxisLayout& layout) {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  for (int c = 0; c < 3; ++c)
+    if (const int a = layout.cartesian_axis(c); a >= 0) origin[c] = w.origin[static_cast<std::size_t>(a)];
+  return metrology::Frame(Eigen::Matrix3d::Identity(), origin);
+}
+
+bool offset_writes_storable(const std::vector<programs::OffsetWrite>& writes, const hal::AxisLayout& layout,
+                            std::string& error) {
+  for (const auto& w : writes) {
+    const Eigen::Vector3d origin = frame_of_offset_write(w, layout).translation();
+    if (origin.cwiseAbs().maxCoeff() <= kMaxFrameOrigin) continue;
+    error = "line " + std::to_string(w.line) + ":1: " + programs::kind_name(programs::ErrorKind::BadValue) + ": found G10 setting " +
+            std::string(programs::kWorkOffsetNames[static_cast<std::size_t>(w.offset)]) + "'s origin " +
+            std::to_string(origin.cwiseAbs().maxCoeff()) + " mm from the machine's zero, accepted origins within " +
+            std::to_string(static_cast<long>(kMaxFrameOrigin)) + " mm (as SetFrame)";
+    return false;
+  }
+  return true;
+}
+
 bool resolve_program_outputs(std::vector<programs::Item>& items, const ProgramConfig& pc, const core::CoreConfig& core,
                              std::string& error) {
   for (auto& item : items) {
@@ -154,7 +175,7 @@ bool resolve_program_outputs(std::vector<programs::Item>& items, const ProgramCo
   return true;
 }
 
-ProgramRunner::ProgramRunner(MotionGateway& gateway, const ProgramConfig& config, const PartFrames& frames, LogLimiter& log,
+ProgramRunner::ProgramRunner(MotionGateway& gateway, const ProgramConfig& config, FrameService& frames, LogLimiter& log,
                              Announce announce)
     : gateway_(gateway), config_(config), frames_(frames), log_(log), announce_(std::move(announce)) {}
 
@@ -179,7 +200,7 @@ void ProgramRunner::stopped(std::string_view who) {
 // Translates and checks the program from `start`; the items of the run in `items`.
 bool ProgramRunner::check_program_text(const LoadedProgram& p, const planner::Pose& start, std::vector<programs::Item>& items,
                                 programs::Check& check, std::string& error) const {
-  return check_program_for({config_, gateway_.config(), gateway_.machine(), gateway_.options(), &frames_}, p, start, items,
+  return check_program_for({config_, gateway_.config(), gateway_.machine(), gateway_.options(), &frames_.frames()}, p, start, items,
                            check, error);
 }
 
@@ -300,6 +321,7 @@ void ProgramRunner::run(std::uint32_t client, bool detached, const Answer& answe
   gateway_.set_planning(true);
   program_.items = std::move(items);
   program_.next = 0;
+  program_.next_write = 0;
   program_.detached = detached;
   program_.feeding_done = false;
   program_.probe.reset();
@@ -351,7 +373,9 @@ void ProgramRunner::feed_program() {
   while (pr.state == ProgramState::Running && !pr.feeding_done && !pr.probe && !pr.pause_at &&
          gateway_.ids_queued() < kPlanAhead) {
     const std::size_t i = pr.next;
+    store_offsets(i);
     if (i >= pr.items.size() || std::holds_alternative<programs::End>(pr.items[i].step)) {
+      store_offsets(pr.items.size());
       pr.feeding_done = true;
       gateway_.flush();
       break;
@@ -374,6 +398,20 @@ void ProgramRunner::feed_program() {
       pr.probe = programs::item_id(i);
       gateway_.flush();  // the machine stops at the hit: the probe ends at rest
     }
+  }
+}
+
+// The program's G10 writes before item `upto` into the part frames G54 ... G59.3 (without
+// making one active): a run writes them as planning passes their lines.
+void ProgramRunner::store_offsets(std::size_t upto) {
+  auto& pr = program_;
+  const auto& writes = pr.loaded->check.offset_writes;
+  for (; pr.next_write < writes.size() && writes[pr.next_write].before_item <= upto; ++pr.next_write) {
+    const auto& w = writes[pr.next_write];
+    const std::string name(programs::kWorkOffsetNames[static_cast<std::size_t>(w.offset)]);
+    const std::string save_error = frames_.store(name, frame_of_offset_write(w, gateway_.config().layout));
+    log_limited(log_, spdlog::level::info, "program", "program " + pr.loaded->name + " line " + std::to_string(w.line) +
+                                                          " wrote part frame " + name + (save_error.empty() ? "" : " (for this run only)"));
   }
 }
 

@@ -20,7 +20,7 @@ Server::Server(asio::io_context& io, ServerConfig config, core::MotionCore& core
       wake_(wake),
       gateway_(io, core, observers_, log_limiter_, config_.log_motion),
       frames_(observers_, log_limiter_),
-      programs_(gateway_, config_.programs, frames_.frames(), log_limiter_,
+      programs_(gateway_, config_.programs, frames_, log_limiter_,
                 [this](const std::string& line) { sessions_.broadcast(line); }),
       control_(gateway_, programs_, observers_, log_limiter_),
       hits_(journal, observers_, config_.probe_offset, {config_.log_motion, config_.beep}),

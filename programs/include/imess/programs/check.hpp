@@ -65,6 +65,7 @@ struct Check {
   Pose low{}, high{};        // bounding box of the path, every axis
   bool moves = false;        // any motion at all (else low/high are the start)
   std::vector<Note> notes;   // codes accepted without effect, block delete (G-code)
+  std::vector<OffsetWrite> offset_writes;  // work offsets a run writes (G10 L2 / L20)
 };
 
 // One planned segment of the dry run and the item it came from.

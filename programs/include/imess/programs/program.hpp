@@ -67,6 +67,15 @@ struct Note {
   std::string meaning;  // "cutter radius compensation off: IMESS never compensates"
 };
 
+// A work offset the program writes (G-code G10 L2 / L20): what messd stores as the part frame
+// of that name when a run reaches the line (docs/programs.md, G10).
+struct OffsetWrite {
+  std::size_t before_item = 0;  // written before this item is planned (items.size(): at the end)
+  int line = 0;                 // 1-based source line of the G10
+  int offset = 0;               // 0 ... 8: G54 ... G59.3 (kWorkOffsetNames)
+  Pose origin{};                // the offset's whole pose afterwards, machine coordinates (mm, deg)
+};
+
 // Why a program was refused. Never renumbered.
 enum class ErrorKind : std::uint8_t {
   BadCharacter = 1,       // a character that starts no word
@@ -104,6 +113,7 @@ struct Translation {
   Error error;
   std::vector<Note> notes;
   std::vector<Frame> frames{Frame{}};  // items' frames; G-code pushes one per change
+  std::vector<OffsetWrite> offset_writes;  // G10 L2 / L20, in line order
 };
 
 // The name of an error kind ("unsupported code").

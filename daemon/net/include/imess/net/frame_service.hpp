@@ -22,11 +22,16 @@ class FrameService {
   const metrology::Frame& active_frame() const { return frames_.active_frame(); }
   // Stores and activates (without announcing); returns why the file was not written.
   std::string keep(const std::string& name, const metrology::Frame& frame);
+  // Stores without changing which frame is active; announces when the active one was written
+  // (a program's G10). Returns why the file was not written.
+  std::string store(const std::string& name, const metrology::Frame& frame);
   bool use(const std::string& name) { return frames_.use(name); }
   bool remove(const std::string& name, std::string& save_error);
   void changed();  // the active frame changed: every observer hears it
 
  private:
+  std::string put(const std::string& name, const metrology::Frame& frame, bool activate);
+
   Observers& observers_;
   LogLimiter& log_;
   PartFrames frames_;

@@ -33,9 +33,9 @@ class PartFrames {
 
   // An empty string when `name` may name a stored frame, else what is accepted.
   static std::string refuse_name(std::string_view name);
-  // Stores (replacing one of the same name) and makes it active. Returns an empty string, or
-  // why the file could not be written (the frame is then kept for this run only).
-  std::string put(const std::string& name, const metrology::Frame& frame);
+  // Stores (replacing one of the same name) and, with `activate`, makes it active. Returns an
+  // empty string, or why the file could not be written (the frame is then kept for this run only).
+  std::string put(const std::string& name, const metrology::Frame& frame, bool activate = true);
   bool use(std::string_view name);      // false: no such frame
   // false: no such stored frame; the active one removed makes machine active. `save_error`
   // as for put.

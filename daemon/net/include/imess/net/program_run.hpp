@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "imess/core/core_types.hpp"
+#include "imess/metrology/frame.hpp"
 #include "imess/programs/check.hpp"
 
 namespace imess::net {
@@ -55,6 +56,7 @@ struct ProgramRun {
   ProgramState state = ProgramState::None;
   std::vector<programs::Item> items;  // of the run, translated from where it started
   std::size_t next = 0;               // the next item to plan
+  std::size_t next_write = 0;         // the next of loaded->check.offset_writes to store
   bool detached = false;
   bool feeding_done = false;          // End reached or every item planned
   std::optional<std::uint32_t> probe;  // a probe planned whose end has not come: nothing after it is planned
@@ -79,6 +81,13 @@ programs::Setup program_setup(const ProgramConfig& pc, const core::CoreConfig& c
 class PartFrames;
 bool work_offsets_from_frames(const PartFrames& frames, const hal::AxisLayout& layout, programs::GcodeOptions& g,
                               std::string& error);
+// The part frame a program's G10 writes: its origin on the machine's X Y Z (other axes' offsets
+// last for the program only).
+metrology::Frame frame_of_offset_write(const programs::OffsetWrite& w, const hal::AxisLayout& layout);
+// False (with `error` in Err 213's form, naming the G10's line) when a write cannot be stored
+// as a part frame (an origin beyond kMaxFrameOrigin).
+bool offset_writes_storable(const std::vector<programs::OffsetWrite>& writes, const hal::AxisLayout& layout,
+                            std::string& error);
 bool resolve_program_outputs(std::vector<programs::Item>& items, const ProgramConfig& pc, const core::CoreConfig& core,
                              std::string& error);
 

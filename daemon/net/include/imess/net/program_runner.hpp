@@ -12,7 +12,7 @@
 #include "imess/net/log_limiter.hpp"
 #include "imess/net/motion_gateway.hpp"
 #include "imess/net/observers.hpp"
-#include "imess/net/part_frames.hpp"
+#include "imess/net/frame_service.hpp"
 #include "imess/net/program_run.hpp"
 
 namespace imess::net {
@@ -22,7 +22,7 @@ class ProgramRunner : public MotionObserver {
   using Answer = std::function<void(std::string)>;   // the reply to the request
   using Announce = std::function<void(const std::string&)>;  // an event line to every client
 
-  ProgramRunner(MotionGateway& gateway, const ProgramConfig& config, const PartFrames& frames, LogLimiter& log,
+  ProgramRunner(MotionGateway& gateway, const ProgramConfig& config, FrameService& frames, LogLimiter& log,
                 Announce announce);
 
   bool running() const noexcept { return program_.running(); }
@@ -51,6 +51,7 @@ class ProgramRunner : public MotionObserver {
   bool check_program_text(const LoadedProgram& p, const planner::Pose& start, std::vector<programs::Item>& items,
                           programs::Check& check, std::string& error) const;
   void feed_program();
+  void store_offsets(std::size_t upto);
   void program_progress();
   bool program_segment_end(const core::Event& e);
   void fail_program(int line, const std::string& why);
@@ -58,7 +59,7 @@ class ProgramRunner : public MotionObserver {
 
   MotionGateway& gateway_;
   const ProgramConfig& config_;
-  const PartFrames& frames_;
+  FrameService& frames_;
   LogLimiter& log_;
   Announce announce_;
   ProgramRun program_;
