@@ -62,7 +62,6 @@ void CardStreamSession::take(std::span<const std::uint8_t> frame) noexcept {
   card::StatusFrame s;
   if (!card::read_status(frame, s)) return lost();
   if (stream_status_ && s.clock - newest_.clock != status_ticks_) lost();  // one went missing
-  if (stream_status_ && s.starvations != newest_.starvations) lost();      // the card ran dry
   newest_ = s;
   stream_status_ = true;
   status_cycle_ = cycle_;
@@ -98,7 +97,7 @@ bool CardStreamSession::read_state(MachineState& out) noexcept {
     std::uint32_t s = newest_.status[a];
     if (reset) s &= ~(status::kFaultMask | status::kClosedLoop);
     if (loops) s = loops_closed_ ? s | status::kClosedLoop : s & ~status::kClosedLoop;
-    if (motion) s &= ~(status::kProfileEnd | status::kInPosition);
+    if (motion) s &= ~(status::kProfileEnd | status::kInPosition | status::kHostStarved);
     if (latch) s &= ~status::kLatchValid;
     if (comm_lost_) s |= status::kCommTimeout;
     if (refused_) s |= status::kDataError;
@@ -164,11 +163,17 @@ bool CardStreamSession::follow(const Setpoint& sp) noexcept {
     if (knots_sent_ > 0 && !card::tick_after(start, last_knot_tick_)) start = last_knot_tick_ + ticks_per_cycle_;
     base_tick_ = start;
     base_cycle_ = cycle_;
+    base_time_ = sp.time;
+    last_knot_n_ = 0;
     following_ = true;
   }
-  const std::uint32_t n = cycle_ - base_cycle_;
+  // The periods since the path began: by the setpoint's path time when it has one (a stalled
+  // host's next setpoint counts every period it missed, while the card ran the path on its
+  // own clock), else one a cycle.
+  const std::uint32_t n = sp.time >= 0 ? static_cast<std::uint32_t>(std::max(0L, std::lround((sp.time - base_time_) / settings_.period)))
+                                       : cycle_ - base_cycle_;
   const bool rest = sp.velocity.isZero(0);
-  const bool due = fresh || n % static_cast<std::uint32_t>(settings_.segment_cycles) == 0 || (rest && !last_knot_rest_);
+  const bool due = fresh || n - last_knot_n_ >= static_cast<std::uint32_t>(settings_.segment_cycles) || (rest && !last_knot_rest_);
   if (!due) return !comm_lost_;
   card::Knot k;
   k.tick = base_tick_ + n * ticks_per_cycle_;
@@ -185,6 +190,7 @@ bool CardStreamSession::follow(const Setpoint& sp) noexcept {
     return false;
   }
   if (fresh) motion_ = Pending{true, seq_};
+  last_knot_n_ = n;
   last_knot_tick_ = k.tick;
   last_knot_rest_ = rest;
   ++knots_sent_;

@@ -74,6 +74,22 @@ void EmulatedCard::end_following(bool brake) noexcept {
   }
 }
 
+// Starved: every following axis brakes so that all come to rest together (each at most at its
+// acceleration), so the machine stops on the line it was moving along, not off it.
+void EmulatedCard::brake_along_path() noexcept {
+  double t = 0;  // s: the longest an axis needs to stop at its acceleration
+  for (const auto& ax : axes_)
+    if (ax.following && ax.amax > 0) t = std::max(t, std::abs(ax.profile.velocity()) / ax.amax);
+  following_ = false;
+  knot_count_ = 0;
+  for (auto& ax : axes_) {
+    if (!ax.following) continue;
+    ax.following = false;
+    const double v = std::abs(ax.profile.velocity());
+    ax.profile.stop(t > 0 && v > 0 ? std::min(ax.amax, v / t) : ax.amax);
+  }
+}
+
 bool EmulatedCard::following_into_limit() const noexcept {
   for (int a = 0; a < kAxes; ++a) {
     const Axis& ax = axes_[a];
@@ -187,7 +203,7 @@ std::uint32_t EmulatedCard::status_word(int a) const noexcept {
   return hal::status_word({machine_.limit_neg(a), machine_.limit_pos(a), done, ax.closed,
                            done && std::abs(ax.profile.position() - encoder(a)) < config_.in_position_window,
                            ax.latch_valid},
-                          ax.faults);
+                          ax.faults | (starved_ ? st::kHostStarved : 0u));
 }
 
 // ------------------------------------------------------------------ link requests
@@ -309,7 +325,7 @@ Status EmulatedCard::set_loops(Op op, LinkReader& r) noexcept {
     Axis& ax = axes_[a];
     if (op == Op::ResetAxes) {
       ax.faults = 0;
-      stream_error_ = false;
+      stream_error_ = starved_ = false;
     }
     bool close = op == Op::CloseLoops && !(ax.faults & st::kFaultMask);
     if (!close) ax.following = false;
@@ -329,6 +345,7 @@ Status EmulatedCard::jog_absolute(LinkReader& r) noexcept {
   for (int a = 0; a < kAxes; ++a)
     if (named(mask, a) && (!std::isfinite(v[a][0]) || !(v[a][1] > 0) || !(v[a][2] > 0))) return Status::BadValue;
   if (following_) end_following(true);  // a move ends following; axes it does not name brake
+  starved_ = false;
   for (int a = 0; a < kAxes; ++a)
     if (named(mask, a) && axes_[a].closed)
       axes_[a].profile.start(v[a][0], std::min(v[a][1], axes_[a].vmax), std::min(v[a][2], axes_[a].amax));

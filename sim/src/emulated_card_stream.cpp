@@ -116,9 +116,10 @@ Status EmulatedCard::segment(LinkReader& r) noexcept {
   }
   if (!card::tick_after(k.tick, clock_)) {  // due already: the host sent it too late
     ++starvations_;
-    for (auto& ax : axes_) ax.faults |= st::kCommTimeout;
+    starved_ = true;
     return Status::Ok;
   }
+  starved_ = false;
   bool any = false;
   for (int a = 0; a < kAxes; ++a) {
     Axis& ax = axes_[a];
@@ -143,8 +144,8 @@ void EmulatedCard::knot_tick() noexcept {
       for (const auto& ax : axes_) rest = rest && (!ax.following || ax.v1 == 0);
       if (!rest) {  // starved: the next setpoint did not come in time
         ++starvations_;
-        for (auto& ax : axes_) ax.faults |= st::kCommTimeout;
-        return end_following(true);
+        starved_ = true;
+        return brake_along_path();
       }
       for (auto& ax : axes_)
         if (ax.following) ax.profile.reset(ax.p1);

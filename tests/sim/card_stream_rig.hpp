@@ -59,11 +59,23 @@ class StreamRig {
     }
     planner_.flush();
   }
-  // One motion period: the ring topped up, the core's cycle.
+  // After the loop dropped the queue (a fault, a host stall): plans from where the machine stands.
+  void queue_from_here(const std::vector<planner::Request>& requests) {
+    planner_.set_position(pose_of(rig.position()));
+    queue(requests);
+  }
+  // One motion period: the ring topped up (stamped with the loop's drop count, as the io side
+  // does), the core's cycle. A drop discards what the planner still holds, as the io side does.
   void step() {
     planner::PlannedSegment s;
-    while (rig.core().segment_room() > 0 && planner_.take(s)) REQUIRE(rig.core().submit_segment({s, rig.core().stop_ticket(), 0}));
+    while (rig.core().segment_room() > 0 && planner_.take(s)) REQUIRE(rig.core().submit_segment({s, rig.core().stop_ticket(), drops_}));
     rig.step();
+    for (const auto& e : rig.events())
+      if (e.kind == EventKind::QueueDropped && e.id > drops_) {
+        drops_ = e.id;
+        while (planner_.take(s)) {
+        }
+      }
   }
   bool run_until(const std::function<bool()>& pred, double max_seconds) {
     for (long i = 0, n = static_cast<long>(max_seconds * 1000); i < n; ++i) {
@@ -86,6 +98,7 @@ class StreamRig {
 
  private:
   planner::Planner planner_;
+  std::uint32_t drops_ = 0;  // the loop's queue drops seen (QueueDropped)
 };
 
 }  // namespace imess::test

@@ -123,7 +123,7 @@ TEST_CASE("card stream: a lost or damaged frame either way ends in Fault CommLos
   }
 }
 
-TEST_CASE("card stream: a host that stops sending setpoints starves the card: it brakes and says so") {
+TEST_CASE("card stream: a host that stops sending setpoints starves the card: it brakes on the path and says so, no fault") {
   StreamRig s;
   auto& drv = s.rig.driver();
   hal::MachineState ms;
@@ -132,19 +132,20 @@ TEST_CASE("card stream: a host that stops sending setpoints starves the card: it
   hal::Setpoint sp;
   sp.position = axes3(start);
   double v = 0;
-  for (int i = 0; i < 200; ++i) {  // accelerate along X to 50 mm/s, then cruise
+  const Vec3 dir = Vec3(3, 4, 0).normalized();  // a diagonal: braking must keep to it
+  for (int i = 0; i < 200; ++i) {  // accelerate to 50 mm/s, then cruise
     s.rig.clock().advance(MotionRig::kPeriod);
     REQUIRE(drv.read_state(ms));
     v = std::min(50.0, v + 1000 * 0.001);
-    sp.position.x() += v * 0.001;
-    sp.velocity = axes3(Vec3(v, 0, 0));
+    sp.position += axes3(dir * v * 0.001);
+    sp.velocity = axes3(dir * v);
     REQUIRE(drv.follow(sp));
   }
   REQUIRE(!ms.faulted());
   REQUIRE(s.card().starvations() == 0);
   const Vec3 from = xyz(ms.position);
   int cycles = 0;
-  while (!ms.faulted() && cycles < 200) {  // the setpoints stop; the state is still read
+  while (!ms.any(st::kHostStarved) && cycles < 200) {  // the setpoints stop; the state is still read
     s.rig.clock().advance(MotionRig::kPeriod);
     REQUIRE(drv.read_state(ms));
     ++cycles;
@@ -152,15 +153,39 @@ TEST_CASE("card stream: a host that stops sending setpoints starves the card: it
   std::printf("card stream: setpoints stopped -> the card starved, reported after %d ms\n", cycles);
   CHECK(s.card().starvations() == 1);
   CHECK(s.session().starvations() == 1);
-  CHECK(ms.all(st::kCommTimeout));
+  CHECK(ms.all(st::kHostStarved));
+  CHECK_FALSE(ms.faulted());  // a stalled host is no fault: the loops hold the machine
+  CHECK(ms.loops_closed());
   CHECK(cycles <= 30);
   for (int i = 0; i < 500; ++i) {
     s.rig.clock().advance(MotionRig::kPeriod);
     drv.read_state(ms);
   }
   CHECK(ms.motion_done());
+  CHECK(ms.any(st::kHostStarved));  // until the next motion command
+  const Vec3 moved = xyz(ms.position) - from;
   // Braked at 1000 mm/s² from 50 mm/s after the lead ran out: 1.25 mm, + the lead and the loop lag.
-  CHECK((xyz(ms.position) - from).norm() < 50 * 50 / 2000.0 + 50 * 0.03 + 0.2);
+  CHECK(moved.norm() < 50 * 50 / 2000.0 + 50 * 0.03 + 0.2);
+  // ... on the line it moved along: all axes came to rest together.
+  CHECK((moved - moved.dot(dir) * dir).norm() < 0.01);
+  // A new path starts at once, without a reset, and clears the report.
+  const Vec3 here = xyz(ms.position);
+  sp.position = axes3(here);
+  for (int i = 0; i < 100; ++i) {
+    s.rig.clock().advance(MotionRig::kPeriod);
+    REQUIRE(drv.read_state(ms));
+    sp.position.x() = here.x() + 5.0 * (i + 1) / 100;
+    sp.velocity.setZero();
+    sp.velocity.x() = i + 1 < 100 ? 50.0 : 0.0;
+    REQUIRE(drv.follow(sp));
+  }
+  for (int i = 0; i < 300; ++i) {
+    s.rig.clock().advance(MotionRig::kPeriod);
+    drv.read_state(ms);
+  }
+  CHECK_FALSE(ms.faulted());
+  CHECK_FALSE(ms.any(st::kHostStarved));
+  CHECK(ms.position[0] == Approx(here.x() + 5).margin(0.01));
 }
 
 TEST_CASE("card stream: jog onto the cube, GoTo, stop and homing work over the stream") {

@@ -60,6 +60,10 @@ void MotionCore::cycle(Nanos now) noexcept {
   loop_.since_last_s =
       last_cycle_.count() < 0 ? loop_.config.period_s : std::chrono::duration<double>(now - last_cycle_).count();
   last_cycle_ = now;
+  if (loop_.since_last_s >= longest_gap_s_ || now - longest_gap_at_ > std::chrono::seconds(1)) {
+    longest_gap_s_ = loop_.since_last_s;
+    longest_gap_at_ = now;
+  }
   loop_.state_stale = false;
   read_machine(now);
   take_stop(now);
@@ -102,8 +106,28 @@ void MotionCore::read_machine(Nanos now) noexcept {
     if (f == FaultKind::StopInput) loop_.homed = loop_.referenced = false;  // the step count is no longer trusted
     fault(f, now);
   }
+  const bool starved = ms.any(st::kHostStarved);
+  if (starved && !host_starved_ && loop_.mode != Mode::Fault) host_stall(now);
+  host_starved_ = starved;
   outputs_.refresh();
   if (ms.latch_valid()) probe_.on_latch(now);
+}
+
+// The card ran out of setpoints with the path still moving (the loop stalled longer than
+// the lead) and braked on the path to rest: no fault. The path's ids fail (HostStall), the
+// machine is braked to rest here too and is usable at once (docs/servo-card-link.md).
+void MotionCore::host_stall(Nanos now) noexcept {
+  Event e;
+  e.kind = EventKind::Warn;
+  e.warning = Warning::HostStall;
+  e.value = static_cast<std::uint32_t>(std::lround(longest_gap_s_ * 1000));
+  e.p = loop_.cartesian(loop_.ms.position);
+  e.time = now;
+  loop_.emit(e);
+  if (loop_.mode == Mode::Path) {
+    path_.fail_queue(FailReason::HostStall, now);
+    loop_.brake_to_rest(Mode::Path, now);
+  }
 }
 
 // No event, but the io side shows the first change after rest at once.

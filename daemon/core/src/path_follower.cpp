@@ -102,8 +102,10 @@ void PathFollower::run(Nanos now) noexcept {
   // The path's time step: one period, or on a backend that bridges a late setpoint the time
   // that really passed since the last cycle (a stalled host; at most kMaxPathStep, beyond
   // which the card's watchdog has long stopped the machine).
-  const double dt =
-      loop_.hw.bridges_late_setpoints() ? std::clamp(loop_.since_last_s, period, kMaxPathStep) : period;
+  const double dt = loop_.hw.runs_path_on_own_clock()   ? std::clamp(loop_.since_last_s, 0.0, kMaxPathStep)
+                    : loop_.hw.bridges_late_setpoints() ? std::clamp(loop_.since_last_s, period, kMaxPathStep)
+                                                        : period;
+  path_time_ += dt;
   const planner::Sample& smp = sampler_.advance(dt, [this](planner::PlannedSegment& s) { return pop_segment(s); });
   // The queue ran out at rest: the last Done waits until the machine has arrived (settle).
   const bool resting = sampler_.idle() && !smp.busy;
@@ -143,6 +145,7 @@ void PathFollower::run(Nanos now) noexcept {
   if (held_count_ > 0 && held_probe_[0] != planner::ProbePhase::None && !outputs_.probe_powered())
     return fail_and_brake(FailReason::ProbeOff, now);
   hal::Setpoint sp;
+  sp.time = path_time_;
   for (int a = 0; a < loop_.n; ++a) {
     sp.position[a] = smp.pose[a];
     sp.velocity[a] = smp.velocity[a];

@@ -43,7 +43,8 @@ bool finite(const Point3& p) { return std::isfinite(p[0]) && std::isfinite(p[1])
 // Why a segment failed, as the spec numbers it (docs/ippdme.md, "Errors the server sends").
 ErrorCode error_of(core::FailReason why) {
   switch (why) {
-    case core::FailReason::Stopped: return ErrorCode::TransactionAborted;
+    case core::FailReason::Stopped:
+    case core::FailReason::HostStall: return ErrorCode::TransactionAborted;
     case core::FailReason::OutOfTravel:
     case core::FailReason::IntoLimit: return ErrorCode::MachineLimitEncountered;
     case core::FailReason::Faulted: return ErrorCode::MachineInErrorState;

@@ -47,7 +47,9 @@ void MessdEvents::limit(const core::Event& e) {
 void MessdEvents::warning(const core::Event& e) {
   auto w = warning_wording(e.warning);
   const std::string_view text = e.reason ? std::string_view(e.reason) : w.text;  // the loop's own why, when it says one
-  sessions_.broadcast(protocol::format_event("Warn", std::string(w.name) + " " + std::string(text)));
+  // HostStall carries how long the loop stalled: "Warn HostStall 35 ms stall beyond ..."
+  const std::string value = e.warning == core::Warning::HostStall ? std::to_string(e.value) + " " : "";
+  sessions_.broadcast(protocol::format_event("Warn", std::string(w.name) + " " + value + std::string(text)));
   spdlog::warn("{}: {} (at {:.3f} {:.3f} {:.3f})", w.name, text, e.p.x(), e.p.y(), e.p.z());
 }
 

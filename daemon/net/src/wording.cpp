@@ -52,6 +52,8 @@ Wording warning_wording(Warning w) {
     case Warning::HitIgnored: return {"HitIgnored", "probe touched while the machine stands; no point taken"};
     case Warning::HomingFailed: return {"HomingFailed", "reference search failed; the machine is not homed"};
     case Warning::MoveRefused: return {"MoveRefused", "the next move could not start (limit or tip touched)"};
+    case Warning::HostStall:
+      return {"HostStall", "ms stall beyond the card's lead: it braked; queue failed"};
   }
   return {"Unknown", ""};
 }
@@ -85,6 +87,7 @@ Wording fail_wording(core::FailReason f) {
       return {"PartNotFound", "no edge up to SearchDist past the target"};
     case core::FailReason::Refused: return {"Refused", "not plannable from where the Probe ended"};
     case core::FailReason::ProbeOff: return {"ProbeOff", "the probe is switched off: SetOut <id> <its output> on first"};
+    case core::FailReason::HostStall: return {"HostStall", "messd stalled beyond the card's lead; resend"};
   }
   return {"Unknown", ""};
 }

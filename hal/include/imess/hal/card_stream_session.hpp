@@ -4,9 +4,10 @@
 // handed to the motion core is the newest status frame with what the frames still on their
 // way will change laid over it (a move sent clears "profile end" until the card has it). A
 // lost or damaged frame in either direction, a status frame that does not come, a frame the
-// card does not acknowledge in time, or a card that reports a stream error or starvation
-// latches a communication timeout (status bit 0 on every axis, the core's CommLost) until
-// reset(). Real-time calls are noexcept and allocate nothing.
+// card does not acknowledge in time, or a card that reports a stream error latches a
+// communication timeout (status bit 0 on every axis, the core's CommLost) until reset(). A
+// starved card (the host stalled longer than the lead) is no fault: it reports kHostStarved.
+// Real-time calls are noexcept and allocate nothing.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -88,7 +89,8 @@ class CardStreamSession {
   AxisArray<double> shift_{};
   // Following: the path's tick for cycle base_cycle_, the last follow() cycle, the last knot.
   bool following_ = false;
-  std::uint32_t base_tick_ = 0, base_cycle_ = 0, follow_cycle_ = 0, last_knot_tick_ = 0;
+  std::uint32_t base_tick_ = 0, base_cycle_ = 0, follow_cycle_ = 0, last_knot_tick_ = 0, last_knot_n_ = 0;
+  double base_time_ = 0;  // s: the path time (Setpoint::time) of the path's first knot
   bool last_knot_rest_ = false;
   unsigned long frames_sent_ = 0, status_frames_ = 0, knots_sent_ = 0, errors_ = 0;
 };

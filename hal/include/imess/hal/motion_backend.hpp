@@ -20,6 +20,10 @@ inline constexpr std::uint32_t kCommTimeout = 1u << 0, kEmergency = 1u << 1, kDr
 // normally-closed safety inputs of a drive-kit machine (one bit per input, 1..4).
 inline constexpr std::uint32_t kStopInput = 1u << 10, kSafetyInput1 = 1u << 17, kSafetyInput2 = 1u << 18,
                                kSafetyInput3 = 1u << 19, kSafetyInput4 = 1u << 20;
+// The card's setpoints ran out with the path still moving (the host stalled longer than the
+// lead, docs/servo-card-link.md): it braked along the path to rest and holds there, loops
+// closed. Not a fault: the next motion command clears it.
+inline constexpr std::uint32_t kHostStarved = 1u << 11;
 inline constexpr std::uint32_t kSafetyInputs = kSafetyInput1 | kSafetyInput2 | kSafetyInput3 | kSafetyInput4;
 inline constexpr std::uint32_t kFaultMask =
     kCommTimeout | kEmergency | kDriveNotReady | kFollowingError | kDataError | kConfigError | kStopInput | kSafetyInputs;
@@ -66,6 +70,7 @@ struct MachineState {
 struct Setpoint {
   AxisVec position = AxisVec::Zero();
   AxisVec velocity = AxisVec::Zero();
+  double time = -1;  // s, the path's time of this setpoint (monotonic within a path); < 0: not given
 };
 
 struct AxisMove {
@@ -104,6 +109,10 @@ class MotionBackend {
   // setpoint continues where the machine went. False (the default): the machine waits or
   // brakes, and the path advances one period per cycle.
   virtual bool bridges_late_setpoints() const noexcept { return false; }
+  // The backend runs setpoints sent ahead on its own clock (a streamed card, stamped by
+  // Setpoint::time): the path's time is then exactly the time that passed, a stalled cycle
+  // included, so the setpoints after a stall meet the card where it went on.
+  virtual bool runs_path_on_own_clock() const noexcept { return false; }
   // Digital outputs, numbered 1..output_count() as the backend documents them (docs/hardware.md:
   // the card's output 1 powers the probe; drive-kit and parallel-port outputs per map).
   // set_output switches one; false: no such output, or the hardware did not take it. A

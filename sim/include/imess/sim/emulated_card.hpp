@@ -87,12 +87,14 @@ class EmulatedCard {
   // at rest, brakes at amax when the setpoints stop coming (kCommTimeout) or a limit closes.
   void follow_tick() noexcept;
   void end_following(bool brake) noexcept;
+  void brake_along_path() noexcept;  // starved: all following axes to rest together
   // The cubic Hermite from (p0, v0) to (p1, v1) of every following axis at s of span
   // seconds (s = 1 at the end), going on at v1 for late seconds past it.
   void track_cubic(double s, double span, double late) noexcept;
   bool following_into_limit() const noexcept;
   // Streaming: per tick the interpolated command between timed setpoints; on arrival at the
-  // last one at rest following ends, without one (starved) the axes brake (kCommTimeout).
+  // last one at rest following ends, without one (starved) the axes brake along the path
+  // and report kHostStarved until the next motion command.
   void knot_tick() noexcept;
   void stream_fault() noexcept;
   void emit_status() noexcept;
@@ -141,6 +143,7 @@ class EmulatedCard {
   std::uint8_t ack_ = 0;
   Status frame_status_ = Status::Ok;  // the first refusal since the last status frame
   unsigned long starvations_ = 0;
+  bool starved_ = false;  // kHostStarved: set by a starvation, cleared by the next motion command or ResetAxes
   // Timed setpoints: the span being interpolated (ticks t0_ to t1_, the axes' p0/v0 to
   // p1/v1) and those buffered behind it.
   std::uint32_t t0_ = 0, t1_ = 0;

@@ -35,6 +35,7 @@ enum class FailReason : std::uint8_t {
   PartNotFound,   // a Probe's search ran SearchDist beyond the target without an edge
   Refused,        // held behind a Probe, the planner refused it from the Probe's end (io side)
   ProbeOff,       // a Probe cycle began while the probe's power output was off
+  HostStall,      // the host stalled longer than the card's lead: the card braked on the path
 };
 
 // Why the loop refused a command; net maps each to a protocol error code.
@@ -55,6 +56,7 @@ enum class Warning : std::uint8_t {
   HitIgnored,       // probe edge while the loops hold the machine still
   HomingFailed,
   MoveRefused,      // a jog or GoTo queued behind a stop could not start (limit, tip)
+  HostStall,        // the card ran out of setpoints (Event::value: the longest stall, ms)
 };
 
 enum class FaultKind : std::uint8_t {
@@ -175,6 +177,7 @@ struct Event {
   bool probe_end = false;             // Done: closes a Probe cycle, p = where the machine stands
   AxisVec end = AxisVec::Zero();      // Done closing a Probe: every axis where the machine stands
   FailReason fail = FailReason::Stopped;  // Failed, QueueDropped
+  std::uint32_t value = 0;            // Warn HostStall: the longest stall of the loop, ms
   Nanos time{0};
 };
 

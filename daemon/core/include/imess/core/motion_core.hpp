@@ -68,6 +68,7 @@ class MotionCore {
 
  private:
   void read_machine(Nanos now) noexcept;  // this cycle's state; faults from it
+  void host_stall(Nanos now) noexcept;     // the card starved: warn, fail the path, brake
   void handle(const Command& c, Nanos now) noexcept;
   void take_stop(Nanos now) noexcept;
   bool superseded(const Command& c) const noexcept;
@@ -97,6 +98,9 @@ class MotionCore {
   int departure_wakes_ = 0;                  // (the io side looks for the first printed change)
   TripleBuffer<Snapshot> snapshot_;
   int comm_failures_ = 0;
+  bool host_starved_ = false;                // the card reported kHostStarved last cycle
+  double longest_gap_s_ = 0;                 // the longest time between cycles lately ...
+  Nanos longest_gap_at_{0};                  // ... and when it was (forgotten after a second)
   std::uint64_t cycles_ = 0;
   Nanos last_cycle_{-1};                     // the previous cycle's time (-1: none yet)
 

@@ -85,6 +85,7 @@ class PathFollower {
   int arrivals_count_ = 0;
   Nanos settle_since_{0};
   Nanos path_now_{0};  // the cycle's time, for events raised inside pop_segment
+  double path_time_ = 0;  // s, the sum of every path step taken (Setpoint::time), never reset
 };
 
 }  // namespace imess::core
