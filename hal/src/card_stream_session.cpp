@@ -62,6 +62,8 @@ void CardStreamSession::take(std::span<const std::uint8_t> frame) noexcept {
   card::StatusFrame s;
   if (!card::read_status(frame, s)) return lost();
   if (stream_status_ && s.clock - newest_.clock != status_ticks_) lost();  // one went missing
+  if (stream_status_ && s.starvations != newest_.starvations)  // a stall outlasted the lead: twice the lead from now
+    longest_gap_ = std::max(longest_gap_, (2 * lead() - settings_.status_period) / 1.5);
   newest_ = s;
   stream_status_ = true;
   status_cycle_ = cycle_;
@@ -151,6 +153,10 @@ bool CardStreamSession::command(std::span<const std::uint8_t> op_frame, Effect e
   return true;
 }
 
+double CardStreamSession::lead() const noexcept {
+  return std::clamp(1.5 * longest_gap_ + settings_.status_period, settings_.lead, std::max(settings_.lead, settings_.max_lead));
+}
+
 std::uint32_t CardStreamSession::card_now() const noexcept {
   return newest_.clock + delay_ticks_ + (cycle_ - status_cycle_) * ticks_per_cycle_;
 }
@@ -158,7 +164,12 @@ std::uint32_t CardStreamSession::card_now() const noexcept {
 bool CardStreamSession::follow(const Setpoint& sp) noexcept {
   const bool fresh = !following_ || cycle_ != follow_cycle_ + 1;  // a new path (or a gap in one)
   follow_cycle_ = cycle_;
+  if (sp.time >= 0) {  // the host's stalls, seen as the path time's steps (halved over ~70 s of following)
+    if (!fresh && last_time_ >= 0) longest_gap_ = std::max(longest_gap_ * 0.99999, sp.time - last_time_);
+    last_time_ = sp.time;
+  }
   if (fresh) {
+    lead_ticks_ = static_cast<std::uint32_t>(std::lround(lead() * ticks_per_cycle_ / settings_.period));
     std::uint32_t start = card_now() + lead_ticks_;
     if (knots_sent_ > 0 && !card::tick_after(start, last_knot_tick_)) start = last_knot_tick_ + ticks_per_cycle_;
     base_tick_ = start;

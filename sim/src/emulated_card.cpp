@@ -362,9 +362,19 @@ Status EmulatedCard::jog_stop(LinkReader& r) noexcept {
       const double d = decel[a][0];
       if (!(d > 0) || !std::isfinite(d)) return Status::BadValue;
     }
+  // Following a streamed path, the axes brake on it together, each within its acceleration,
+  // from the card's own velocities: the host's decelerations follow its plan, which runs the
+  // lead ahead of the card (on another segment, a component near 0 would brake for ever).
+  // (Request/reply: the host's plan is a period ahead at most; its decelerations are kept.)
+  unsigned braked = 0;
+  if (following_ && streaming_) {
+    for (int a = 0; a < kAxes; ++a)
+      if (axes_[a].following) braked |= 1u << a;
+    brake_along_path();
+  }
   if (following_) end_following(true);  // axes the stop does not name brake at amax
   for (int a = 0; a < kAxes; ++a)
-    if (named(mask, a)) axes_[a].profile.stop(std::min(decel[a][0], axes_[a].amax));
+    if (named(mask, a) && !named(braked, a)) axes_[a].profile.stop(std::min(decel[a][0], axes_[a].amax));
   return Status::Ok;
 }
 

@@ -105,8 +105,10 @@ Status EmulatedCard::segment(LinkReader& r) noexcept {
   if (auto s = card::read_knot(r, k); s != Status::Ok) return s;
   for (int a = 0; a < kAxes; ++a)
     if (named(k.mask, a) && std::abs(k.velocity[a]) > kSpeedMargin * axes_[a].vmax) return Status::BadValue;
-  for (const auto& ax : axes_)
-    if (ax.faults & st::kFaultMask) return Status::NotReady;  // a broken stream resumes only after ResetAxes
+  // A broken stream resumes only after ResetAxes. The card's axes only: a fault raised on
+  // "every axis" also marks the unused entries, which ResetAxes's table never names.
+  for (int a = 0; a < kAxes; ++a)
+    if (axes_[a].faults & st::kFaultMask) return Status::NotReady;
   if (following_) {
     const std::uint32_t last = knot_count_ > 0 ? knots_[(knot_head_ + knot_count_ - 1) % knots_.size()].tick : t1_;
     if (!card::tick_after(k.tick, last)) return Status::BadValue;

@@ -61,14 +61,15 @@ TEST_CASE("card stall: a stall longer than the lead: the card brakes on the path
   s.queue(chord_circle(start, 20, 1.0, 1, 100));
   for (int i = 0; i < 400; ++i) s.step();  // at speed on the circle
   REQUIRE(s.rig.mode() == Mode::Path);
-  stall(s, 0.060);
+  const double lead = s.session().lead();
+  stall(s, 0.150);
   REQUIRE(s.run_until([&] { return s.rig.mode() == Mode::Idle; }, 2));
   const auto& ev = s.rig.events();
   const auto warn = std::find_if(ev.begin(), ev.end(), [](const Event& e) { return e.kind == EventKind::Warn; });
   REQUIRE(warn != ev.end());
   CHECK(warn->warning == core::Warning::HostStall);
-  CHECK(warn->value >= 60);   // ms: the loop's longest gap, the stall itself
-  CHECK(warn->value <= 62);
+  CHECK(warn->value >= 150);  // ms: the loop's longest gap, the stall itself
+  CHECK(warn->value <= 152);
   CHECK(s.card().starvations() == 1);
   CHECK(count(ev, EventKind::Fault) == 0);
   CHECK(count(ev, EventKind::Failed) > 0);
@@ -86,4 +87,45 @@ TEST_CASE("card stall: a stall longer than the lead: the card brakes on the path
   REQUIRE(s.run_until([&] { return count(s.rig.events(), EventKind::Done) == 1; }, 3));
   CHECK(count(s.rig.events(), EventKind::Fault) == 0);
   CHECK(count(s.rig.events(), EventKind::Warn) == 0);
+  // The lead grew: a card that starved doubles it (up to max_lead).
+  std::printf("card stall: lead %.0f ms before a 150 ms stall, %.0f ms after\n", lead * 1000, s.session().lead() * 1000);
+  CHECK(s.session().lead() >= 1.95 * lead);  // (the memory of stalls fades slowly while following)
+  CHECK(s.session().lead() <= hal::StreamSettings{}.max_lead);
+}
+
+TEST_CASE("card stall: a stop during a streamed path brakes to rest and the machine stands idle") {
+  StreamRig s;
+  s.queue(chord_circle(s.rig.position(), 20, 1.0, 1, 100));
+  for (int i = 0; i < 400; ++i) s.step();
+  REQUIRE(s.rig.mode() == Mode::Path);
+  s.rig.stop();
+  CHECK(s.run_until([&] { return s.rig.mode() == Mode::Idle; }, 1));
+  const Vec3 rest = s.rig.position();
+  for (int i = 0; i < 500; ++i) s.step();
+  std::printf("card stall: stopped, mode %d, moved %.4f mm in 0.5 s after\n", static_cast<int>(s.rig.mode()), (s.rig.position() - rest).norm());
+  CHECK((s.rig.position() - rest).norm() < 0.005);  // the position loop settles within its in-position window
+}
+
+TEST_CASE("card stall: a feed hold, its resume and a stop on a streamed path: the machine comes to rest") {
+  StreamRig s;
+  const Vec3 start = s.rig.position();
+  std::vector<planner::Request> path;
+  for (int i = 0; i < 3; ++i) {
+    planner::Line l;
+    l.id = static_cast<std::uint32_t>(i + 1);
+    l.target = pose_of(start + Vec3(30.0 * (i + 1), -10.0 * (i + 1), 0));
+    l.feed = 100;
+    path.push_back(l);
+  }
+  s.queue(path);
+  for (int i = 0; i < 300; ++i) s.step();
+  REQUIRE(s.rig.simple(CommandKind::Pause) == core::Refusal::None);
+  for (int i = 0; i < 500; ++i) s.step();
+  REQUIRE(s.rig.simple(CommandKind::Resume) == core::Refusal::None);
+  for (int i = 0; i < 300; ++i) s.step();
+  s.rig.stop();
+  const bool rested = s.run_until([&] { return s.rig.mode() == Mode::Idle; }, 1);
+  std::printf("card stall: hold, resume, stop: mode %d, card following %d, starvations %lu\n", static_cast<int>(s.rig.mode()),
+              0, s.card().starvations());
+  CHECK(rested);
 }

@@ -35,6 +35,8 @@ void load(JsonObject& b, DaemonConfig& cfg) {
   cfg.sim.streamed = b.text("link", "request-reply", {"request-reply", "serial"}) == "serial";
   cfg.sim.line.baud = b.number("baud", cfg.sim.line.baud, 9600, 10e6);
   cfg.card.stream.baud = cfg.sim.line.baud;
+  // The least lead of the streamed setpoints (docs/servo-card-link.md, "Host stalls").
+  cfg.card.stream.lead = b.number("lead_ms", cfg.card.stream.lead * 1000, 5, cfg.card.stream.max_lead * 1000) / 1000;
 }
 
 std::unique_ptr<Machine> make(const DaemonConfig& cfg, const hal::Clock& clock, bool force_reboot) {

@@ -22,7 +22,10 @@ struct StreamSettings {
   double period = 0.001;          // s, the motion period: one read_state() per period
   double status_period = 0.005;   // s, the card's status frames
   int segment_cycles = 4;         // a timed setpoint every this many periods (and when the path comes to rest)
-  double lead = 0.012;            // s, setpoints are stamped this far ahead of the card's clock
+  // s, setpoints are stamped at least this far ahead of the card's clock: the longest stall of
+  // the host it rides out (docs/servo-card-link.md, "Host stalls": measured, then chosen).
+  double lead = 0.060;
+  double max_lead = 0.200;        // s, the most the lead grows to after longer stalls (the card buffers 64 knots)
   double baud = 115200;           // the line, for the age of a status frame when it is read (0: no delay)
   int timeout_cycles = 20;        // periods without a status frame, or without the ack of a frame: CommLost
 };
@@ -59,6 +62,11 @@ class CardStreamSession {
   unsigned long errors() const noexcept { return errors_; }
   bool comm_lost() const noexcept { return comm_lost_; }
   unsigned starvations() const noexcept { return newest_.starvations; }
+  // The lead the next path gets: the configured one, or 1.5 × the longest stall seen while
+  // following lately plus a status period, when that is more (at most max_lead); a card that
+  // starved doubles it.
+  double lead() const noexcept;
+  double longest_stall() const noexcept { return longest_gap_; }
 
  private:
   struct Pending {
@@ -91,6 +99,8 @@ class CardStreamSession {
   bool following_ = false;
   std::uint32_t base_tick_ = 0, base_cycle_ = 0, follow_cycle_ = 0, last_knot_tick_ = 0, last_knot_n_ = 0;
   double base_time_ = 0;  // s: the path time (Setpoint::time) of the path's first knot
+  double last_time_ = -1;  // s: the path time of the last follow(); -1 none
+  double longest_gap_ = 0;  // s: the longest path step between two follow() calls lately (decays)
   bool last_knot_rest_ = false;
   unsigned long frames_sent_ = 0, status_frames_ = 0, knots_sent_ = 0, errors_ = 0;
 };

@@ -44,9 +44,12 @@ class TimedCardLink final : public hal::Link, public hal::StreamLink {
   bool started_ = false;
   double t_start_ = 0;
   long ticks_ = 0;
-  // Frames arrived at the host and not yet polled (length 0: a damaged one).
-  std::array<std::array<std::uint8_t, hal::kMaxPayload>, 16> inbox_{};
-  std::array<std::size_t, 16> inbox_len_{};
+  // Frames arrived at the host and not yet polled (length 0: a damaged one): as many status
+  // frames as a tty's 4 KB receive buffer holds (about 0.4 s of them), so a stalled host
+  // finds them all, as on a real line.
+  static constexpr std::size_t kInbox = 80;
+  std::array<std::array<std::uint8_t, hal::kMaxPayload>, kInbox> inbox_{};
+  std::array<std::size_t, kInbox> inbox_len_{};
   std::size_t inbox_head_ = 0, inbox_count_ = 0;
   long damaged_at_card_ = 0, damaged_at_host_ = 0;
 };
