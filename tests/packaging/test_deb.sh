@@ -3,8 +3,9 @@
 # the programs already built: seconds, no second build), unpacks it with dpkg-deb and checks what
 # a controller box gets — every program, every man page (gzip -9n), /etc/imess/messd.json as a
 # conffile that the unpacked messd loads and serves, the systemd unit (systemd-analyze verify
-# where it works) and the udev rule, the control fields (Depends from dpkg-shlibdeps) — and
-# runs lintian where installed (errors fail, warnings are shown).
+# where it works) and the udev rule, the control fields (Depends from dpkg-shlibdeps) —,
+# installs, upgrades, removes and purges it with dpkg in an empty root (as root), and runs
+# lintian where installed (errors fail, warnings are shown).
 # Usage: test_deb.sh BUILD_DIR VERSION PROGRAM...   Exit 77 (skipped) without dpkg-deb or cpack.
 set -uo pipefail
 build=$1 version=$2
@@ -111,6 +112,30 @@ elif [ -f "$unit" ]; then
     echo "systemd-analyze cannot verify here (no systemd): $out"
   else
     fail "systemd-analyze verify:"; echo "$out"
+  fi
+fi
+
+# Installed, upgraded, removed and purged by dpkg into an empty root: the maintainer scripts run
+# (DPKG_ROOT set, so they leave this system alone), an edited configuration survives the
+# upgrade and the removal, the purge takes it.
+if [ "$(id -u)" -ne 0 ]; then
+  echo "not root: the install into an empty root is not tried"
+else
+  droot=$tmp/dpkg-root
+  mkdir -p "$droot/var/lib/dpkg/info" "$droot/var/lib/dpkg/updates" "$droot/var/log"
+  touch "$droot/var/lib/dpkg/status"
+  dpkg_r() { dpkg --root="$droot" --force-script-chrootless --force-depends --force-confold "$@" >>"$tmp/dpkg.log" 2>&1; }
+  if ! dpkg_r -i "$deb"; then fail "dpkg -i into an empty root:"; cat "$tmp/dpkg.log"
+  else
+    dconf=$droot/etc/imess/messd.json
+    sed -i 's/"report_hz": 10/"report_hz": 25/' "$dconf"
+    dpkg_r -i "$deb" || fail "dpkg -i again (an upgrade)"
+    grep -q '"report_hz": 25' "$dconf" || fail "the upgrade replaced the edited /etc/imess/messd.json"
+    dpkg_r -r imess || fail "dpkg -r"
+    [ ! -e "$droot/usr/bin/messd" ] && [ -f "$dconf" ] || fail "dpkg -r: messd should be gone and the configuration kept"
+    dpkg_r -P imess || fail "dpkg -P"
+    [ ! -e "$dconf" ] || fail "dpkg -P kept /etc/imess/messd.json"
+    [ $status -eq 0 ] && echo "dpkg into an empty root: installed, upgraded keeping the edited configuration, removed, purged"
   fi
 fi
 
