@@ -86,8 +86,9 @@ else
     fail "messd does not start on etc/imess/messd.json:"; cat "$tmp/messd.out" "$tmp/messd.err"
   fi
   messd_pid=""
-  grep -q '"folder": "/usr/share/imess/programs"' "$conf" || fail "etc/imess/messd.json's programs folder is not /usr/share/imess/programs"
-  [ -n "$(ls "$root/usr/share/imess/programs" 2>/dev/null)" ] || fail "no example programs in usr/share/imess/programs"
+  grep -q '"folder": "/usr/share/imess/examples/programs"' "$conf" || fail "etc/imess/messd.json's programs folder is not /usr/share/imess/examples/programs"
+  [ -n "$(ls "$root/usr/share/imess/examples/programs" 2>/dev/null)" ] || fail "no example programs in usr/share/imess/examples/programs"
+  [ -f "$root/usr/share/imess/config/sim-servo-card.json" ] || fail "the shipped configurations are not in usr/share/imess/config"
 fi
 
 # The unit and the udev rule.
