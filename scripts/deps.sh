@@ -7,10 +7,15 @@ imess_packages=(cmake ninja-build g++ pkg-config libboost-dev libeigen3-dev libs
 # and matplotlib for the plots.
 imess_bench_packages=(rt-tests python3 python3-matplotlib)
 
+# Only for scripts/package and the suite's packaging test: dpkg-dev, whose dpkg-shlibdeps
+# computes the package's Depends (lintian, which scripts/package adds, is optional for the test).
+imess_package_packages=(dpkg-dev)
+
 # Only for scripts/test: the independent readers the export and FreeCAD plugin tests use
 # (ezdxf for DXF; freecadcmd for STEP, IGES, PLY, ASC and the plugin; Debian's python3 comes
-# with them), and what scripts/bench needs, which the suite's smoke test runs.
-imess_test_packages=(python3-ezdxf freecad-python3 "${imess_bench_packages[@]}")  # python3 among them
+# with them), what scripts/bench needs, which the suite's smoke test runs, and what the
+# packaging test packs with.
+imess_test_packages=(python3-ezdxf freecad-python3 "${imess_bench_packages[@]}" "${imess_package_packages[@]}")  # python3 among them
 # LinuxCNC's own G-code interpreter, rs274 (tests/programs/test_rs274.cpp judges ours by it);
 # without its recommendations, which would bring a real-time kernel and a desktop.
 imess_test_packages_bare=(linuxcnc-uspace)

@@ -31,7 +31,7 @@ const char* usage_text() {
          "  -dt            controller status bits every 5 s\n"
          "  -p             motion-loop timing every 5 s\n"
          "  -r             force a controller reboot (reload firmware and parameters)\n"
-         "  -v             version\n"
+         "  -v, --version  version\n"
          "  -h, --help     this text\n";
 }
 
