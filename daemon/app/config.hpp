@@ -22,7 +22,13 @@ struct DaemonConfig {
   std::string backend = "sim-servo-card";
   hal::ServoCardConfig card;
   PortBackendConfig ports;  // parport / drive-kit backends (port_backend_config.hpp; read in backend_config.cpp)
-  sim::SimulatedCmmConfig sim;
+  // The built-in machine's card streams over a simulated 115 200 baud line (it rides out host
+  // stalls shorter than the lead); "link": "request-reply" in the backend section chooses the other.
+  sim::SimulatedCmmConfig sim = [] {
+    sim::SimulatedCmmConfig s;
+    s.streamed = true;
+    return s;
+  }();
   journal::JournalConfig journal;  // dir empty: default_journal_dir()
   bool sim_probe_nc_set = false;  // sim.probe.normally_closed given explicitly
   bool sim_loop_time = false;     // sim.time "loop": the machine's clock moves one period per cycle

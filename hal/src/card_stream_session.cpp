@@ -43,6 +43,7 @@ void CardStreamSession::start(std::uint32_t ticks_per_second, std::uint32_t cloc
   stream_status_ = comm_lost_ = refused_ = following_ = false;
   seq_ = 0;
   cycle_ = status_cycle_ = 0;
+  line_free_ = 0;
   motion_ = loops_ = reset_ = latch_ = Pending{};
   shift_pending_ = {};
   shift_ = {};
@@ -87,7 +88,9 @@ bool CardStreamSession::read_state(MachineState& out) noexcept {
   }
   const auto timeout = static_cast<std::uint32_t>(settings_.timeout_cycles);
   if (cycle_ - status_cycle_ > timeout) lost();  // the status frames stopped coming
-  if (card::seq_after(seq_, newest_.ack) && cycle_ - sent_at_[static_cast<std::uint8_t>(newest_.ack + 1)] > timeout)
+  // (signed: a frame still queued behind others arrives in a later cycle)
+  if (card::seq_after(seq_, newest_.ack) &&
+      static_cast<std::int32_t>(cycle_ - sent_at_[static_cast<std::uint8_t>(newest_.ack + 1)]) > static_cast<std::int32_t>(timeout))
     lost();  // a frame the card never acknowledged
 
   const bool reset = pending(reset_), loops = pending(loops_), motion = pending(motion_), latch = pending(latch_);
@@ -119,7 +122,13 @@ bool CardStreamSession::send(std::span<const std::uint8_t> op_frame) noexcept {
     return false;
   }
   ++seq_;
-  sent_at_[seq_] = cycle_;
+  // Its acknowledgement is awaited from when its last byte crosses the line: behind the
+  // frames still queued before it, at the baud rate.
+  const double on_line = settings_.baud > 0 ? static_cast<double>(frame_.bytes().size() + kFrameOverhead) * kBitsPerByte /
+                                                  settings_.baud / settings_.period
+                                            : 0.0;
+  line_free_ = std::max(line_free_, static_cast<double>(cycle_)) + on_line;
+  sent_at_[seq_] = static_cast<std::uint32_t>(std::ceil(line_free_));
   ++frames_sent_;
   return true;
 }

@@ -50,7 +50,8 @@ double extreme_or_random(std::mt19937_64& rng, double lo, double hi) {
 class BoundsWatch {
  public:
   explicit BoundsWatch(const app::DaemonConfig& cfg)
-      : cfg_(cfg), window_(cfg.sim.streamed ? kStreamedWindow : kWindow), jitter_(cfg.sim.streamed ? kStreamedJitter : 0) {
+      : cfg_(cfg), streamed_(cfg.backend == "sim-servo-card" && cfg.sim.streamed), window_(streamed_ ? kStreamedWindow : kWindow),
+        jitter_(streamed_ ? kStreamedJitter : 0) {
     for (int a = 0; a < n(); ++a) {
       envelope_lo_[a] = cfg.core.axes[a].travel_min;
       envelope_hi_[a] = cfg.core.axes[a].travel_max;
@@ -64,7 +65,7 @@ class BoundsWatch {
     const hal::AxisVec step = s.position - before.p;
     // A cycle measures a speed where a position arrived: every cycle on a machine read each
     // cycle, a changed position on a streamed card (an unchanged one may be a frame old).
-    const bool arrived = !cfg_.sim.streamed || step != hal::AxisVec::Zero();
+    const bool arrived = !streamed_ || step != hal::AxisVec::Zero();
     history_[cycle_ % kHistory] = {s.position, loops_moving(mode), arrived ? cycle_ : before.arrival};
     if ((mode == Mode::Home || homing_) && redefined(step))  // homing gave an axis its coordinate: not motion
       for (auto& h : history_) h.motor = false;
@@ -181,6 +182,7 @@ class BoundsWatch {
   }
 
   const app::DaemonConfig& cfg_;
+  bool streamed_;  // the servo card streamed: positions come in status frames
   int window_;
   double jitter_;
   std::array<Sample, kHistory> history_{};
@@ -296,7 +298,7 @@ TEST_CASE("bounded motion on sim-parport-shd.json") { run_property("sim-parport-
 TEST_CASE("bounded motion on sim-parport-3dstep.json") { run_property("sim-parport-3dstep.json", 3); }
 TEST_CASE("bounded motion on sim-portio-drive.json") { run_property("sim-portio-drive.json", 4); }
 TEST_CASE("bounded motion on sim-portio-drive-map-a.json") { run_property("sim-portio-drive-map-a.json", 5); }
-TEST_CASE("bounded motion on sim-servo-card-serial.json") { run_property("sim-servo-card-serial.json", 6); }
+TEST_CASE("bounded motion on sim-servo-card-request-reply.json") { run_property("sim-servo-card-request-reply.json", 6); }
 TEST_CASE("bounded motion on sim-mrm-arm.json") { run_property("sim-mrm-arm.json", 7); }
 TEST_CASE("bounded motion on sim-servo-card-loop-time.json") { run_property("sim-servo-card-loop-time.json", 8); }
 
@@ -307,5 +309,5 @@ TEST_CASE("every shipped configuration is covered by the bounded-motion property
   std::sort(shipped.begin(), shipped.end());
   CHECK(shipped == std::vector<std::string>{"sim-mrm-arm.json", "sim-parport-3dstep.json", "sim-parport-shd.json",
                                             "sim-portio-drive-map-a.json", "sim-portio-drive.json",
-                                            "sim-servo-card-loop-time.json", "sim-servo-card-serial.json", "sim-servo-card.json"});
+                                            "sim-servo-card-loop-time.json", "sim-servo-card-request-reply.json", "sim-servo-card.json"});
 }

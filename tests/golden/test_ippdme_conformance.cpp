@@ -39,7 +39,7 @@ TEST_CASE("I++ DME conformance: a refused line is acknowledged first, then its e
 }
 
 TEST_CASE("I++ DME conformance: a refused line behind a running GoTo completes after it") {
-  const auto lines = conformance_lines(kIppStart + "2> 00002 GoTo(Z(300))\n= 100 ms\n2> 00003 Get(W())\n= 4000 ms\n");
+  const auto lines = conformance_lines(kIppStart + "2> 00002 GoTo(Z(300))\n= 100 ms\n2> 00003 Get(W())\n= 5000 ms\n");
   const long ack = index_of(lines, "00003 &"), go_to = index_of(lines, "00002 %");
   const long error = index_of(lines, "00003 ! Error(3, 0505, Get, \"Argument not recognized\")"), done = index_of(lines, "00003 %");
   REQUIRE(ack >= 0);

@@ -40,7 +40,7 @@ TEST_CASE("I++ DME finding: an error while a GoTo runs answers the queue behind 
       "2>> 00003 Get(Z())\n"
       "= 100 ms\n"
       "2> 00004 Get(Z()\n"
-      "= 4000 ms\n");
+      "= 5000 ms\n");
   const long go_to = index_of(lines, "00002 %"), get = index_of(lines, "00003 %");
   REQUIRE(go_to >= 0);
   REQUIRE(get >= 0);

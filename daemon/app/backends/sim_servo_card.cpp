@@ -1,6 +1,6 @@
 // "sim-servo-card": the real servo-card driver over a simulated link to the simulated CMM
 // (the default backend; the only one whose absolute scales make it referenced at start):
-// request/reply at no cost, or ("link": "serial") streamed over a byte-timed serial line.
+// streamed over a byte-timed serial line ("link": "serial", the default), or request/reply at no cost.
 #include "backend_registry.hpp"
 #include "imess/hal/servo_card_driver.hpp"
 #include "imess/sim/simulated_cmm.hpp"
@@ -32,7 +32,7 @@ void load(JsonObject& b, DaemonConfig& cfg) {
   cfg.card.firmware = b.text("firmware", cfg.card.firmware);
   double ferr = b.number("max_following_error", cfg.card.max_following_error[0], 0.01, 100);
   cfg.card.max_following_error = {ferr, ferr, ferr};
-  cfg.sim.streamed = b.text("link", "request-reply", {"request-reply", "serial"}) == "serial";
+  cfg.sim.streamed = b.text("link", "serial", {"serial", "request-reply"}) == "serial";
   cfg.sim.line.baud = b.number("baud", cfg.sim.line.baud, 9600, 10e6);
   cfg.card.stream.baud = cfg.sim.line.baud;
   // The least lead of the streamed setpoints (docs/servo-card-link.md, "Host stalls").

@@ -67,7 +67,7 @@ void MotionCore::cycle(Nanos now) noexcept {
   loop_.state_stale = false;
   read_machine(now);
   take_stop(now);
-  for (int i = 0; i < kCommandsPerCycle; ++i) {
+  for (int i = 0; i < kCommandsPerCycle && loop_.hw.ready_for_command(); ++i) {
     Command c;
     if (!commands_.pop(c)) break;
     loop_.config.params = params_in_.read();  // a Set sent before this command applies to it

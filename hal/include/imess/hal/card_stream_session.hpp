@@ -66,6 +66,8 @@ class CardStreamSession {
   // following lately plus a status period, when that is more (at most max_lead); a card that
   // starved doubles it.
   double lead() const noexcept;
+  // The line carries at most a motion period of frames not yet sent (by the baud rate).
+  bool line_ready() const noexcept { return line_free_ <= static_cast<double>(cycle_) + 1.0; }
   double longest_stall() const noexcept { return longest_gap_; }
 
  private:
@@ -100,6 +102,7 @@ class CardStreamSession {
   std::uint32_t base_tick_ = 0, base_cycle_ = 0, follow_cycle_ = 0, last_knot_tick_ = 0, last_knot_n_ = 0;
   double base_time_ = 0;  // s: the path time (Setpoint::time) of the path's first knot
   double last_time_ = -1;  // s: the path time of the last follow(); -1 none
+  double line_free_ = 0;   // the cycle (fractional) by which every frame sent has crossed the line
   double longest_gap_ = 0;  // s: the longest path step between two follow() calls lately (decays)
   bool last_knot_rest_ = false;
   unsigned long frames_sent_ = 0, status_frames_ = 0, knots_sent_ = 0, errors_ = 0;

@@ -113,6 +113,11 @@ class MotionBackend {
   // Setpoint::time): the path's time is then exactly the time that passed, a stalled cycle
   // included, so the setpoints after a stall meet the card where it went on.
   virtual bool runs_path_on_own_clock() const noexcept { return false; }
+  // False while the link to the controller still carries earlier commands (a streamed serial
+  // line: a flood of GoTo lines outruns 115 200 baud): the core then leaves the next command in
+  // its ring for a later cycle, so the line's backlog stays short and a stop never waits
+  // behind it. Real-time: noexcept.
+  virtual bool ready_for_command() const noexcept { return true; }
   // Digital outputs, numbered 1..output_count() as the backend documents them (docs/hardware.md:
   // the card's output 1 powers the probe; drive-kit and parallel-port outputs per map).
   // set_output switches one; false: no such output, or the hardware did not take it. A

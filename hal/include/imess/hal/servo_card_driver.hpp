@@ -47,6 +47,7 @@ class ServoCardDriver final : public MotionBackend {
   // Streamed: the card runs the buffered path on its own clock through a host stall; the
   // knots are stamped by the setpoints' path time.
   bool runs_path_on_own_clock() const noexcept override { return session_.has_value(); }
+  bool ready_for_command() const noexcept override { return !session_ || session_->line_ready(); }
   bool stop(const AxisVec& decel) noexcept override;
   bool set_position(int axis, double value) noexcept override;
   bool reset_faults() noexcept override;
