@@ -25,9 +25,9 @@ namespace {
 
 const double kTip = 2.0;            // messd's TipRadius and the simulated ball (fast-cmm.json: the defaults)
 const double kSafeZ = 100.0;        // above the sphere (the ball centre touches up to 74.5) and the cube (82)
-const double kHalfMicron = 0.0005;  // the fits came out within 0.05 um; the files hold 0.1 um
+const double kFitTolerance = 0.0005;  // the fits came out within 0.05 um; the files hold 0.1 um
 
-std::string config() { return std::string(IMESS_SOURCE_DIR) + "/tests/e2e/fast-cmm.json"; }
+std::string capture_config() { return std::string(IMESS_SOURCE_DIR) + "/tests/e2e/fast-cmm.json"; }
 
 std::string words(const char* axes, const Vector3d& p) {
   char buf[96];
@@ -81,7 +81,7 @@ Vector3d vec(const nlohmann::json& j) { return {j[0].get<double>(), j[1].get<dou
 }  // namespace
 
 TEST_CASE("messcap captures slantwise touches into .hits from live messd and messcap fit finds the scene's sphere and top") {
-  DaemonProcess messd({"--config", config()});
+  DaemonProcess messd({"--config", capture_config()});
   TempDir dir;
   const int port = messd.port();
   LineClient c(messd.port());
@@ -107,8 +107,8 @@ TEST_CASE("messcap captures slantwise touches into .hits from live messd and mes
 
   const auto ball = fit({"sphere", dir.file("ball.hits")});
   INFO(ball.dump());
-  CHECK(ball["diameter"].get<double>() == Approx(sphere.diameter).margin(kHalfMicron));
-  CHECK((vec(ball["center"]) - sphere.center).norm() < kHalfMicron);
+  CHECK(ball["diameter"].get<double>() == Approx(sphere.diameter).margin(kFitTolerance));
+  CHECK((vec(ball["center"]) - sphere.center).norm() < kFitTolerance);
   CHECK(fit({"--surface", "sphere", dir.file("ball.hits")})["diameter"].get<double>() > sphere.diameter + 0.3);
   // capture --fit into .hits printed the same compensated sphere.
   const auto out = in_machine->out();
@@ -116,8 +116,8 @@ TEST_CASE("messcap captures slantwise touches into .hits from live messd and mes
   CHECK(printed["diameter"].get<double>() == Approx(ball["diameter"].get<double>()).margin(1e-5));
   // In the part frame: the same sphere where the frame sees it (every approach turned with it).
   const auto ball_in_part = fit({"sphere", dir.file("ball-part.hits")});
-  CHECK(ball_in_part["diameter"].get<double>() == Approx(sphere.diameter).margin(kHalfMicron));
-  CHECK((vec(ball_in_part["center"]) - part.point_from_parent(sphere.center)).norm() < kHalfMicron);
+  CHECK(ball_in_part["diameter"].get<double>() == Approx(sphere.diameter).margin(kFitTolerance));
+  CHECK((vec(ball_in_part["center"]) - part.point_from_parent(sphere.center)).norm() < kFitTolerance);
 
   // The cube's top (z 80), away from its bore and its rounded front edge, touched 30 deg off
   // the vertical from four sides and one diagonal.
@@ -128,6 +128,6 @@ TEST_CASE("messcap captures slantwise touches into .hits from live messd and mes
   const auto top = fit({"plane", dir.file("top.hits")});
   INFO(top.dump());
   CHECK(std::abs(vec(top["normal"]).z()) == Approx(1.0).margin(1e-6));
-  CHECK(vec(top["point"]).z() == Approx(80.0).margin(kHalfMicron));
+  CHECK(vec(top["point"]).z() == Approx(80.0).margin(kFitTolerance));
   CHECK(fit({"--surface", "plane", dir.file("top.hits")})["point"][2].get<double>() > 80.2);
 }
