@@ -129,7 +129,12 @@ TEST_CASE("JogSession: blank keep-alives go out while a jog runs, not while the 
   while (std::chrono::steady_clock::now() < until) session.pump(20ms);
   CHECK(keepalives(daemon) == idle_start);  // idle: one every 30 s at most
   session.act(JogAction::XPlus);
-  until = std::chrono::steady_clock::now() + 600ms;
-  while (std::chrono::steady_clock::now() < until) session.pump(20ms);
-  CHECK(keepalives(daemon) - idle_start >= 4);  // every 100 ms, well inside Watch 500
+  // Every 100 ms, well inside Watch 500: 4 within 600 ms on a quiet host; a busy one (the
+  // suite beside it) may delay the pump, so the deadline is generous and the rate is judged
+  // by the time they took.
+  const auto jog_start = std::chrono::steady_clock::now();
+  until = jog_start + 3s;
+  while (keepalives(daemon) - idle_start < 4 && std::chrono::steady_clock::now() < until) session.pump(20ms);
+  CHECK(keepalives(daemon) - idle_start >= 4);
+  CHECK(std::chrono::steady_clock::now() - jog_start < 2s);  // not one per Watch period or slower
 }
