@@ -40,7 +40,7 @@ void CardStreamSession::start(std::uint32_t ticks_per_second, std::uint32_t cloc
     newest_.status[a] = state.status[a] & ~status::kLatchValid;
     newest_.inputs[a] = state.inputs[a];
   }
-  stream_status_ = comm_lost_ = refused_ = following_ = false;
+  stream_status_ = comm_lost_ = link_broken_ = refused_ = following_ = false;
   seq_ = 0;
   cycle_ = status_cycle_ = 0;
   motion_ = loops_ = reset_ = latch_ = Pending{};
@@ -58,10 +58,17 @@ void CardStreamSession::lost() noexcept {
   ++errors_;
 }
 
+void CardStreamSession::broken() noexcept {
+  link_broken_ = true;
+  ++errors_;
+}
+
 void CardStreamSession::take(std::span<const std::uint8_t> frame) noexcept {
   card::StatusFrame s;
-  if (!card::read_status(frame, s)) return lost();
-  if (stream_status_ && s.clock - newest_.clock != status_ticks_) lost();  // one went missing
+  if (!card::read_status(frame, s)) return broken();
+  // One went missing (lost, or damaged and counted already): counted, and this one is taken.
+  if (stream_status_ && s.clock - newest_.clock != status_ticks_ && !damaged_since_) ++errors_;
+  damaged_since_ = false;
   if (stream_status_ && s.starvations != newest_.starvations) lost();      // the card ran dry
   newest_ = s;
   stream_status_ = true;
@@ -73,7 +80,7 @@ void CardStreamSession::take(std::span<const std::uint8_t> frame) noexcept {
     refused_ = true;
     ++errors_;
   }
-  if (s.flags & card::flag::kStreamError) lost();  // it saw a damaged or missing host frame
+  if (s.flags & card::flag::kStreamError) broken();  // it saw a damaged or missing host frame
 }
 
 bool CardStreamSession::read_state(MachineState& out) noexcept {
@@ -81,13 +88,19 @@ bool CardStreamSession::read_state(MachineState& out) noexcept {
   for (;;) {
     const int n = link_.poll(rx_);
     if (n == 0) break;
-    if (n < 0) lost();
-    else take(std::span<const std::uint8_t>(rx_.data(), static_cast<std::size_t>(n)));
+    if (n < 0) {  // damaged: counted; the stream goes on with the next status frame
+      ++errors_;
+      damaged_since_ = true;
+    } else
+      take(std::span<const std::uint8_t>(rx_.data(), static_cast<std::size_t>(n)));
   }
   const auto timeout = static_cast<std::uint32_t>(settings_.timeout_cycles);
-  if (cycle_ - status_cycle_ > timeout) lost();  // the status frames stopped coming
-  if (card::seq_after(seq_, newest_.ack) && cycle_ - sent_at_[static_cast<std::uint8_t>(newest_.ack + 1)] > timeout)
-    lost();  // a frame the card never acknowledged
+  if (!comm_lost_ && silent()) lost();  // the status frames stopped coming
+  // A frame the card never acknowledged though it went on talking for timeout_cycles after it.
+  if (!link_broken_ && card::seq_after(seq_, newest_.ack) &&
+      static_cast<std::int32_t>(status_cycle_ - sent_at_[static_cast<std::uint8_t>(newest_.ack + 1)]) >
+          static_cast<std::int32_t>(timeout))
+    broken();
 
   const bool reset = pending(reset_), loops = pending(loops_), motion = pending(motion_), latch = pending(latch_);
   out.count = kAxes;
@@ -101,6 +114,7 @@ bool CardStreamSession::read_state(MachineState& out) noexcept {
     if (motion) s &= ~(status::kProfileEnd | status::kInPosition);
     if (latch) s &= ~status::kLatchValid;
     if (comm_lost_) s |= status::kCommTimeout;
+    if (link_broken_) s |= status::kLinkErrors;
     if (refused_) s |= status::kDataError;
     out.status[a] = s;
   }
@@ -141,7 +155,7 @@ bool CardStreamSession::command(std::span<const std::uint8_t> op_frame, Effect e
     case Effect::Reset:
       reset_ = now;
       loops_ = Pending{};
-      following_ = comm_lost_ = refused_ = false;
+      following_ = comm_lost_ = link_broken_ = refused_ = false;
       stream_status_ = false;  // a gap before the reset is not held against the frames after it
       status_cycle_ = cycle_;
       // Frames lost before the reset are not waited for: the card acknowledges this one.
