@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <sstream>
 #include <thread>
+#include <tuple>
+#include <utility>
 
 #include "daemon_process.hpp"
 #include "messcard_process.hpp"
@@ -197,4 +199,25 @@ TEST_CASE("servo-card: a byte error rate the path cannot survive stops it with F
   CHECK(x >= 300 - 0.2);
   CHECK(x <= 700 + 0.2);
   CHECK(card.until("a damaged frame from the host", 2));
+}
+
+TEST_CASE("messcard: bad options and configurations are refused with exit 2 saying what is accepted") {
+  const auto run = [](const std::string& args) {
+    const std::string cmd = std::string(IMESS_BIN_DIR) + "/messcard " + args + " 2>&1";
+    std::string out;
+    FILE* p = popen(cmd.c_str(), "r");
+    char buf[512];
+    while (p && fgets(buf, sizeof buf, p)) out += buf;
+    const int st = p ? pclose(p) : -1;
+    return std::make_pair(WIFEXITED(st) ? WEXITSTATUS(st) : -1, out);
+  };
+  auto [status, out] = run("--config " + kCardConfig);
+  CHECK(status == 2);
+  CHECK_THAT(out, Catch::Contains("--pty PATH") && Catch::Contains("--device TTY"));
+  std::tie(status, out) = run("--pty /tmp/x --config " + kCardConfig + " --corrupt 2");
+  CHECK(status == 2);
+  CHECK_THAT(out, Catch::Contains("--corrupt takes a number from 0"));
+  std::tie(status, out) = run("--pty /tmp/x --config /nonexistent.json");
+  CHECK(status == 2);
+  CHECK_THAT(out, Catch::Contains("/nonexistent.json"));
 }

@@ -2,6 +2,7 @@
 #include "options.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string_view>
 
@@ -37,9 +38,11 @@ double number(std::string_view opt, const std::string& text, double min, double 
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used != text.size() || !std::isfinite(v) || v < min || v > max)
-    throw std::invalid_argument(std::string(opt) + " takes a number from " + std::to_string(min).substr(0, 6) + " to " +
-                                std::to_string(max) + ", got '" + text + "'");
+  if (used != text.size() || !std::isfinite(v) || v < min || v > max) {
+    char range[64];
+    std::snprintf(range, sizeof range, "%g to %g", min, max);
+    throw std::invalid_argument(std::string(opt) + " takes a number from " + range + ", got '" + text + "'");
+  }
   return v;
 }
 }  // namespace
