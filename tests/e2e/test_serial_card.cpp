@@ -75,9 +75,10 @@ bool card_goto(LineClient& c, double x, double y, double z) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   if (reply != std::optional<std::string>("Ok GoTo")) return false;
-  if (!card_wait_state(c, "idle", 10)) return false;
+  const bool idle = card_wait_state(c, "idle", 10);
   const std::string s = card_status(c);
-  return std::abs(card_field(s, "Pos", 0) - x) < 0.01 && std::abs(card_field(s, "Pos", 1) - y) < 0.01 &&
+  if (!idle) std::printf("servo-card: %s did not end idle: %s\n", cmd.str().c_str(), s.c_str());
+  return idle && std::abs(card_field(s, "Pos", 0) - x) < 0.01 && std::abs(card_field(s, "Pos", 1) - y) < 0.01 &&
          std::abs(card_field(s, "Pos", 2) - z) < 0.01;
 }
 using CardClock = std::chrono::steady_clock;
