@@ -35,7 +35,7 @@ FrameDecoder::Result FrameDecoder::feed(std::uint8_t byte) noexcept {
       }
       return Result::Pending;
     case State::Length:
-      if (byte == 0 || byte > kMaxPayload) {
+      if (byte == 0 || byte > max_) {
         state_ = State::Hunt;
         return Result::Damaged;
       }

@@ -6,6 +6,11 @@
 #include <chrono>
 #include <cstdio>
 #include <thread>
+#include <vector>
+
+#include <fcntl.h>
+#include <stdlib.h>
+#include <unistd.h>
 
 #include "imess/hal/serial_card_link.hpp"
 #include "imess/hal/serial_line.hpp"
@@ -102,7 +107,41 @@ TEST_CASE("serial card link: streaming, the driver's real-time calls and the I/O
   std::printf("serial card link: 2000 cycles: %ld allocations, %ld failed calls (late wake-ups on a busy host), "
               "%lu frames out, %lu status frames, %lu link errors\n",
               g_allocations.load(), failures, drv.stream()->frames_sent(), drv.stream()->status_frames(), drv.link_errors());
+  std::printf("serial card link: %lu frames in, %lu damaged, %lu bytes in, %lu out\n", link.counters().frames_in,
+              link.counters().damaged, link.counters().bytes_in, link.counters().bytes_out);
   CHECK(g_allocations.load() == 0);
   CHECK(drv.stream()->frames_sent() > 200);
   CHECK(drv.stream()->status_frames() > 300);
+}
+
+TEST_CASE("serial card link: a damaged length byte costs one frame, the frames behind it are found again") {
+  // A pseudo-terminal of the test's own: the test writes what a card would send.
+  const int master = posix_openpt(O_RDWR | O_NOCTTY);
+  REQUIRE(master >= 0);
+  REQUIRE(grantpt(master) == 0);
+  REQUIRE(unlockpt(master) == 0);
+  hal::SerialCardLink link({ptsname(master), 115200});
+  std::vector<std::uint8_t> line;
+  const auto frame = [&](std::uint8_t first, std::size_t n) {
+    std::vector<std::uint8_t> payload(n, 0x11);
+    payload[0] = first;
+    std::array<std::uint8_t, hal::kMaxWireFrame> wire{};
+    const std::size_t len = hal::encode_frame(payload, wire);
+    return std::vector<std::uint8_t>(wire.begin(), wire.begin() + static_cast<long>(len));
+  };
+  auto damaged = frame(1, 43);
+  damaged[1] = 0xF0;  // the length byte: 240 instead of 43, so the decoder would wait for the next frames' bytes
+  for (auto f : {damaged, frame(2, 43), frame(3, 43), frame(4, 43)}) line.insert(line.end(), f.begin(), f.end());
+  REQUIRE(write(master, line.data(), line.size()) == static_cast<ssize_t>(line.size()));
+  std::vector<int> got;  // first byte of each frame, -1 for a damaged one
+  std::array<std::uint8_t, hal::kMaxPayload> buf{};
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+  while (got.size() < 4 && std::chrono::steady_clock::now() < deadline) {
+    const int n = link.poll(buf);
+    if (n == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    else got.push_back(n < 0 ? -1 : buf[0]);
+  }
+  CHECK(got == std::vector<int>{-1, 2, 3, 4});
+  CHECK(link.counters().damaged == 1);
+  close(master);
 }

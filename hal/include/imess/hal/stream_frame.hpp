@@ -30,6 +30,10 @@ std::size_t encode_frame(std::span<const std::uint8_t> payload, std::span<std::u
 class FrameDecoder {
  public:
   enum class Result { Pending, Frame, Damaged };
+  // max_payload: longer frames are damaged at their length byte (a receiver that knows the
+  // longest frame it can get does not wait for the bytes of a damaged length).
+  explicit FrameDecoder(std::size_t max_payload = kMaxPayload) noexcept
+      : max_(max_payload < 1 ? 1 : max_payload > kMaxPayload ? kMaxPayload : max_payload) {}
   // One byte from the line. Frame: payload() holds a complete frame until the next feed().
   // Damaged: a frame failed its CRC or had length 0; the decoder hunts for the next sync.
   Result feed(std::uint8_t byte) noexcept;
@@ -37,6 +41,8 @@ class FrameDecoder {
   // The frame (or damaged frame) just reported was a set-up frame (kSetupSync).
   bool setup() const noexcept { return sync_ == kSetupSync; }
   void reset() noexcept { state_ = State::Hunt; }
+  // Between frames: the next byte is looked at as a possible sync byte.
+  bool hunting() const noexcept { return state_ == State::Hunt; }
 
  private:
   enum class State { Hunt, Length, Payload, CrcLow, CrcHigh };
@@ -45,6 +51,7 @@ class FrameDecoder {
   std::size_t len_ = 0, got_ = 0;
   std::uint16_t crc_ = 0;
   std::uint8_t sync_ = kFrameSync;
+  std::size_t max_ = kMaxPayload;
 };
 
 }  // namespace imess::hal
