@@ -77,7 +77,11 @@ bool card_goto(LineClient& c, double x, double y, double z) {
   if (reply != std::optional<std::string>("Ok GoTo")) return false;
   const bool idle = card_wait_state(c, "idle", 10);
   const std::string s = card_status(c);
-  if (!idle) std::printf("servo-card: %s did not end idle: %s\n", cmd.str().c_str(), s.c_str());
+  if (!idle) {
+    std::printf("servo-card: %s did not end idle: %s\n", cmd.str().c_str(), s.c_str());
+    for (const auto& l : c.seen())
+      if (l.rfind("Fault ", 0) == 0) std::printf("servo-card: it saw %s\n", l.c_str());
+  }
   return idle && std::abs(card_field(s, "Pos", 0) - x) < 0.01 && std::abs(card_field(s, "Pos", 1) - y) < 0.01 &&
          std::abs(card_field(s, "Pos", 2) - z) < 0.01;
 }
