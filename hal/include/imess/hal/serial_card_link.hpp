@@ -85,7 +85,7 @@ class SerialCardLink final : public Link, public StreamLink {
   std::atomic<bool> stop_{false};
 
   SpscRing<std::uint8_t, 8192> tx_;  // motion thread → I/O thread: encoded stream frames
-  SpscRing<RxFrame, 32> rx_;         // I/O thread → motion thread: stream frames
+  SpscRing<RxFrame, 256> rx_;        // I/O thread → motion thread: stream frames (1.28 s of status frames)
   FrameDecoder decoder_;             // the I/O thread's
   // The bytes of the frame being decoded: after a damaged frame the decoder looks for the next
   // sync byte among them again (a damaged length byte must not swallow the frames behind it).
