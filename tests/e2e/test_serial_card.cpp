@@ -226,3 +226,22 @@ TEST_CASE("messcard: bad options and configurations are refused with exit 2 sayi
   CHECK(status == 2);
   CHECK_THAT(out, Catch::Contains("/nonexistent.json"));
 }
+
+TEST_CASE("messcard: every shipped sim-servo-card configuration is a card messd streams to") {
+  int configs = 0;
+  for (const auto& f : std::filesystem::directory_iterator(std::string(IMESS_SOURCE_DIR) + "/config")) {
+    const std::string name = f.path().filename().string();
+    if (name.rfind("sim-servo-card", 0) != 0 || f.path().extension() != ".json") continue;
+    INFO(name);
+    ++configs;
+    MesscardProcess card({}, f.path().string());
+    DaemonProcess messd = messd_on(card);
+    LineClient c(messd.port());
+    const std::string s = card_status(c);
+    CHECK(s.find("State free ") != std::string::npos);
+    // The machine is the file's: the simulated CMM's start position.
+    CHECK(std::abs(card_field(s, "Pos", 0) - 430) < 0.01);
+    CHECK(card_link_errors(c) == 0);
+  }
+  CHECK(configs >= 3);
+}

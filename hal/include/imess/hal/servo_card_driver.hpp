@@ -67,8 +67,8 @@ class ServoCardDriver final : public MotionBackend {
   // or on the stream; nothing else (set_loops, reset_faults) writes the outputs.
   int output_count() const noexcept override { return 1; }
   bool set_output(int number, bool on) noexcept override;
-  bool output_on(int number) const noexcept override { return number == 1 && probe_on_; }
-  bool probe_power() const noexcept { return probe_on_; }
+  bool output_on(int number) const noexcept override { return number == 1 && probe_on_.load(std::memory_order_relaxed); }
+  bool probe_power() const noexcept { return probe_on_.load(std::memory_order_relaxed); }
 
   // Link transactions that failed or were refused since start (for Stats and -dt).
   unsigned long errors() const noexcept { return errors_ + (session_ ? session_->errors() : 0); }
@@ -99,7 +99,9 @@ class ServoCardDriver final : public MotionBackend {
   MachineState followed_{};     // the state that came back with the last Follow frame
   bool have_followed_ = false;  // not yet returned by read_state()
   bool comm_lost_ = false;      // a Follow frame failed: report kCommTimeout until reset
-  bool probe_on_ = false;       // output 1 as last written (initialise(): on)
+  // Output 1 as last written (initialise(): on); atomic: a re-boot writes it while the motion
+  // thread may read it.
+  std::atomic<bool> probe_on_{false};
   // Re-boot hand-over between the motion thread (Running) and the set-up thread.
   static constexpr int kRunning = 0, kRebootWanted = 1, kRebooting = 2;
   std::atomic<int> phase_{kRunning};
