@@ -1,6 +1,7 @@
 // Fuzz target: the servo card stream's parsers — the frame decoder over arbitrary bytes, the
 // driver's status-frame parser and the emulated card's handling of every decoded host frame
-// (setpoints, commands) once it streams.
+// (setpoints, commands) once it streams, and the card's end of a serial line (sim::CardLineEnd:
+// set-up frames answered with a set-up frame that must decode with the request's tag).
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -8,6 +9,7 @@
 
 #include "imess/hal/card_stream.hpp"
 #include "imess/hal/stream_frame.hpp"
+#include "imess/sim/card_line_end.hpp"
 #include "imess/sim/simulated_cmm.hpp"
 
 namespace {
@@ -59,6 +61,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         cmm.card().step();
         break;
     }
+  }
+
+  // The same bytes at the card's end of a line: a set-up frame's reply is a set-up frame.
+  static sim::CardLineEnd line_end(cmm.card());
+  hal::FrameDecoder request, answer;
+  for (std::uint8_t b : bytes) {
+    const bool setup = request.feed(b) == hal::FrameDecoder::Result::Frame && request.setup();
+    line_end.feed(b);
+    if (line_end.reply().empty()) continue;
+    if (!setup) __builtin_trap();  // a reply to no set-up request
+    hal::FrameDecoder::Result r = hal::FrameDecoder::Result::Pending;
+    for (std::uint8_t c : line_end.reply()) r = answer.feed(c);
+    if (r != hal::FrameDecoder::Result::Frame || !answer.setup() || answer.payload()[0] != request.payload()[0])
+      __builtin_trap();  // not a set-up frame with the request's tag
   }
   return 0;
 }

@@ -283,4 +283,12 @@ void finish_drive_config(DaemonConfig& cfg, bool simulated) {
   p.drive_sim.ports = d;
 }
 
+void read_card_keys(JsonObject& b, DaemonConfig& cfg) {
+  cfg.card.firmware = b.text("firmware", cfg.card.firmware);
+  const double ferr = b.number("max_following_error", cfg.card.max_following_error[0], 0.01, 100);
+  cfg.card.max_following_error = {ferr, ferr, ferr};
+  // docs/servo-card-link.md, "Host stalls"
+  cfg.card.stream.lead = b.number("lead_ms", cfg.card.stream.lead * 1000, 5, cfg.card.stream.max_lead * 1000) / 1000;
+}
+
 }  // namespace imess::app

@@ -6,13 +6,14 @@ namespace imess::app {
 
 // Each defined in backends/<name>.cpp.
 const BackendType& sim_servo_card_backend();
+const BackendType& servo_card_backend();
 const BackendType& sim_parport_backend();
 const BackendType& parport_backend();
 const BackendType& sim_portio_drive_backend();
 const BackendType& portio_drive_backend();
 
 const std::vector<const BackendType*>& backend_registry() {
-  static const std::vector<const BackendType*> kAll{&sim_servo_card_backend(), &sim_parport_backend(), &parport_backend(),
+  static const std::vector<const BackendType*> kAll{&sim_servo_card_backend(), &servo_card_backend(), &sim_parport_backend(), &parport_backend(),
                                                     &sim_portio_drive_backend(), &portio_drive_backend()};
   return kAll;
 }

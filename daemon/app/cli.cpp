@@ -11,7 +11,8 @@ namespace imess::app {
 
 const char* usage_text() {
   return "usage: messd [--config FILE] [--rc FILE] [--port N] [--listen ADDR] [--journal DIR] [--programs DIR]\n"
-         "             [--frames FILE] [--ippdme-port N] [--home] [--no-rt] [-dc] [-dm] [-dt] [-p] [-r] [-v] [-h]\n"
+         "             [--frames FILE] [--ippdme-port N] [--device TTY] [--home] [--no-rt] [-dc] [-dm] [-dt] [-p] [-r]\n"
+         "             [-v] [-h]\n"
          "  --config FILE  JSON configuration (default: the built-in simulated CMM)\n"
          "  --rc FILE      1996 messdrc (SpeedLevel, TipReversed, TipRadius); default ./messdrc if present\n"
          "  --port N       TCP port (default 1066; 0 = any free port, printed at start)\n"
@@ -24,6 +25,7 @@ const char* usage_text() {
          "  --programs DIR the programs folder Load reads (overrides programs.folder)\n"
          "  --frames FILE  the part frames' store (default: $STATE_DIRECTORY/frames.json under systemd,\n"
          "                 else ./messd-frames.json); written when a frame is stored\n"
+         "  --device TTY   the servo card's serial device (backend \"servo-card\"; overrides backend.device)\n"
          "  --home         run the reference search at start\n"
          "  --no-rt        do not ask for SCHED_FIFO and mlockall\n"
          "  -dc            echo all socket traffic\n"
@@ -49,6 +51,7 @@ CliOptions parse_cli(int argc, char** argv) {
     else if (a == "--journal") o.journal = value("a directory for the hit journal");
     else if (a == "--programs") o.programs = value("a directory of programs");
     else if (a == "--frames") o.frames = value("a file for the part frames");
+    else if (a == "--device") o.device = value("a serial device such as /dev/ttyUSB0");
     else if (a == "--listen") {
       auto text = value("an address such as 0.0.0.0 or 127.0.0.1");
       boost::system::error_code ec;

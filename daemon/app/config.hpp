@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "imess/core/core_types.hpp"
+#include "imess/hal/serial_card_link.hpp"
 #include "imess/hal/servo_card_driver.hpp"
 #include "imess/journal/journal_config.hpp"
 #include "imess/net/server.hpp"
@@ -21,6 +22,7 @@ struct DaemonConfig {
   bool home_on_start = false;
   std::string backend = "sim-servo-card";
   hal::ServoCardConfig card;
+  hal::SerialLinkSettings card_line;  // "servo-card": the card's serial device and baud rate
   PortBackendConfig ports;  // parport / drive-kit backends (port_backend_config.hpp; read in backend_config.cpp)
   // The built-in machine's card streams over a simulated 115 200 baud line (it rides out host
   // stalls shorter than the lead); "link": "request-reply" in the backend section chooses the other.

@@ -50,6 +50,13 @@ app::DaemonConfig configure(const app::CliOptions& cli) {
   if (cfg.journal.dir.empty()) cfg.journal.dir = app::default_journal_dir();
   if (cli.frames) cfg.server.frames_file = *cli.frames;
   if (cfg.server.frames_file.empty()) cfg.server.frames_file = app::default_state_file("frames.json", "messd-frames.json");
+  if (cli.device) {
+    if (cfg.backend != "servo-card")
+      throw app::ConfigError("--device names the servo card's serial device; it is for backend.type \"servo-card\", not \"" +
+                             cfg.backend + "\"");
+    cfg.card_line.device = *cli.device;
+    cfg.notes.push_back("--device: the card on " + *cli.device);
+  }
   if (cli.home) cfg.home_on_start = true;
   if (cli.no_realtime) cfg.realtime = false;
   cfg.server.log_traffic = cli.debug_comm;

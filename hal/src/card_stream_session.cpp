@@ -40,7 +40,7 @@ void CardStreamSession::start(std::uint32_t ticks_per_second, std::uint32_t cloc
     newest_.status[a] = state.status[a] & ~status::kLatchValid;
     newest_.inputs[a] = state.inputs[a];
   }
-  stream_status_ = comm_lost_ = refused_ = following_ = false;
+  stream_status_ = comm_lost_ = link_broken_ = refused_ = following_ = false;
   seq_ = 0;
   cycle_ = status_cycle_ = 0;
   line_free_ = 0;
@@ -59,10 +59,17 @@ void CardStreamSession::lost() noexcept {
   ++errors_;
 }
 
+void CardStreamSession::broken() noexcept {
+  link_broken_ = true;
+  ++errors_;
+}
+
 void CardStreamSession::take(std::span<const std::uint8_t> frame) noexcept {
   card::StatusFrame s;
-  if (!card::read_status(frame, s)) return lost();
-  if (stream_status_ && s.clock - newest_.clock != status_ticks_) lost();  // one went missing
+  if (!card::read_status(frame, s)) return broken();
+  // One went missing (lost, or damaged and counted already): counted, and this one is taken.
+  if (stream_status_ && s.clock - newest_.clock != status_ticks_ && !damaged_since_) ++errors_;
+  damaged_since_ = false;
   if (stream_status_ && s.starvations != newest_.starvations)  // a stall outlasted the lead: twice the lead from now
     longest_gap_ = std::max(longest_gap_, (2 * lead() - settings_.status_period) / 1.5);
   newest_ = s;
@@ -75,7 +82,7 @@ void CardStreamSession::take(std::span<const std::uint8_t> frame) noexcept {
     refused_ = true;
     ++errors_;
   }
-  if (s.flags & card::flag::kStreamError) lost();  // it saw a damaged or missing host frame
+  if (s.flags & card::flag::kStreamError) broken();  // it saw a damaged or missing host frame
 }
 
 bool CardStreamSession::read_state(MachineState& out) noexcept {
@@ -83,15 +90,20 @@ bool CardStreamSession::read_state(MachineState& out) noexcept {
   for (;;) {
     const int n = link_.poll(rx_);
     if (n == 0) break;
-    if (n < 0) lost();
-    else take(std::span<const std::uint8_t>(rx_.data(), static_cast<std::size_t>(n)));
+    if (n < 0) {  // damaged: counted; the stream goes on with the next status frame
+      ++errors_;
+      damaged_since_ = true;
+    } else
+      take(std::span<const std::uint8_t>(rx_.data(), static_cast<std::size_t>(n)));
   }
   const auto timeout = static_cast<std::uint32_t>(settings_.timeout_cycles);
-  if (cycle_ - status_cycle_ > timeout) lost();  // the status frames stopped coming
-  // (signed: a frame still queued behind others arrives in a later cycle)
-  if (card::seq_after(seq_, newest_.ack) &&
-      static_cast<std::int32_t>(cycle_ - sent_at_[static_cast<std::uint8_t>(newest_.ack + 1)]) > static_cast<std::int32_t>(timeout))
-    lost();  // a frame the card never acknowledged
+  if (!comm_lost_ && silent()) lost();  // the status frames stopped coming
+  // A frame the card never acknowledged though it went on talking for timeout_cycles after it
+  // crossed the line (signed: a frame still queued behind others arrives in a later cycle).
+  if (!link_broken_ && card::seq_after(seq_, newest_.ack) &&
+      static_cast<std::int32_t>(status_cycle_ - sent_at_[static_cast<std::uint8_t>(newest_.ack + 1)]) >
+          static_cast<std::int32_t>(timeout))
+    broken();
 
   const bool reset = pending(reset_), loops = pending(loops_), motion = pending(motion_), latch = pending(latch_);
   out.count = kAxes;
@@ -105,6 +117,7 @@ bool CardStreamSession::read_state(MachineState& out) noexcept {
     if (motion) s &= ~(status::kProfileEnd | status::kInPosition | status::kHostStarved);
     if (latch) s &= ~status::kLatchValid;
     if (comm_lost_) s |= status::kCommTimeout;
+    if (link_broken_) s |= status::kLinkErrors;
     if (refused_) s |= status::kDataError;
     out.status[a] = s;
   }
@@ -151,7 +164,7 @@ bool CardStreamSession::command(std::span<const std::uint8_t> op_frame, Effect e
     case Effect::Reset:
       reset_ = now;
       loops_ = Pending{};
-      following_ = comm_lost_ = refused_ = false;
+      following_ = comm_lost_ = link_broken_ = refused_ = false;
       stream_status_ = false;  // a gap before the reset is not held against the frames after it
       status_cycle_ = cycle_;
       // Frames lost before the reset are not waited for: the card acknowledges this one.

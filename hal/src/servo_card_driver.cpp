@@ -157,14 +157,49 @@ void ServoCardDriver::start_stream() {
   table(kAllAxes);
   std::span<const std::uint8_t> payload;
   if (!exchange(payload) || !parse_state(payload, now)) fail("no state after starting the stream");
+  // Status frames of an earlier stream (before a restart of messd or a re-boot) are stale.
+  std::array<std::uint8_t, kMaxFrame> stale{};
+  while (stream_link_->poll(stale) != 0) {}
   session_.emplace(*stream_link_, s);
   session_->start(ticks_per_second, clock, now, config_.tip_reversed);
+}
+
+unsigned long ServoCardDriver::link_errors() const noexcept {
+  if (!rebooting()) last_errors_ = errors();
+  return last_errors_;
+}
+
+std::string ServoCardDriver::reboot() {
+  int expected = kRebootWanted;
+  if (!phase_.compare_exchange_strong(expected, kRebooting, std::memory_order_acq_rel)) return "no re-boot was asked for";
+  std::string failure;
+  try {
+    initialise(false);
+  } catch (const std::exception& e) {
+    failure = e.what();
+    session_.reset();
+    reboot_failed_ = true;
+  }
+  phase_.store(kRunning, std::memory_order_release);
+  return failure;
 }
 
 std::string ServoCardDriver::describe() const { return "servo card, firmware '" + revision_ + "'"; }
 
 bool ServoCardDriver::read_state(MachineState& out) noexcept {
-  if (session_) return session_->read_state(out);
+  if (rebooting() || reboot_failed_) {  // the card is being re-booted, or could not be
+    out = last_;
+    for (int a = 0; a < kAxes; ++a) {
+      out.status[a] &= ~(status::kFaultMask | status::kClosedLoop | status::kLatchValid);
+      if (reboot_failed_) out.status[a] |= status::kCommTimeout;
+    }
+    return true;
+  }
+  if (session_) {
+    const bool ok = session_->read_state(out);
+    last_ = out;
+    return ok;
+  }
   if (have_followed_) {  // the Follow reply of this cycle: no second round trip
     have_followed_ = false;
     out = followed_;
@@ -180,6 +215,7 @@ bool ServoCardDriver::read_state(MachineState& out) noexcept {
 }
 
 bool ServoCardDriver::follow(const Setpoint& sp) noexcept {
+  if (rebooting() || reboot_failed_) return false;
   if (session_) return session_->follow(sp);
   // Measured on the link (tests/sim/test_card_follow.cpp): 53 bytes out, 40 back.
   begin(Op::Follow);
@@ -210,6 +246,7 @@ bool ServoCardDriver::parse_state(std::span<const std::uint8_t> payload, Machine
 }
 
 bool ServoCardDriver::read_latch(AxisVec& latched) noexcept {
+  if (rebooting() || reboot_failed_) return false;
   begin(Op::ReadLatch);
   table(kAllAxes);
   if (session_)  // the status frame carries the latch; the command clears it on the card
@@ -222,12 +259,14 @@ bool ServoCardDriver::read_latch(AxisVec& latched) noexcept {
 }
 
 bool ServoCardDriver::set_loops(bool closed) noexcept {
+  if (rebooting() || reboot_failed_) return !closed;  // open they are
   begin(closed ? Op::CloseLoops : Op::OpenLoops);
   table(kAllAxes);
   return command(closed ? CardStreamSession::Effect::CloseLoops : CardStreamSession::Effect::OpenLoops);
 }
 
 bool ServoCardDriver::move(const AxisArray<AxisMove>& moves, unsigned axis_mask) noexcept {
+  if (rebooting() || reboot_failed_) return false;
   if ((axis_mask & kAllAxes) == 0) return true;
   begin(Op::JogAbsolute);
   table(axis_mask);
@@ -237,6 +276,7 @@ bool ServoCardDriver::move(const AxisArray<AxisMove>& moves, unsigned axis_mask)
 }
 
 bool ServoCardDriver::stop(const AxisVec& decel) noexcept {
+  if (rebooting() || reboot_failed_) return true;  // nothing moves
   begin(Op::JogStop);
   table(kAllAxes);
   for (int a = 0; a < kAxes; ++a) writer_.f64(decel[a]);
@@ -244,6 +284,7 @@ bool ServoCardDriver::stop(const AxisVec& decel) noexcept {
 }
 
 bool ServoCardDriver::set_position(int axis, double value) noexcept {
+  if (rebooting() || reboot_failed_) return false;
   if (axis < 0 || axis >= kAxes) return false;
   if (session_) {  // relative on the stream: exact however old the newest status frame is
     const double delta = session_->shift_for(axis, value);
@@ -261,6 +302,7 @@ bool ServoCardDriver::set_position(int axis, double value) noexcept {
 }
 
 bool ServoCardDriver::set_output(int number, bool on) noexcept {
+  if (rebooting() || reboot_failed_) return false;
   if (number != 1) return false;
   begin(Op::WriteOutputs);
   table(kAllAxes);
@@ -271,6 +313,12 @@ bool ServoCardDriver::set_output(int number, bool on) noexcept {
 }
 
 bool ServoCardDriver::reset_faults() noexcept {
+  if (rebooting()) return false;
+  if (config_.reboot_on_reset && (reboot_failed_ || (session_ && session_->silent()))) {
+    reboot_failed_ = false;
+    phase_.store(kRebootWanted, std::memory_order_release);
+    return true;
+  }
   begin(Op::ResetAxes);
   table(kAllAxes);
   if (!command(CardStreamSession::Effect::Reset)) return false;

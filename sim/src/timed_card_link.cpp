@@ -24,7 +24,9 @@ void TimedCardLink::sync() noexcept {
     to_card_.deliver(at, [this](std::uint8_t b) {
       switch (card_rx_.feed(b)) {
         case FrameDecoder::Result::Pending: break;
-        case FrameDecoder::Result::Frame: card_.on_stream_frame(card_rx_.payload()); break;
+        case FrameDecoder::Result::Frame:
+          if (!card_rx_.setup()) card_.on_stream_frame(card_rx_.payload());  // set-up goes through transact()
+          break;
         case FrameDecoder::Result::Damaged:
           ++damaged_at_card_;
           card_.on_damaged_frame();

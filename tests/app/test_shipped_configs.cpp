@@ -12,9 +12,11 @@
 #include <string>
 #include <vector>
 
+#include "shipped_config.hpp"
 #include "backend_registry.hpp"
 #include "config_rig.hpp"
 #include "imess/sim/scene.hpp"
+#include "imess/core/loop_runner.hpp"
 #include "json_object.hpp"
 
 using namespace imess;
@@ -36,7 +38,7 @@ std::string slurp(const fs::path& p) {
 std::vector<std::string> globbed_configs() {
   std::vector<std::string> files;
   for (const auto& f : fs::directory_iterator(kRoot + "/config"))
-    if (f.path().extension() == ".json") files.push_back("config/" + f.path().filename().string());
+    if (f.path().extension() == ".json" && simulated_config(f.path())) files.push_back("config/" + f.path().filename().string());
   std::sort(files.begin(), files.end());
   return files;
 }
@@ -53,7 +55,7 @@ std::set<std::string> readme_configs() {
 std::vector<std::string> shipped_configs() {
   auto files = globbed_configs();
   for (const auto& n : readme_configs())
-    if (std::find(files.begin(), files.end(), n) == files.end()) files.push_back(n);
+    if (simulated_config(n) && std::find(files.begin(), files.end(), n) == files.end()) files.push_back(n);
   return files;
 }
 
@@ -150,5 +152,23 @@ TEST_CASE("the shipped simulated tables are the built-in one: the worked example
     // Inside the travel, with room above it for the touches and the moves between them.
     const auto& z = rig.config().core.axes[2];
     CHECK(sphere.center.z() + sphere.diameter / 2 + 40 < z.travel_max);
+  }
+}
+
+TEST_CASE("config/servo-card.json: the card on /dev/ttyIMESS0, streamed — without the device it refuses to start, saying so") {
+  app::DaemonConfig cfg;
+  app::load_json_config(kRoot + "/config/servo-card.json", cfg);
+  app::finish_config(cfg);
+  CHECK(cfg.backend == "servo-card");
+  CHECK(cfg.card_line.device == "/dev/ttyIMESS0");
+  CHECK(cfg.card_line.baud == 115200);
+  CHECK(cfg.card.stream.baud == 115200);
+  core::MonotonicClock clock;
+  if (fs::exists("/dev/ttyIMESS0")) return;  // a machine with the card: nothing more to say here
+  try {
+    app::make_machine(cfg, clock, false);
+    FAIL("the machine was built without its device");
+  } catch (const app::ConfigError& e) {
+    CHECK_THAT(e.what(), Catch::Contains("/dev/ttyIMESS0") && Catch::Contains("no such device"));
   }
 }

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <vector>
 
+#include "shipped_config.hpp"
 #include "daemon_process.hpp"
 
 using namespace imess::test;
@@ -52,12 +53,25 @@ TEST_CASE("a wrong value stops start-up saying what is expected") {
 
 TEST_CASE("every shipped configuration loads") {
   for (const auto& entry : std::filesystem::directory_iterator(std::string(IMESS_SOURCE_DIR) + "/config")) {
-    if (entry.path().extension() != ".json") continue;
+    if (entry.path().extension() != ".json" || !simulated_config(entry.path())) continue;  // real hardware: below
     INFO(entry.path());
     DaemonProcess messd({"--config", entry.path().string()});
     LineClient c(messd.port());
     CHECK(c.request("Status")->rfind("Ok Status", 0) == 0);
   }
+}
+
+TEST_CASE("servo-card: a device that is missing or not a tty stops start-up with exit 2 naming it") {
+  const std::string cfg = std::string(IMESS_SOURCE_DIR) + "/config/servo-card.json";
+  auto r = run_messd_to_exit({"--config", cfg, "--device", "/nonexistent/ttyIMESS9"});
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::Contains("/nonexistent/ttyIMESS9") && Catch::Contains("no such device"));
+  r = run_messd_to_exit({"--config", cfg, "--device", cfg});  // a plain file
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::Contains("not a serial line"));
+  r = run_messd_to_exit({"--device", "/dev/ttyUSB0"});  // the built-in simulated CMM has no device
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::Contains("--device") && Catch::Contains("servo-card"));
 }
 
 TEST_CASE("messdrc: values are used, unknown lines warned, bad values refused") {

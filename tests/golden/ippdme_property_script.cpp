@@ -1,6 +1,7 @@
 // The I++ DME properties' sessions: for a seed, a random script of an inspection program on the
 // I++ port beside a MESSD jog panel (the actions are listed in test_ippdme_properties.cpp's
 // header). Only inputs: what messd answers is the rules' business (ippdme_property_rules.cpp).
+#include "shipped_config.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -65,7 +66,7 @@ Machine machine_of(const std::string& config) {
 std::vector<std::string> ipp_configs() {
   std::vector<std::string> out;
   for (const auto& f : std::filesystem::directory_iterator(std::string(IMESS_SOURCE_DIR) + "/config"))
-    if (f.path().extension() == ".json" && has_ipp_server("config/" + f.path().filename().string()))
+    if (f.path().extension() == ".json" && imess::test::simulated_config(f.path()) && has_ipp_server("config/" + f.path().filename().string()))
       out.push_back("config/" + f.path().filename().string());
   std::sort(out.begin(), out.end());
   return out;

@@ -84,9 +84,10 @@ class StreamRig {
     }
     return pred();
   }
-  bool comm_lost() const {
+  bool comm_lost() const { return faulted(core::FaultKind::CommLost); }
+  bool faulted(core::FaultKind kind) const {
     for (const auto& e : rig.events())
-      if (e.kind == EventKind::Fault && e.fault == core::FaultKind::CommLost) return true;
+      if (e.kind == EventKind::Fault && e.fault == kind) return true;
     return false;
   }
 

@@ -86,29 +86,29 @@ TEST_CASE("card stream: arcs of 1 mm chords at 100 mm/s over 115 200 baud: no ov
   std::printf("card follow (request/reply): radial error %.4f mm, end error %.5f mm\n", ref.max_radial, ref.end_error);
 }
 
-TEST_CASE("card stream: a lost or damaged frame either way ends in Fault CommLost within a bounded time") {
+TEST_CASE("card stream: a lost or damaged setpoint frame ends in Fault LinkErrors within a bounded time") {
   struct Case {
     const char* what;
-    bool to_card;
     ChannelFault fault;
   };
-  for (const Case c : {Case{"setpoint frame lost", true, ChannelFault::Lose}, Case{"setpoint frame damaged", true, ChannelFault::Corrupt},
-                       Case{"status frame lost", false, ChannelFault::Lose}, Case{"status frame damaged", false, ChannelFault::Corrupt}}) {
+  for (const Case c : {Case{"setpoint frame lost", ChannelFault::Lose}, Case{"setpoint frame damaged", ChannelFault::Corrupt}}) {
     INFO(c.what);
     StreamRig s;
     s.queue(chord_circle(s.rig.position(), 20, 1.0, 2, 100));
     for (int i = 0; i < 400; ++i) s.step();
     REQUIRE(s.rig.mode() == Mode::Path);
-    (c.to_card ? s.line().to_card() : s.line().to_host()).inject(c.fault);
+    s.line().to_card().inject(c.fault);
     int cycles = 0;
-    while (!s.comm_lost() && cycles < 200) {
+    while (!s.faulted(core::FaultKind::LinkErrors) && cycles < 200) {
       s.step();
       ++cycles;
     }
-    std::printf("card stream: %s -> Fault CommLost after %d ms\n", c.what, cycles);
-    CHECK(s.comm_lost());
+    std::printf("card stream: %s -> Fault LinkErrors after %d ms\n", c.what, cycles);
+    CHECK(s.faulted(core::FaultKind::LinkErrors));
+    CHECK_FALSE(s.comm_lost());
     CHECK(cycles <= 25);
     CHECK(s.rig.mode() == Mode::Fault);
+    CHECK(s.session().errors() >= 1);
     // The card brakes (its stream broke, or the core's stop arrived) and comes to rest.
     const auto& m = s.rig.mechanics();
     CHECK(s.run_until([&] { return std::abs(m.velocity(0)) + std::abs(m.velocity(1)) + std::abs(m.velocity(2)) < 1e-6; }, 1.0));
@@ -121,6 +121,42 @@ TEST_CASE("card stream: a lost or damaged frame either way ends in Fault CommLos
     CHECK(s.run_until([&] { return s.rig.mode() == Mode::Idle; }, 2));
     CHECK((s.rig.position() - target).cwiseAbs().maxCoeff() < 0.005);
   }
+}
+
+TEST_CASE("card stream: a lost or damaged status frame is counted and the path goes on with the next") {
+  for (const ChannelFault fault : {ChannelFault::Lose, ChannelFault::Corrupt}) {
+    INFO((fault == ChannelFault::Lose ? "status frame lost" : "status frame damaged"));
+    StreamRig s;
+    s.queue(chord_circle(s.rig.position(), 20, 1.0, 2, 100));
+    for (int i = 0; i < 400; ++i) s.step();
+    REQUIRE(s.rig.mode() == Mode::Path);
+    const auto before = s.session().errors();
+    s.line().to_host().inject(fault);
+    for (int i = 0; i < 30; ++i) s.step();
+    CHECK(s.session().errors() == before + 1);  // counted once (Stats: LinkErrors)
+    CHECK(s.rig.mode() == Mode::Path);
+    CHECK(s.run_until([&] { return s.rig.mode() == Mode::Idle; }, 10));
+    CHECK(s.rig.events().end() == std::find_if(s.rig.events().begin(), s.rig.events().end(),
+                                               [](const Event& e) { return e.kind == EventKind::Fault; }));
+    CHECK(s.rig.driver().link_errors() == before + 1);
+  }
+}
+
+TEST_CASE("card stream: status frames that stop coming end in Fault CommLost within 30 ms") {
+  StreamRig s;
+  s.queue(chord_circle(s.rig.position(), 20, 1.0, 2, 100));
+  for (int i = 0; i < 400; ++i) s.step();
+  REQUIRE(s.rig.mode() == Mode::Path);
+  int cycles = 0;
+  while (!s.comm_lost() && cycles < 200) {
+    s.line().to_host().inject(ChannelFault::Lose);
+    s.step();
+    ++cycles;
+  }
+  std::printf("card stream: status frames stopped -> Fault CommLost after %d ms\n", cycles);
+  CHECK(s.comm_lost());
+  CHECK(cycles <= 30);  // the last status frame came up to a status period (5 ms) before, then 20 periods
+  CHECK_FALSE(s.faulted(core::FaultKind::LinkErrors));
 }
 
 TEST_CASE("card stream: a host that stops sending setpoints starves the card: it brakes on the path and says so, no fault") {

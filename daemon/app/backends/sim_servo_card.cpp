@@ -1,6 +1,7 @@
 // "sim-servo-card": the real servo-card driver over a simulated link to the simulated CMM
 // (the default backend; the only one whose absolute scales make it referenced at start):
 // streamed over a byte-timed serial line ("link": "serial", the default), or request/reply at no cost.
+#include "backend_config.hpp"
 #include "backend_registry.hpp"
 #include "imess/hal/servo_card_driver.hpp"
 #include "imess/sim/simulated_cmm.hpp"
@@ -29,14 +30,10 @@ class SimServoCardMachine final : public Machine {
 };
 
 void load(JsonObject& b, DaemonConfig& cfg) {
-  cfg.card.firmware = b.text("firmware", cfg.card.firmware);
-  double ferr = b.number("max_following_error", cfg.card.max_following_error[0], 0.01, 100);
-  cfg.card.max_following_error = {ferr, ferr, ferr};
+  read_card_keys(b, cfg);
   cfg.sim.streamed = b.text("link", "serial", {"serial", "request-reply"}) == "serial";
   cfg.sim.line.baud = b.number("baud", cfg.sim.line.baud, 9600, 10e6);
   cfg.card.stream.baud = cfg.sim.line.baud;
-  // The least lead of the streamed setpoints (docs/servo-card-link.md, "Host stalls").
-  cfg.card.stream.lead = b.number("lead_ms", cfg.card.stream.lead * 1000, 5, cfg.card.stream.max_lead * 1000) / 1000;
 }
 
 std::unique_ptr<Machine> make(const DaemonConfig& cfg, const hal::Clock& clock, bool force_reboot) {

@@ -101,6 +101,7 @@ void MotionCore::read_machine(Nanos now) noexcept {
                   : ms.any(st::kEmergency)      ? FaultKind::Emergency
                   : ms.any(st::kFollowingError) ? FaultKind::FollowingError
                   : ms.any(st::kDriveNotReady)  ? FaultKind::DriveNotReady
+                  : ms.any(st::kLinkErrors)     ? FaultKind::LinkErrors
                   : ms.any(st::kCommTimeout)    ? FaultKind::CommLost
                                                 : FaultKind::ConfigError;
     if (f == FaultKind::StopInput) loop_.homed = loop_.referenced = false;  // the step count is no longer trusted
@@ -334,6 +335,7 @@ void MotionCore::publish(Nanos now) noexcept {
   s.simulated = loop_.sim != nullptr;
   s.events_dropped = loop_.events_dropped;
   s.hardware_errors = loop_.hardware_errors;
+  s.link_errors = loop_.hw.link_errors();
   s.path_running = path_.running();
   s.path_id = path_.running_id();
   s.path_held = path_.holding();

@@ -31,7 +31,7 @@ Server::Server(asio::io_context& io, ServerConfig config, core::MotionCore& core
                 move_reports();
               }),
       liveness_(io, config_, sessions_, control_, gateway_, journal, log_limiter_),
-      stats_(io, runner, sessions_),
+      stats_(io, runner, sessions_, [this] { return gateway_.snapshot().link_errors; }),
       frame_verbs_(sessions_, frames_, gateway_, journal, log_limiter_),
       events_(sessions_, gateway_, frames_, log_limiter_, config_.log_motion),
       dispatch_(config_, {sessions_, gateway_, control_, hits_, programs_, frame_verbs_, stream_, stats_, observers_, log_limiter_}),

@@ -26,7 +26,8 @@ std::string StatsReport::stats_line() {
          fixed(st.latency_p50_us, 1) + " LatP99 " + fixed(st.latency_p99_us, 1) + " LatP999 " +
          fixed(st.latency_p999_us, 1) + " LatMax " + fixed(st.latency_max_us, 1) + " CycleP99 " +
          fixed(st.cycle_p99_us, 1) + " CycleMax " + fixed(st.cycle_max_us, 1) + " Overruns " +
-         std::to_string(st.overruns) + " Realtime " + (st.realtime ? "yes" : "no");
+         std::to_string(st.overruns) + " Realtime " + (st.realtime ? "yes" : "no") + " LinkErrors " +
+         std::to_string(link_errors_ ? link_errors_() : 0);
 }
 
 // Ok Stats Reset once the loop has begun the new interval (within a period), so that whatever

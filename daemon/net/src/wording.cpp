@@ -70,6 +70,7 @@ Wording fault_wording(FaultKind f) {
     case FaultKind::SafetyInput2: return {"SafetyInput2", "safety input 2 opened; outputs off; close it, Reset"};
     case FaultKind::SafetyInput3: return {"SafetyInput3", "safety input 3 opened; outputs off; close it, Reset"};
     case FaultKind::SafetyInput4: return {"SafetyInput4", "safety input 4 opened; outputs off; close it, Reset"};
+    case FaultKind::LinkErrors: return {"LinkErrors", "the card's line lost or damaged frames; axes braked; Reset"};
   }
   return {"Unknown", ""};
 }

@@ -3,11 +3,13 @@
 // the StreamLink, the card's periodic status frames are taken as they arrive, and the state
 // handed to the motion core is the newest status frame with what the frames still on their
 // way will change laid over it (a move sent clears "profile end" until the card has it). A
-// lost or damaged frame in either direction, a status frame that does not come, a frame the
-// card does not acknowledge in time, or a card that reports a stream error latches a
-// communication timeout (status bit 0 on every axis, the core's CommLost) until reset(). A
-// starved card (the host stalled longer than the lead) is no fault: it reports kHostStarved.
-// Real-time calls are noexcept and allocate nothing.
+// lost or damaged status frame is counted (errors()) and the stream goes on with the next
+// one; status frames that stop coming latch a communication timeout
+// (status bit 0 on every axis, the core's CommLost); a frame the card does not acknowledge in
+// time, a malformed status frame or a card that reports a damaged or missing host frame
+// latch status::kLinkErrors (the core's LinkErrors) — each until reset(). A starved card (the
+// host stalled longer than the lead) is no fault: it reports kHostStarved. Real-time calls
+// are noexcept and allocate nothing.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -61,6 +63,9 @@ class CardStreamSession {
   unsigned long knots_sent() const noexcept { return knots_sent_; }
   unsigned long errors() const noexcept { return errors_; }
   bool comm_lost() const noexcept { return comm_lost_; }
+  bool link_broken() const noexcept { return link_broken_; }
+  // No status frame for more than timeout_cycles periods: the card is gone (or stalled).
+  bool silent() const noexcept { return cycle_ - status_cycle_ > static_cast<std::uint32_t>(settings_.timeout_cycles); }
   unsigned starvations() const noexcept { return newest_.starvations; }
   // The lead the next path gets: the configured one, or 1.5 × the longest stall seen while
   // following lately plus a status period, when that is more (at most max_lead); a card that
@@ -77,7 +82,8 @@ class CardStreamSession {
   };
   bool send(std::span<const std::uint8_t> op_frame) noexcept;
   void take(std::span<const std::uint8_t> frame) noexcept;
-  void lost() noexcept;
+  void lost() noexcept;    // the card went quiet or starved: CommLost
+  void broken() noexcept;  // the link lost a frame the stream cannot do without: LinkErrors
   bool pending(Pending& p) const noexcept;  // clears p once the card has acknowledged it
   std::uint32_t card_now() const noexcept;  // the card clock, estimated
 
@@ -91,8 +97,9 @@ class CardStreamSession {
   std::array<std::uint32_t, 256> sent_at_{};  // the cycle each sequence number went out
   card::StatusFrame newest_{};
   bool stream_status_ = false;  // newest_ came on the stream (not from set-up)
+  bool damaged_since_ = false;  // a damaged frame came since the last status frame (already counted)
   std::uint32_t cycle_ = 0, status_cycle_ = 0;
-  bool comm_lost_ = false, refused_ = false;
+  bool comm_lost_ = false, link_broken_ = false, refused_ = false;
   Pending motion_, loops_, reset_, latch_;
   bool loops_closed_ = false;
   AxisArray<Pending> shift_pending_{};

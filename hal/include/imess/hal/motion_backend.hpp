@@ -25,8 +25,11 @@ inline constexpr std::uint32_t kStopInput = 1u << 10, kSafetyInput1 = 1u << 17, 
 // closed. Not a fault: the next motion command clears it.
 inline constexpr std::uint32_t kHostStarved = 1u << 11;
 inline constexpr std::uint32_t kSafetyInputs = kSafetyInput1 | kSafetyInput2 | kSafetyInput3 | kSafetyInput4;
-inline constexpr std::uint32_t kFaultMask =
-    kCommTimeout | kEmergency | kDriveNotReady | kFollowingError | kDataError | kConfigError | kStopInput | kSafetyInputs;
+// Set by the servo card's stream driver: the link damaged or lost frames the stream cannot do
+// without (the card saw a damaged host frame; a frame was never acknowledged).
+inline constexpr std::uint32_t kLinkErrors = 1u << 21;
+inline constexpr std::uint32_t kFaultMask = kCommTimeout | kEmergency | kDriveNotReady | kFollowingError | kDataError |
+                                            kConfigError | kStopInput | kSafetyInputs | kLinkErrors;
 }  // namespace status
 
 // Module input bits per axis. 0x2/0x4/0x8 as on the 1996 card; home and index are ours.
@@ -139,6 +142,9 @@ class MotionBackend {
   virtual bool set_position(int axis, double value) noexcept = 0;
   // Clears latched fault bits (after the cause is gone); leaves the loops open.
   virtual bool reset_faults() noexcept = 0;
+  // Frames lost or damaged on the link to the hardware (and link requests refused) since
+  // start; 0 for a backend without a link. Read on the motion thread (the core publishes it).
+  virtual unsigned long link_errors() const noexcept { return 0; }
 };
 
 // Simulator-only hooks (hand pushes); a real machine has none, and the core refuses them.

@@ -4,6 +4,7 @@
 // the Link, and every real-time call goes through the stream without waiting for the card
 // (CardStreamSession: timed setpoints ahead, periodic status frames).
 #pragma once
+#include <atomic>
 #include <optional>
 #include <string>
 
@@ -24,6 +25,9 @@ struct ServoCardConfig {
   bool tip_reversed = false;                          // probe switch opens on contact
   int boot_retries = 3;
   StreamSettings stream;                              // used when the driver has a StreamLink
+  // A card on a line that can come back (a serial device): reset_faults() while the card is
+  // silent asks for a re-boot (reboot_wanted()), which a set-up thread runs (reboot()).
+  bool reboot_on_reset = false;
 };
 
 class ServoCardDriver final : public MotionBackend {
@@ -50,14 +54,24 @@ class ServoCardDriver final : public MotionBackend {
   bool ready_for_command() const noexcept override { return !session_ || session_->line_ready(); }
   bool stop(const AxisVec& decel) noexcept override;
   bool set_position(int axis, double value) noexcept override;
+  // On the stream, with reboot_on_reset, while no status frame comes (the card was gone): asks
+  // for reboot() and reports a quiet machine (loops open, last positions) until it is done.
   bool reset_faults() noexcept override;
+  unsigned long link_errors() const noexcept override;
+
+  // The re-boot of a card that came back (set-up: call from a thread of its own, never the
+  // motion thread; it blocks for the set-up exchanges). Runs initialise(false) while every
+  // real-time call answers from the last state; on failure the machine shows CommLost again
+  // and the message is returned. "" on success.
+  bool reboot_wanted() const noexcept { return phase_.load(std::memory_order_acquire) == kRebootWanted; }
+  std::string reboot();
   // Output 1 powers the probe (card::output::kProbeOn on every axis module; initialise()
   // switches it on). Op::WriteOutputs with the limit and reference switches on, request/reply
   // or on the stream; nothing else (set_loops, reset_faults) writes the outputs.
   int output_count() const noexcept override { return 1; }
   bool set_output(int number, bool on) noexcept override;
-  bool output_on(int number) const noexcept override { return number == 1 && probe_on_; }
-  bool probe_power() const noexcept { return probe_on_; }
+  bool output_on(int number) const noexcept override { return number == 1 && probe_on_.load(std::memory_order_relaxed); }
+  bool probe_power() const noexcept { return probe_on_.load(std::memory_order_relaxed); }
 
   // Link transactions that failed or were refused since start (for Stats and -dt).
   unsigned long errors() const noexcept { return errors_ + (session_ ? session_->errors() : 0); }
@@ -88,7 +102,16 @@ class ServoCardDriver final : public MotionBackend {
   MachineState followed_{};     // the state that came back with the last Follow frame
   bool have_followed_ = false;  // not yet returned by read_state()
   bool comm_lost_ = false;      // a Follow frame failed: report kCommTimeout until reset
-  bool probe_on_ = false;       // output 1 as last written (initialise(): on)
+  // Output 1 as last written (initialise(): on); atomic: a re-boot writes it while the motion
+  // thread may read it.
+  std::atomic<bool> probe_on_{false};
+  // Re-boot hand-over between the motion thread (Running) and the set-up thread.
+  static constexpr int kRunning = 0, kRebootWanted = 1, kRebooting = 2;
+  std::atomic<int> phase_{kRunning};
+  bool reboot_failed_ = false;  // the last reboot() failed: CommLost until the next
+  MachineState last_{};         // the last state handed to the core (answered while re-booting)
+  mutable unsigned long last_errors_ = 0;  // link_errors() as last read outside a re-boot
+  bool rebooting() const noexcept { return phase_.load(std::memory_order_acquire) != kRunning; }
 };
 
 }  // namespace imess::hal

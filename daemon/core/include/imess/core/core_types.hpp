@@ -63,6 +63,7 @@ enum class FaultKind : std::uint8_t {
   CommLost, FollowingError, Emergency, DriveNotReady, ConfigError,
   StopInput,                                             // STOP pressed: steps may be lost, reference run needed
   SafetyInput1, SafetyInput2, SafetyInput3, SafetyInput4,  // a normally-closed safety input opened
+  LinkErrors,                                            // the card's link damaged or lost frames the stream needs
 };
 
 // Units: mm for a linear axis, degrees for a rotary one (speeds per second).
@@ -194,6 +195,7 @@ struct Snapshot {
   bool simulated = false;
   std::uint64_t events_dropped = 0;
   std::uint64_t hardware_errors = 0;
+  std::uint64_t link_errors = 0;      // MotionBackend::link_errors(): frames lost or damaged on the link
   bool path_running = false;          // a queued segment is in hand
   std::uint32_t path_id = 0;          // its id
   bool path_held = false;             // Pause is in effect

@@ -4,6 +4,7 @@
 #include <boost/asio.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -16,8 +17,10 @@ namespace imess::net {
 class StatsReport {
  public:
   // runner may be null (no timing statistics: Stats then reports zeros).
-  StatsReport(boost::asio::io_context& io, core::LoopRunner* runner, SessionHub& sessions)
-      : io_(io), runner_(runner), sessions_(sessions) {}
+  // link_errors: the motion loop's published count of the backend's link errors.
+  StatsReport(boost::asio::io_context& io, core::LoopRunner* runner, SessionHub& sessions,
+              std::function<std::uint64_t()> link_errors)
+      : io_(io), runner_(runner), sessions_(sessions), link_errors_(std::move(link_errors)) {}
   void stats(Session& s, std::uint32_t slot, const protocol::Stats& c);
   std::string stats_line();
 
@@ -27,6 +30,7 @@ class StatsReport {
   boost::asio::io_context& io_;
   core::LoopRunner* runner_;
   SessionHub& sessions_;
+  std::function<std::uint64_t()> link_errors_;
 };
 
 }  // namespace imess::net
