@@ -17,7 +17,7 @@
 using namespace imess;
 
 namespace {
-constexpr int kPriority = 75;  // SCHED_FIFO: below messd's motion loop (80), above its link thread (70)
+constexpr int kPriority = 75;  // SCHED_FIFO: below messd's motion loop (80) and its link thread (82)
 std::atomic<bool> g_stop{false};
 std::atomic<bool> g_stall{false};
 void on_stop(int) { g_stop = true; }

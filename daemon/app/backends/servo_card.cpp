@@ -19,7 +19,7 @@ namespace imess::app {
 
 namespace {
 
-constexpr int kLinkPriority = 70;  // SCHED_FIFO for the link's I/O thread, below the motion loop's 80
+constexpr int kLinkPriority = 82;  // SCHED_FIFO for the link's I/O thread, above the motion loop's 80 and messcard's 75: short bursts that must not wait behind them
 
 // The link, its errors as messd reports them: a device that is missing or no tty is the
 // configuration's fault (exit 2), one that is busy is not (exit 1).
