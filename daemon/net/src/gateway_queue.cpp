@@ -5,6 +5,7 @@
 // kFlushLead of motion — checked after the lines that arrived together, on every Done and
 // Failed, and at once when the loop reports QueueLow — so moves sent in one burst are linked
 // by look-ahead, and a lone move starts without waiting for a timer.
+#include <boost/asio/post.hpp>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
