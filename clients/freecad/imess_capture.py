@@ -26,6 +26,7 @@ POINT_COLOUR = (0.0, 0.55, 0.0)
 MARKER_COLOUR = (1.0, 0.35, 0.0)
 DEFAULT_TIP_RADIUS = 2.0  # mm, until messd says (Status, Hit, Qualified)
 HIT_MATCH_MM = 1e-3  # a MeasPt within this of the Hit just before it is that hit's point
+OWNER_WARNINGS = ("Warn WatchExpired", "Warn ControlTaken")  # shown by the jog (imess_jog), whose motion they stopped
 
 
 class CaptureError(Exception):
@@ -252,7 +253,7 @@ class CaptureSession:
             words = args.split()
             if len(words) >= 2 and words[0] == "TipRadius" and numbers(words[1:], 1):
                 self.set_tip_radius(float(words[1]))
-        elif verb in ("Warn", "Fault", "Limit"):
+        elif verb in ("Warn", "Fault", "Limit") and not line.startswith(OWNER_WARNINGS):
             self.events.post("messd", line)
         elif verb == "Ok" and answered == "Status":
             self.take_status(args)

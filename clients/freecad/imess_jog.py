@@ -108,6 +108,9 @@ class JogControl:
                 self.moving = None  # stopped by a hit, a limit, another client
             if self.active and self.machine_state not in ("jog", "stopping") and "StartMv" not in self.session.pending:
                 self.post("jog", "jog %s ended" % self.active)
+        elif verb == "Ok" and answered == "StopMv" and self.active and self.machine_state not in ("jog", "stopping") \
+                and "StartMv" not in self.session.pending:
+            self.post("jog", "jog %s ended" % self.active)  # stopped before it ever ran: no State line comes
         elif line.startswith(_STOPPED_BY_MESSD):
             self.moving = None
             self.post("jog", "jog stopped by messd: %s" % line)
