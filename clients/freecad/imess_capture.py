@@ -344,11 +344,16 @@ def set_feature(obj, name):
     label_point(obj)
 
 
+def signed_um(mm):
+    """'+1.2 µm', '-0.4 µm'; never '-0.0 µm'."""
+    return "%+.1f µm" % (round(mm * 1000, 1) + 0.0)
+
+
 def label_point(obj):
     """'MeasPt007', then its feature and its deviation when it has them: 'MeasPt007 bore +1.2 µm'."""
     words = [obj.Label.split(" ")[0]]
     if getattr(obj, "Feature", ""):
         words.append(obj.Feature)
     if "Deviation" in obj.PropertiesList:
-        words.append("%+.1f µm" % (obj.Deviation * 1000))
+        words.append(signed_um(obj.Deviation))
     obj.Label = " ".join(words)

@@ -165,7 +165,10 @@ def colour_points(doc, source):
     whose feature's characteristics fail), report (the parsed report)."""
     report = read_report(source)
     points = report["points"]
-    fallback = max([abs(p["deviation"]) for p in points] + [0.0])
+    # A feature without characteristics is shown on the tightest scale of the others (its noise is
+    # not blown up to yellow), without any on the report's largest deviation.
+    scales = [f["scale"] for f in report["features"].values() if f["scale"] is not None]
+    fallback = min(scales) if scales else max([abs(p["deviation"]) for p in points] + [0.0])
     old = doc.getObject(DEVIATION_GROUP)
     if old is not None:
         for o in list(old.Group):

@@ -9,7 +9,7 @@ import os
 import subprocess
 import tempfile
 
-from imess_capture import CaptureError, find_messcap
+from imess_capture import CaptureError, find_messcap, signed_um
 
 
 def read_plan(path):
@@ -160,16 +160,16 @@ class PlanRun:
 
 
 def characteristic_row(c):
-    """(name, 'actual 29.9999 mm, deviation -0.1 µm, tolerance ±20.0 µm: ok') of one report
-    characteristic; lengths to 0.1 µm, angles to 0.0001°."""
+    """(name, 'ok: 29.9999 mm, deviation -0.1 µm, tolerance ±20.0 µm') of one report
+    characteristic, the verdict first (a narrow panel cuts the end); lengths to 0.1 µm, angles to 0.0001°."""
     name = str(c.get("name", "?"))
     if "actual" not in c:
         return name, "not evaluated: %s" % c.get("error", "no value")
     if c.get("unit") == "deg":
-        value, dev = "%.4f°" % c["actual"], "%+.4f°" % c["deviation"]
+        value, dev = "%.4f°" % c["actual"], "%+.4f°" % (round(c["deviation"], 4) + 0.0)
         tol = "%+.4f° … %+.4f°" % (c.get("lower", 0), c.get("upper", 0))
     else:
-        value, dev = "%.4f mm" % c["actual"], "%+.1f µm" % (c["deviation"] * 1000)
+        value, dev = "%.4f mm" % c["actual"], signed_um(c["deviation"])
         lower, upper = c.get("lower", 0) * 1000, c.get("upper", 0) * 1000
         if c.get("zone"):
             tol = "≤ %.1f µm" % upper
@@ -178,13 +178,13 @@ def characteristic_row(c):
         else:
             tol = "%+.1f … %+.1f µm" % (lower, upper)
     verdict = "ok" if c.get("in_tolerance") else "OUT"
-    return name, "%s, deviation %s, tolerance %s: %s" % (value, dev, tol, verdict)
+    return name, "%s: %s, deviation %s, tolerance %s" % (verdict, value, dev, tol)
 
 
 def summary_text(summary, count):
-    """'13 characteristics: 13 ok, 0 OUT, 0 not evaluated' from a report's summary."""
+    """'characteristics: 13 ok, 0 OUT' (and how many not evaluated, when any) from a report's summary."""
     if not isinstance(summary, dict):
         return "%d characteristics" % count
-    return "%d characteristics: %d ok, %d OUT, %d not evaluated" % (
-        summary.get("characteristics", count), summary.get("in_tolerance", 0), summary.get("out_of_tolerance", 0),
-        summary.get("not_evaluated", 0))
+    text = "characteristics: %d ok, %d OUT" % (summary.get("in_tolerance", 0), summary.get("out_of_tolerance", 0))
+    missing = summary.get("not_evaluated", 0)
+    return text + (", %d not evaluated" % missing if missing else "")

@@ -66,7 +66,11 @@ class CapturePanel(QtGui.QDockWidget):
         scroll = QtGui.QScrollArea()
         scroll.setWidget(w)
         scroll.setWidgetResizable(True)
+        scroll.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
         self.setWidget(scroll)
+        # As wide as its buttons need: the dock never cuts them off (a low screen scrolls it up and down).
+        self.setMinimumWidth(w.minimumSizeHint().width() + scroll.verticalScrollBar().sizeHint().width()
+                             + 2 * scroll.frameWidth() + 4)
         self.timer = QtCore.QTimer(self)
         self.timer.timeout.connect(self.tick)
         self.show_events()
@@ -490,9 +494,9 @@ class CapturePanel(QtGui.QDockWidget):
         rows = [imess_inspect.characteristic_row(c) for c in s["report"]["characteristics"]]
         for name, value in reversed(rows):
             self.add_result(name, value, "inspection")
-        self.note("colour", "%d points coloured (%d captured, %d added), %d in features out of tolerance; %s"
-                  % (s["points"], s["matched"], s["added"], s["out_of_tolerance"],
-                     imess_inspect.summary_text(s["report"]["summary"], len(rows))))
+        added = " (%d added: not captured here)" % s["added"] if s["added"] else ""
+        self.note("colour", "%d points coloured%s, %d out; %s" % (s["points"], added, s["out_of_tolerance"],
+                                                                 imess_inspect.summary_text(s["report"]["summary"], len(rows))))
 
 
 def show_panel():

@@ -119,7 +119,7 @@ def colouring_checks():
     check(close(top2.DeviationColor[:3], dev._mix(dev.GREEN, dev.YELLOW, 0.8), 1e-5), "0.004 of 0.005: near yellow")
     check(top1.Characteristics == "top flatness ok, top parallelism ok, height ok",
           "a point lists the characteristics of its feature, a distance on both features: %r" % top1.Characteristics)
-    check(top1.Feature == "top" and top1.Label == "MeasPt001 top -0.0 µm" and top2.Label == "MeasPt002 top +4.0 µm",
+    check(top1.Feature == "top" and top1.Label == "MeasPt001 top +0.0 µm" and top2.Label == "MeasPt002 top +4.0 µm",
           "the feature and the deviation in µm in the label: %r %r" % (top1.Label, top2.Label))
     check(not bore1.InTolerance and not bore2.InTolerance and bore1.Scale == 0.005,
           "the bore's roundness is out: its points are out of tolerance; its scale the tightest, roundness +-0.005")
@@ -131,9 +131,13 @@ def colouring_checks():
     group = doc.getObject(dev.DEVIATION_GROUP)
     added = group.Group if group else []
     check(len(added) == 1 and added[0].Shape.Vertexes[0].Point == V(401, 302, 3) and added[0].Label == "Deviation slot -60.0 µm"
-          and "InTolerance" not in added[0].PropertiesList and added[0].Scale == 0.06
+          and "InTolerance" not in added[0].PropertiesList and added[0].Scale == 0.005
           and close(added[0].DeviationColor[:3], dev.CYAN, 1e-6),
-          "a point nobody captured is added where it was measured; without characteristics, no verdict and no blue")
+          "a point nobody captured is added where it was measured; a feature without characteristics: the tightest "
+          "scale of the others, no verdict, so no blue")
+    alone = dev.read_report({"points": [{"feature": "a", "xyz": [0, 0, 0], "deviation": d} for d in (0.002, -0.004)]})
+    check(dev.judge(alone["points"][0], alone["features"], 0.004) == (0.004, None, ""),
+          "a report without characteristics: the largest deviation is the scale")
 
     again = dev.colour_points(doc, {"points": [{"feature": "top", "xyz": [100, 20, 80], "machine": [500, 320, 80],
                                                 "deviation": 0.001, "tolerance": [-0.0005, 0.0005]}]})
@@ -174,12 +178,12 @@ def panel_checks():
     QtGui.QFileDialog.getOpenFileName = staticmethod(lambda *a, **k: (report, ""))
     panel.open_report()
     check(pts[0].Deviation == 0.012 and pts[1].Deviation == -0.003, "Report... colours from a file")
-    check(panel.events.text("colour") == "5 points coloured (2 captured, 3 added), 2 in features out of tolerance; "
-          "6 characteristics: 4 ok, 1 OUT, 1 not evaluated", panel.events.text("colour"))
+    check(panel.events.text("colour") == "5 points coloured (3 added: not captured here), 2 out; "
+          "characteristics: 4 ok, 1 OUT, 1 not evaluated", panel.events.text("colour"))
     rows = dict(panel.results())
-    check(rows.get("top flatness") == "0.0000 mm, deviation +0.0 µm, tolerance ≤ 10.0 µm: ok" and
-          rows.get("bore roundness") == "0.0000 mm, deviation +0.0 µm, tolerance ≤ 10.0 µm: OUT" and
-          rows.get("bore diameter") == "30.0123 mm, deviation +12.3 µm, tolerance ±20.0 µm: ok" and
+    check(rows.get("top flatness") == "ok: 0.0000 mm, deviation +0.0 µm, tolerance ≤ 10.0 µm" and
+          rows.get("bore roundness") == "OUT: 0.0000 mm, deviation +0.0 µm, tolerance ≤ 10.0 µm" and
+          rows.get("bore diameter") == "ok: 30.0123 mm, deviation +12.3 µm, tolerance ±20.0 µm" and
           rows.get("bore position") == "not evaluated: feature 'bore' has no fit: …" and
           [name for name, _ in panel.results()] == [c["name"] for c in REPORT["characteristics"]],
           "the characteristics in the panel, in the report's order: %s" % rows)
