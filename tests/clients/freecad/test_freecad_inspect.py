@@ -82,6 +82,15 @@ def live_checks():
               "height 80, bore 30: %s" % r)
         check(pump(app, 2, lambda: s.control == "none") and "control free" in panel.state.text() and
               panel.measure_plan_button.isEnabled(), "messcap gave control back: %r" % panel.state.text())
+        panel.measure_plan()
+        check(pump(app, 20, lambda: s.control.startswith("messcap") and s.state in ("move", "retract")),
+              "measuring again: %s" % panel.events.lines())
+        mouse(panel.stop_button, "press")
+        mouse(panel.stop_button, "release")
+        check(pump(app, 10, lambda: panel.run is None) and
+              panel.events.text("inspect").startswith("inspection failed: messcap: inspect: ") and
+              panel.measure_plan_button.isEnabled(),
+              "Stop stops the plan messcap measures; its reason is shown: %s" % panel.events.text("inspect"))
         check(not warnings, "no warnings: %s" % warnings)
         panel.toggle()
         FreeCAD.closeDocument(doc.Name)
