@@ -8,7 +8,6 @@
 import json
 import os
 import sys
-import time
 
 ARGS = json.loads(os.environ["IMESS_GUI_TEST"])
 sys.stdout = open(ARGS["output"], "w", buffering=1)
