@@ -151,12 +151,17 @@ class PlanRun:
         self.state, self.error = "failed", why
         self.session.events.post("inspect", "inspection failed: %s" % why)
 
-    def cancel(self):
-        """Ends a running messcap (closing its connection stops the machine)."""
+    def cancel(self, why):
+        """Ends a running messcap (closing its connection stops what it commanded)."""
+        if self.state == "releasing":
+            self.session.observers.remove(self.on_line)
         if self.proc is not None and self.proc.poll() is None:
             self.proc.terminate()
             self.proc.wait(5)
-            self.finish_failed("cancelled")
+        if self.state in ("releasing", "running"):
+            self.state = "failed"
+            self.error = why
+            self.session.events.post("inspect", "inspection stopped: %s" % why)
 
 
 def characteristic_row(c):

@@ -200,8 +200,9 @@ class CapturePanel(QtGui.QDockWidget):
         if self.session is not None and self.session.connected():
             self.jog_stop_if_moving()
             if self.run is not None:
-                self.run.cancel()
+                self.run.cancel("disconnected")
                 self.run = None
+                self.update_plan_buttons()
             self.session.close("disconnected")
             self.timer.stop()
             self.connect_button.setText("Connect")
@@ -329,6 +330,11 @@ class CapturePanel(QtGui.QDockWidget):
     def jog_stop(self):
         if self.connected():
             self.jog.stop()
+            if self.run is not None:  # between two of its moves a StopMv finds nothing to stop
+                self.run.cancel("Stop pressed")
+                self.run = None
+                self.update_plan_buttons()
+            self.show_events()
 
     def jog_stop_if_moving(self):
         if self.jog is not None and self.session.connected() and (self.jog.held or self.jog.moving):

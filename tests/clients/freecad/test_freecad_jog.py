@@ -122,9 +122,9 @@ def panel_checks():
     mouse(panel.speed_buttons[100.0], "release")
     mouse(buttons["+Y"], "press")
     pump(app, 0.3, state("jog"))
-    v = speed(s, app, 0.3)
+    v = speed(s, app, 1.0)
     mouse(buttons["+Y"], "move", inside=False)
-    check(60 < v < 110 and pump(app, 2, state("idle")), "+Y at 100 %% (%.1f mm/s); sliding off the held button stops"
+    check(75 < v < 125 and pump(app, 2, state("idle")), "+Y at 100 %% (%.1f mm/s); sliding off the held button stops"
           % v)
     mouse(buttons["+Y"], "release", inside=False)
 
