@@ -285,8 +285,11 @@ class CapturePanel(QtGui.QDockWidget):
         """The 3-D view of the session's document, or None (no GUI, no such view)."""
         if not FreeCAD.GuiUp or self.session is None:
             return None
-        gui_doc = FreeCADGui.getDocument(self.session.doc.Name)
-        view = gui_doc.activeView() if gui_doc is not None else None
+        try:
+            gui_doc = FreeCADGui.getDocument(self.session.doc.Name)
+            view = gui_doc.activeView() if gui_doc is not None else None
+        except Exception:  # noqa: BLE001 - the document was closed under the panel
+            return None
         return view if view is not None and hasattr(view, "getCameraNode") else None
 
     def follow_view(self):
