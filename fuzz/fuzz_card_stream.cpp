@@ -50,17 +50,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }();
   (void)streaming;
 
-  hal::FrameDecoder decoder;
+  hal::FrameReceiver receiver;
   for (std::uint8_t b : bytes) {
-    switch (decoder.feed(b)) {
-      case hal::FrameDecoder::Result::Pending: break;
-      case hal::FrameDecoder::Result::Damaged: cmm.card().on_damaged_frame(); break;
-      case hal::FrameDecoder::Result::Frame:
-        (void)hal::card::read_status(decoder.payload(), status);
-        cmm.card().on_stream_frame(decoder.payload());
-        cmm.card().step();
-        break;
-    }
+    receiver.feed(b, [&](hal::FrameDecoder::Result r, const hal::FrameDecoder& d) {
+      if (r == hal::FrameDecoder::Result::Damaged) return cmm.card().on_damaged_frame();
+      (void)hal::card::read_status(d.payload(), status);
+      cmm.card().on_stream_frame(d.payload());
+      cmm.card().step();
+    });
   }
 
   // The same bytes at the card's end of a line: a set-up frame's reply is a set-up frame. A

@@ -23,9 +23,16 @@ inline double from_units(std::int32_t u) noexcept { return u * kStreamUnit; }
 void write_table(LinkWriter& w, unsigned mask) noexcept;
 Status read_table(LinkReader& r, unsigned& mask) noexcept;
 
+// The longest frame the card sends (a status frame with latch data is 55 bytes, the longest
+// set-up reply ReadInfo's 5 + its revision): a receiver takes a longer length byte as damaged
+// at once rather than wait for the bytes of the frames behind it.
+inline constexpr std::size_t kMaxCardPayload = 96;
+
 // Status frame flags.
 namespace flag {
-inline constexpr std::uint8_t kStreamError = 0x1;  // a host frame failed its CRC or a sequence number was skipped
+// A host frame failed its CRC or a sequence number was skipped: the frame after ack is
+// wanted again (the card holds the frames that came after it until it comes).
+inline constexpr std::uint8_t kResendWanted = 0x1;
 inline constexpr std::uint8_t kLatchData = 0x2;    // latched positions follow the axis data
 }
 
