@@ -34,6 +34,7 @@ void CardStreamSession::start(std::uint32_t ticks_per_second, std::uint32_t cloc
   // A frame's ack comes with the next status frame after it arrives, which is on the line a
   // while and read in the next period: a status period, that, and two periods to spare.
   answer_cycles_ = static_cast<std::uint32_t>(std::ceil((settings_.status_period + line) / settings_.period)) + 2;
+  status_line_cycles_ = static_cast<std::uint32_t>(std::ceil(line / settings_.period)) + 1;
   newest_ = card::StatusFrame{};
   newest_.clock = clock;
   newest_.mask = kAllAxes;
@@ -112,20 +113,29 @@ bool CardStreamSession::resend_due() const noexcept {
   return asked || overdue;
 }
 
-// Selective: the first frame the card has not acknowledged, again.
+// Selective: the first frame the card has not acknowledged again, and those after it that the
+// card does not hold.
 void CardStreamSession::resend() noexcept {
   const std::uint8_t first = first_unacked();
   resend_tries_ = first == resend_first_ && resend_tries_ > 0 ? resend_tries_ + 1 : 1;
   resend_first_ = first;
   ++errors_;  // the card saw a host frame damaged or missing (or its ack was)
   if (resend_tries_ > settings_.resend_tries || static_cast<std::uint8_t>(seq_ - first) >= kResendWindow) return broken();
-  // The card holds the frames after it: this one is all it needs (another missing one is
-  // asked for next, once this is through).
-  const auto slot = static_cast<std::size_t>(first % kResendWindow);
-  if (link_.send(std::span<const std::uint8_t>(kept_[slot].data(), kept_len_[slot]))) {  // full: again later
-    queue_on_line(kept_len_[slot]);
-    sent_at_[first] = static_cast<std::uint32_t>(std::ceil(line_free_));
-    ++frames_resent_;
+  // It, and of the 16 after it those the card does not hold though they had crossed the line
+  // when it sent its status frame.
+  const std::uint8_t last = card::seq_after(seq_, static_cast<std::uint8_t>(first + 16)) ? static_cast<std::uint8_t>(first + 16) : seq_;
+  for (std::uint8_t q = first;; ++q) {
+    const int bit = static_cast<std::uint8_t>(q - first) - 1;  // -1: first itself
+    const bool held = bit >= 0 && !reset_.on && (newest_.held >> bit & 1u);
+    const bool crossed = static_cast<std::int32_t>(status_cycle_ - sent_at_[q]) > static_cast<std::int32_t>(status_line_cycles_);
+    if (q == first || (!held && crossed)) {
+      const auto slot = static_cast<std::size_t>(q % kResendWindow);
+      if (!link_.send(std::span<const std::uint8_t>(kept_[slot].data(), kept_len_[slot]))) break;  // full: again later
+      queue_on_line(kept_len_[slot]);
+      sent_at_[q] = static_cast<std::uint32_t>(std::ceil(line_free_));
+      ++frames_resent_;
+    }
+    if (q == last) break;
   }
   resend_hold_ = static_cast<std::uint32_t>(std::ceil(line_free_)) + answer_cycles_;
 }

@@ -105,6 +105,10 @@ void EmulatedCard::emit_status() noexcept {
   s.ack_status = static_cast<std::uint8_t>(frame_status_);
   frame_status_ = Status::Ok;
   s.flags = resend_wanted_ ? card::flag::kResendWanted : 0;
+  for (int i = 0; i < 16; ++i) {  // the frames held after the missing one
+    const auto seq = static_cast<std::uint8_t>(ack_ + 2 + i);
+    if (held_len_[seq % kHeld] != 0 && held_[seq % kHeld][0] == seq) s.held |= static_cast<std::uint16_t>(1u << i);
+  }
   s.starvations = static_cast<std::uint8_t>(std::min<unsigned long>(starvations_, 255));
   s.knots = static_cast<std::uint8_t>(knot_count_);
   if (following_) {

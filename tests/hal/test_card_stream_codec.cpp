@@ -102,6 +102,7 @@ TEST_CASE("stream frames: the status frame and the timed setpoint round trip —
   s.starvations = 3;
   s.knots = 4;
   s.margin = 117;
+  s.held = 0xA00F;
   s.mask = (1u << kAxes) - 1;
   for (int a = 0; a < kAxes; ++a) {
     s.position[a] = -123.4567 + a;
@@ -112,7 +113,7 @@ TEST_CASE("stream frames: the status frame and the timed setpoint round trip —
   LinkWriter w;
   card::write_status(w, s);
   REQUIRE(w.ok());
-  CHECK(w.bytes().size() == 12u + 1 + kAxes + 9u * kAxes + 4u * kAxes);
+  CHECK(w.bytes().size() == 12u + 2 + 1 + kAxes + 9u * kAxes + 4u * kAxes);  // held: with kResendWanted
   card::StatusFrame back;
   REQUIRE(card::read_status(w.bytes(), back));
   CHECK(back.clock == s.clock);
@@ -120,6 +121,7 @@ TEST_CASE("stream frames: the status frame and the timed setpoint round trip —
   CHECK(back.ack_status == 5);
   CHECK(back.flags == s.flags);
   CHECK(back.margin == 117);
+  CHECK(back.held == 0xA00F);
   for (int a = 0; a < kAxes; ++a) {
     CHECK(back.position[a] == Approx(s.position[a]).margin(card::kStreamUnit / 2));
     CHECK(back.latched[a] == Approx(s.latched[a]).margin(card::kStreamUnit / 2));

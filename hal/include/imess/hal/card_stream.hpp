@@ -31,7 +31,8 @@ inline constexpr std::size_t kMaxCardPayload = 96;
 // Status frame flags.
 namespace flag {
 // A host frame failed its CRC or a sequence number was skipped: the frame after ack is
-// wanted again (the card holds the frames that came after it until it comes).
+// wanted again (the card holds the frames that came after it until it comes), and those of
+// the next 16 that the held bits do not name.
 inline constexpr std::uint8_t kResendWanted = 0x1;
 inline constexpr std::uint8_t kLatchData = 0x2;    // latched positions follow the axis data
 }
@@ -39,12 +40,14 @@ inline constexpr std::uint8_t kLatchData = 0x2;    // latched positions follow t
 // The card's periodic status frame: Op::Status, u32 clock (card ticks when sampled), u8 ack
 // (sequence number of the last host frame handled), u8 ack_status (its Status), u8 flags,
 // u8 starvations (saturating count), u8 knots (setpoints buffered), u16 margin (ticks from
-// now to the last buffered setpoint), table, per axis i32 position, u32 status word,
-// u8 inputs; with kLatchData per axis i32 latched position.
+// now to the last buffered setpoint), with kResendWanted u16 held (bit i: the card holds
+// host frame ack + 2 + i), table, per axis i32 position, u32 status word, u8 inputs; with
+// kLatchData per axis i32 latched position.
 struct StatusFrame {
   std::uint32_t clock = 0;
   std::uint8_t ack = 0, ack_status = 0, flags = 0, starvations = 0, knots = 0;
   std::uint16_t margin = 0;
+  std::uint16_t held = 0;  // with kResendWanted
   unsigned mask = 0;
   AxisArray<double> position{}, latched{};
   AxisArray<std::uint32_t> status{};

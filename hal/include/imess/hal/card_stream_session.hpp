@@ -115,6 +115,7 @@ class CardStreamSession {
   int resend_tries_ = 0;            // resends from resend_first_ so far (0: none under way)
   std::uint32_t resend_hold_ = 0;   // no resend before this cycle: the last one's frames are on their way
   std::uint32_t answer_cycles_ = 0; // periods from a frame crossing the line to its ack at the host
+  std::uint32_t status_line_cycles_ = 0;  // periods from a status frame's sample to its reading here
   card::StatusFrame newest_{};
   bool stream_status_ = false;  // newest_ came on the stream (not from set-up)
   bool damaged_since_ = false;  // a damaged frame came since the last status frame (already counted)
