@@ -204,13 +204,13 @@ PathEnd run_planned_line(LineClient& c, Started&& started) {
 
 TEST_CASE("servo-card: damaged bytes on a path: the host frames hit are sent again and the path ends Done") {
   // From the first byte on: set-up retries what is hit, the GoTo and the path are sent again.
-  MesscardProcess card({"--corrupt", "0.001", "--seed", "5"});
+  MesscardProcess card({"--corrupt", "0.0003", "--seed", "5"});
   DaemonProcess messd = messd_on(card);
   LineClient c(messd.port());
   const double before = card_link_errors(c);
   const PathEnd r = run_planned_line(c, [] {});
   const double errors = card_link_errors(c) - before;
-  std::printf("servo-card: --corrupt 0.001 on a 447 mm path: %s; LinkErrors +%.0f; at X %.3f Y %.3f\n", r.end.c_str(),
+  std::printf("servo-card: --corrupt 0.0003 on a 447 mm path: %s; LinkErrors +%.0f; at X %.3f Y %.3f\n", r.end.c_str(),
               errors, r.x, r.y);
   CHECK(r.end.rfind("Done 1", 0) == 0);
   CHECK(errors >= 1);  // damaged frames were met, counted, and survived
