@@ -40,9 +40,11 @@ std::unique_ptr<hal::SerialCardLink> open_card_line(const DaemonConfig& cfg) {
 hal::ServoCardConfig card_config(const DaemonConfig& cfg) {
   hal::ServoCardConfig c = cfg.card;
   c.stream.baud = cfg.card_line.baud;
-  // Two programs (or a program and a card) on a loaded host: a status frame may come 20 ms
-  // late without the card being gone. 30 periods keep CommLost within 35 ms of the last one.
-  c.stream.timeout_cycles = 30;
+  // Two programs (or a program and a card) on a loaded host: a status frame may come 30 ms
+  // late without the card being gone (a tty's bytes are moved by the kernel's worker threads,
+  // which run time-shared: behind a build they wait). 40 periods keep CommLost within 45 ms of
+  // the last status frame, inside the 50 ms a pulled cable must take at most.
+  c.stream.timeout_cycles = 40;
   c.reboot_on_reset = true;
   return c;
 }
