@@ -196,7 +196,7 @@ const std::array kVerbs{
              false, Access::Open, command_index<Program>(), [](const Args&) -> Command { return Program{}; }},
     VerbSpec{"Key", args(word("name")),
              "a key of the jog panel for the inspection software (I++ DME KeyPress: Done, Del, F1 ...), while it has enabled the user",
-             false, Access::Controlling, command_index<Key>(), [](const Args& a) -> Command { return Key{std::string(a.at[0].text)}; }},
+             false, Access::Operator, command_index<Key>(), [](const Args& a) -> Command { return Key{std::string(a.at[0].text)}; }},
     VerbSpec{"Frames", args(), "the part frames on the controller: the active one and every name", false, Access::Open,
              command_index<Frames>(), [](const Args&) -> Command { return Frames{}; }},
     VerbSpec{"Frame", args(optional(word("name"))), "one part frame (default: the active one): origin and axes in machine coordinates",
