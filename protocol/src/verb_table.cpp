@@ -216,8 +216,8 @@ const std::array kVerbs{
              Access::Controlling, command_index<SetFrame>(), [](const Args& a) -> Command { return set_frame(a); }},
     VerbSpec{"Align",
              args(word("name"), choice("method", "321 holes", "Align takes the method 321 (plane line point) or holes (plane hole hole), got '{got}'; usage: {usage}"),
-                  word("plane-hits"), word("hits"), word("hits")),
-             "build a part frame from journaled hits (numbers like 1-3 or 4,5): 321 plane line point, or holes plane hole hole",
+                  word("plane-hits|last"), optional(word("hits")), optional(word("hits"))),
+             "build a part frame from journaled hits (numbers like 1-3 or 4,5, or last: the newest 6, holes 9): 321 plane line point, or holes plane hole hole",
              false, Access::Controlling, command_index<Align>(),
              [](const Args& a) -> Command {
                return Align{std::string(a.at[0].text), a.at[1].choice == 1,
