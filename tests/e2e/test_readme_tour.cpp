@@ -41,11 +41,11 @@ std::vector<std::string> as_scripts_run(std::vector<std::string> more = {}) {
   return args;
 }
 
-// The same, in loop time (a loaded host pauses the simulated machine), on SCHED_FIFO where permitted.
+// The same in loop time: a loaded host pauses the simulated machine, so it needs no real-time
+// scheduling (and takes none from the suite's timing tests).
 std::vector<std::string> as_scripts_run_in_loop_time() {
   return as_scripts_run({"--config", kSource + "/config/sim-servo-card-loop-time.json"});
 }
-constexpr auto kRealtime = DaemonProcess::Scheduling::RealtimeIfPermitted;
 
 std::string at(const DaemonProcess& messd) { return "127.0.0.1:" + std::to_string(messd.port()); }
 
@@ -225,7 +225,7 @@ TEST_CASE("README tour steps 1-6 and 8: telnet, messjog, messcap, messmon, the q
 }
 
 TEST_CASE("README tour step 7: measure_cube.py and Align by hand, with telnet open") {
-  DaemonProcess messd(as_scripts_run_in_loop_time(), kRealtime);
+  DaemonProcess messd(as_scripts_run_in_loop_time());
   LineClient telnet(messd.port());
   telnet_touches_the_top(telnet);
   turn_to_the_next_program();
@@ -267,7 +267,7 @@ TEST_CASE("README tour step 7: measure_cube.py and Align by hand, with telnet op
 }
 
 TEST_CASE("README tour step 7: messcap inspect, with telnet open") {
-  DaemonProcess messd(as_scripts_run_in_loop_time(), kRealtime);
+  DaemonProcess messd(as_scripts_run_in_loop_time());
   LineClient telnet(messd.port());
   telnet_touches_the_top(telnet);
   turn_to_the_next_program();
@@ -282,7 +282,7 @@ TEST_CASE("README tour step 7: messcap inspect, with telnet open") {
 }
 
 TEST_CASE("README tour step 7: messcap qualify, with telnet open") {
-  DaemonProcess messd(as_scripts_run_in_loop_time(), kRealtime);
+  DaemonProcess messd(as_scripts_run_in_loop_time());
   LineClient telnet(messd.port());
   telnet_touches_the_top(telnet);
   turn_to_the_next_program();
@@ -297,7 +297,7 @@ TEST_CASE("README tour step 7: messcap qualify, with telnet open") {
 
 TEST_CASE("README tour steps 9-10: a program in telnet, messprog run, an I++ DME session, with telnet open") {
   {
-    DaemonProcess messd(as_scripts_run_in_loop_time(), kRealtime);
+    DaemonProcess messd(as_scripts_run_in_loop_time());
     LineClient telnet(messd.port());
     telnet_touches_the_top(telnet);
     const auto programs = telnet.request("Programs");
@@ -349,7 +349,7 @@ TEST_CASE("README tour steps 9-10: a program in telnet, messprog run, an I++ DME
     CHECK(ipp.wait(10s).has_value());
   }
   {  // messprog run on the 3D-Step machine, telnet open there too.
-    DaemonProcess messd(as_scripts_run({"--config", kSource + "/config/sim-parport-3dstep.json"}), kRealtime);
+    DaemonProcess messd(as_scripts_run({"--config", kSource + "/config/sim-parport-3dstep.json"}));
     LineClient telnet(messd.port());
     REQUIRE(telnet.next());
     REQUIRE(telnet.request("ForcePt") == std::optional<std::string>("Ok ForcePt"));  // takes control
