@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <thread>
@@ -26,6 +27,7 @@
 
 #include "child_process.hpp"
 #include "daemon_process.hpp"
+#include "private_config.hpp"
 
 using namespace imess::test;
 using namespace std::chrono_literals;
@@ -348,8 +350,10 @@ TEST_CASE("README tour steps 9-10: a program in telnet, messprog run, an I++ DME
     close(typing);
     CHECK(ipp.wait(10s).has_value());
   }
-  {  // messprog run on the 3D-Step machine, telnet open there too.
-    DaemonProcess messd(as_scripts_run({"--config", kSource + "/config/sim-parport-3dstep.json"}));
+  {  // messprog run on the 3D-Step machine, telnet open there too (its port space a file of its
+     // own: another test may run messd on the shipped file at the same time).
+    const std::string config = private_port_config(kSource + "/config/sim-parport-3dstep.json");
+    DaemonProcess messd(as_scripts_run({"--config", config}));
     LineClient telnet(messd.port());
     REQUIRE(telnet.next());
     REQUIRE(telnet.request("ForcePt") == std::optional<std::string>("Ok ForcePt"));  // takes control
@@ -359,5 +363,6 @@ TEST_CASE("README tour steps 9-10: a program in telnet, messprog run, an I++ DME
     INFO(run.out << run.err);
     CHECK(run.status == 0);
     CHECK(run.err.find("Err 209") == std::string::npos);
+    std::filesystem::remove(config);
   }
 }
