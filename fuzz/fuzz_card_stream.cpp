@@ -24,9 +24,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::span<const std::uint8_t> bytes(data, size);
   hal::card::StatusFrame status;
   (void)hal::card::read_status(bytes, status);  // the whole input as one status frame
-  hal::LinkReader r(bytes);
+  hal::LinkReader knot_reader(bytes);
   hal::card::Knot knot;
-  (void)hal::card::read_knot(r, knot);
+  (void)hal::card::read_knot(knot_reader, knot);
 
   static StillClock clock;
   static sim::SimulatedCmm cmm(sim::SimulatedCmmConfig{}, clock);
@@ -50,32 +50,39 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }();
   (void)streaming;
 
-  hal::FrameDecoder decoder;
+  hal::FrameReceiver receiver;
   for (std::uint8_t b : bytes) {
-    switch (decoder.feed(b)) {
-      case hal::FrameDecoder::Result::Pending: break;
-      case hal::FrameDecoder::Result::Damaged: cmm.card().on_damaged_frame(); break;
-      case hal::FrameDecoder::Result::Frame:
-        (void)hal::card::read_status(decoder.payload(), status);
-        cmm.card().on_stream_frame(decoder.payload());
-        cmm.card().step();
-        break;
-    }
+    receiver.feed(b, [&](hal::FrameDecoder::Result r, const hal::FrameDecoder& d) {
+      if (r == hal::FrameDecoder::Result::Damaged) return cmm.card().on_damaged_frame();
+      (void)hal::card::read_status(d.payload(), status);
+      cmm.card().on_stream_frame(d.payload());
+      cmm.card().step();
+    });
   }
 
   // The same bytes at the card's end of a line: a set-up frame's reply is a set-up frame. A
   // line end of this input's own (a static one kept a frame begun by the previous input, which
   // this input's request decoder never saw: a false finding, CI of 2026-11-28).
+  // The requests are read as the line end reads them (resynchronising: a byte can end more
+  // than one frame); its reply answers the last set-up request that byte ended.
   sim::CardLineEnd line_end(cmm.card());
-  hal::FrameDecoder request, answer;
+  hal::FrameReceiver request;
+  hal::FrameDecoder answer;
   for (std::uint8_t b : bytes) {
-    const bool setup = request.feed(b) == hal::FrameDecoder::Result::Frame && request.setup();
+    bool setup = false;
+    std::uint8_t tag = 0;
+    request.feed(b, [&](hal::FrameDecoder::Result r, const hal::FrameDecoder& d) {
+      if (r == hal::FrameDecoder::Result::Frame && d.setup() && d.payload().size() >= 2) {
+        setup = true;
+        tag = d.payload()[0];
+      }
+    });
     line_end.feed(b);
     if (line_end.reply().empty()) continue;
     if (!setup) __builtin_trap();  // a reply to no set-up request
     hal::FrameDecoder::Result r = hal::FrameDecoder::Result::Pending;
     for (std::uint8_t c : line_end.reply()) r = answer.feed(c);
-    if (r != hal::FrameDecoder::Result::Frame || !answer.setup() || answer.payload()[0] != request.payload()[0])
+    if (r != hal::FrameDecoder::Result::Frame || !answer.setup() || answer.payload()[0] != tag)
       __builtin_trap();  // not a set-up frame with the request's tag
   }
   return 0;

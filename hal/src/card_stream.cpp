@@ -32,6 +32,7 @@ Status read_table(LinkReader& r, unsigned& mask) noexcept {
 void write_status(LinkWriter& w, const StatusFrame& s) noexcept {
   w.u8(static_cast<std::uint8_t>(Op::Status)).u32(s.clock).u8(s.ack).u8(s.ack_status).u8(s.flags);
   w.u8(s.starvations).u8(s.knots).u16(s.margin);
+  if (s.flags & flag::kResendWanted) w.u16(s.held);
   write_table(w, s.mask);
   for (int a = 0; a < kAxes; ++a)
     if (named(s.mask, a)) w.i32(to_units(s.position[a])).u32(s.status[a]).u8(s.inputs[a]);
@@ -50,6 +51,7 @@ bool read_status(std::span<const std::uint8_t> frame, StatusFrame& s) noexcept {
   s.starvations = r.u8();
   s.knots = r.u8();
   s.margin = r.u16();
+  s.held = (s.flags & flag::kResendWanted) ? r.u16() : 0;
   if (read_table(r, s.mask) != Status::Ok) return false;
   for (int a = 0; a < kAxes; ++a)
     if (named(s.mask, a)) {

@@ -31,6 +31,10 @@ void CardStreamSession::start(std::uint32_t ticks_per_second, std::uint32_t cloc
   const double bytes = kFrameOverhead + 13 + kAxes + 9.0 * kAxes;
   const double line = settings_.baud > 0 ? bytes * kBitsPerByte / settings_.baud : 0;
   delay_ticks_ = ticks(line + 0.5 * settings_.period, ticks_per_second);
+  // A frame's ack comes with the next status frame after it arrives, which is on the line a
+  // while and read in the next period: a status period, that, and two periods to spare.
+  answer_cycles_ = static_cast<std::uint32_t>(std::ceil((settings_.status_period + line) / settings_.period)) + 2;
+  status_line_cycles_ = static_cast<std::uint32_t>(std::ceil(line / settings_.period)) + 1;
   newest_ = card::StatusFrame{};
   newest_.clock = clock;
   newest_.mask = kAllAxes;
@@ -43,7 +47,10 @@ void CardStreamSession::start(std::uint32_t ticks_per_second, std::uint32_t cloc
   stream_status_ = comm_lost_ = link_broken_ = refused_ = following_ = false;
   seq_ = 0;
   cycle_ = status_cycle_ = 0;
+  damaged_seen_ = false;
   line_free_ = 0;
+  resend_tries_ = 0;
+  resend_hold_ = 0;
   motion_ = loops_ = reset_ = latch_ = Pending{};
   shift_pending_ = {};
   shift_ = {};
@@ -70,8 +77,15 @@ void CardStreamSession::take(std::span<const std::uint8_t> frame) noexcept {
   // One went missing (lost, or damaged and counted already): counted, and this one is taken.
   if (stream_status_ && s.clock - newest_.clock != status_ticks_ && !damaged_since_) ++errors_;
   damaged_since_ = false;
-  if (stream_status_ && s.starvations != newest_.starvations)  // a stall outlasted the lead: twice the lead from now
+  if (stream_status_ && s.starvations != newest_.starvations) {
+    // Frames sent again did not reach the card within the lead: the line, not the host.
+    if (resend_tries_ > 0 && card::seq_after(resend_first_, s.ack)) {
+      newest_ = s;
+      return broken();
+    }
+    // A stall outlasted the lead: twice the lead from now.
     longest_gap_ = std::max(longest_gap_, (2 * lead() - settings_.status_period) / 1.5);
+  }
   newest_ = s;
   stream_status_ = true;
   status_cycle_ = cycle_;
@@ -82,7 +96,48 @@ void CardStreamSession::take(std::span<const std::uint8_t> frame) noexcept {
     refused_ = true;
     ++errors_;
   }
-  if (s.flags & card::flag::kStreamError) broken();  // it saw a damaged or missing host frame
+}
+
+std::uint8_t CardStreamSession::first_unacked() const noexcept {
+  // A reset on its way is sent again from itself: the card takes ResetAxes whatever its seq.
+  return reset_.on ? reset_.seq : static_cast<std::uint8_t>(newest_.ack + 1);
+}
+
+bool CardStreamSession::resend_due() const noexcept {
+  if (link_broken_ || comm_lost_ || !card::seq_after(seq_, newest_.ack)) return false;
+  if (static_cast<std::int32_t>(cycle_ - resend_hold_) < 0) return false;  // the last resend is on its way
+  const bool asked = !reset_.on && (newest_.flags & card::flag::kResendWanted) != 0;
+  // Overdue: the card talked on for an answer's time after the frame crossed the line.
+  const bool overdue = static_cast<std::int32_t>(status_cycle_ - sent_at_[first_unacked()]) >
+                       static_cast<std::int32_t>(answer_cycles_ + 2);
+  return asked || overdue;
+}
+
+// Selective: the first frame the card has not acknowledged again, and those after it that the
+// card does not hold.
+void CardStreamSession::resend() noexcept {
+  const std::uint8_t first = first_unacked();
+  resend_tries_ = first == resend_first_ && resend_tries_ > 0 ? resend_tries_ + 1 : 1;
+  resend_first_ = first;
+  ++errors_;  // the card saw a host frame damaged or missing (or its ack was)
+  if (resend_tries_ > settings_.resend_tries || static_cast<std::uint8_t>(seq_ - first) >= kResendWindow) return broken();
+  // It, and of the 16 after it those the card does not hold though they had crossed the line
+  // when it sent its status frame.
+  const std::uint8_t last = card::seq_after(seq_, static_cast<std::uint8_t>(first + 16)) ? static_cast<std::uint8_t>(first + 16) : seq_;
+  for (std::uint8_t q = first;; ++q) {
+    const int bit = static_cast<std::uint8_t>(q - first) - 1;  // -1: first itself
+    const bool held = bit >= 0 && !reset_.on && (newest_.held >> bit & 1u);
+    const bool crossed = static_cast<std::int32_t>(status_cycle_ - sent_at_[q]) > static_cast<std::int32_t>(status_line_cycles_);
+    if (q == first || (!held && crossed)) {
+      const auto slot = static_cast<std::size_t>(q % kResendWindow);
+      if (!link_.send(std::span<const std::uint8_t>(kept_[slot].data(), kept_len_[slot]))) break;  // full: again later
+      queue_on_line(kept_len_[slot]);
+      sent_at_[q] = static_cast<std::uint32_t>(std::ceil(line_free_));
+      ++frames_resent_;
+    }
+    if (q == last) break;
+  }
+  resend_hold_ = static_cast<std::uint32_t>(std::ceil(line_free_)) + answer_cycles_;
 }
 
 bool CardStreamSession::read_state(MachineState& out) noexcept {
@@ -93,17 +148,19 @@ bool CardStreamSession::read_state(MachineState& out) noexcept {
     if (n < 0) {  // damaged: counted; the stream goes on with the next status frame
       ++errors_;
       damaged_since_ = true;
+      damaged_cycle_ = cycle_;
+      damaged_seen_ = true;
     } else
       take(std::span<const std::uint8_t>(rx_.data(), static_cast<std::size_t>(n)));
   }
-  const auto timeout = static_cast<std::uint32_t>(settings_.timeout_cycles);
-  if (!comm_lost_ && silent()) lost();  // the status frames stopped coming
-  // A frame the card never acknowledged though it went on talking for timeout_cycles after it
-  // crossed the line (signed: a frame still queued behind others arrives in a later cycle).
-  if (!link_broken_ && card::seq_after(seq_, newest_.ack) &&
-      static_cast<std::int32_t>(status_cycle_ - sent_at_[static_cast<std::uint8_t>(newest_.ack + 1)]) >
-          static_cast<std::int32_t>(timeout))
-    broken();
+  // The status frames stopped coming: the card is gone (CommLost) — or, while damaged frames
+  // still arrive, the line damages them all (LinkErrors).
+  if (!comm_lost_ && !link_broken_ && silent()) {
+    if (damaged_seen_ && cycle_ - damaged_cycle_ <= 2 * answer_cycles_) broken();
+    else lost();
+  }
+  if (resend_tries_ > 0 && !card::seq_after(resend_first_, newest_.ack)) resend_tries_ = 0;  // through
+  if (resend_due()) resend();
 
   const bool reset = pending(reset_), loops = pending(loops_), motion = pending(motion_), latch = pending(latch_);
   out.count = kAxes;
@@ -135,15 +192,22 @@ bool CardStreamSession::send(std::span<const std::uint8_t> op_frame) noexcept {
     return false;
   }
   ++seq_;
-  // Its acknowledgement is awaited from when its last byte crosses the line: behind the
-  // frames still queued before it, at the baud rate.
-  const double on_line = settings_.baud > 0 ? static_cast<double>(frame_.bytes().size() + kFrameOverhead) * kBitsPerByte /
-                                                  settings_.baud / settings_.period
-                                            : 0.0;
-  line_free_ = std::max(line_free_, static_cast<double>(cycle_)) + on_line;
+  const auto slot = static_cast<std::size_t>(seq_ % kResendWindow);  // kept for a resend
+  std::copy(frame_.bytes().begin(), frame_.bytes().end(), kept_[slot].begin());
+  kept_len_[slot] = static_cast<std::uint16_t>(frame_.bytes().size());
+  queue_on_line(frame_.bytes().size());
   sent_at_[seq_] = static_cast<std::uint32_t>(std::ceil(line_free_));
   ++frames_sent_;
   return true;
+}
+
+// A frame's acknowledgement is awaited from when its last byte crosses the line: behind the
+// frames still queued before it, at the baud rate.
+void CardStreamSession::queue_on_line(std::size_t payload_bytes) noexcept {
+  const double on_line = settings_.baud > 0 ? static_cast<double>(payload_bytes + kFrameOverhead) * kBitsPerByte /
+                                                  settings_.baud / settings_.period
+                                            : 0.0;
+  line_free_ = std::max(line_free_, static_cast<double>(cycle_)) + on_line;
 }
 
 bool CardStreamSession::command(std::span<const std::uint8_t> op_frame, Effect effect) noexcept {
@@ -165,10 +229,9 @@ bool CardStreamSession::command(std::span<const std::uint8_t> op_frame, Effect e
       reset_ = now;
       loops_ = Pending{};
       following_ = comm_lost_ = link_broken_ = refused_ = false;
+      resend_tries_ = 0;
       stream_status_ = false;  // a gap before the reset is not held against the frames after it
       status_cycle_ = cycle_;
-      // Frames lost before the reset are not waited for: the card acknowledges this one.
-      for (std::uint8_t s = static_cast<std::uint8_t>(newest_.ack + 1); s != seq_; ++s) sent_at_[s] = cycle_;
       break;
     case Effect::ClearLatch: latch_ = now; break;
   }

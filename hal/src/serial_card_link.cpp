@@ -22,7 +22,7 @@ constexpr long kPollNs = 500'000;  // the I/O thread looks at the send ring at l
 }  // namespace
 
 SerialCardLink::SerialCardLink(SerialLinkSettings settings)
-    : settings_(std::move(settings)), decoder_(settings_.max_rx_payload) {
+    : settings_(std::move(settings)), receiver_(settings_.max_rx_payload) {
   fd_ = open_serial_line(settings_.device, settings_.baud);
   connected_ = true;
   thread_ = std::thread([this] { run(); });
@@ -95,74 +95,33 @@ SerialLinkCounters SerialCardLink::counters() const noexcept {
   return c;
 }
 
-// A byte from the line: stream frames to the motion thread, set-up replies to transact().
-// After a damaged frame the bytes after its sync byte are decoded again: the next frame's
-// sync may lie among them (a damaged length byte had the decoder wait for bytes that were
-// the next frames). Bounded: at most a frame's bytes wait for a second look.
+// A byte from the line (resynchronising after a damaged frame: hal::FrameReceiver).
 void SerialCardLink::received(std::uint8_t byte) noexcept {
-  std::array<std::uint8_t, 2 * kMaxWireFrame> work{};
-  std::array<bool, 2 * kMaxWireFrame> again{};
-  std::size_t head = 0, n = 0;
-  work[n++] = byte;
-  while (head < n) {
-    const std::uint8_t b = work[head];
-    const bool rescanned = again[head];
-    ++head;
-    if (decode(b, rescanned)) continue;
-    // Damaged: look again at the bytes after its sync byte, ahead of those not yet decoded.
-    std::array<std::uint8_t, 2 * kMaxWireFrame> rest{};
-    std::array<bool, 2 * kMaxWireFrame> rest_again{};
-    std::size_t m = 0;
-    for (std::size_t i = 1; i < attempt_len_ && m < rest.size(); ++i, ++m) {
-      rest[m] = attempt_[i];
-      rest_again[m] = true;
-    }
-    for (std::size_t i = head; i < n && m < rest.size(); ++i, ++m) {
-      rest[m] = work[i];
-      rest_again[m] = again[i];
-    }
-    attempt_len_ = 0;
-    work = rest;
-    again = rest_again;
-    head = 0;
-    n = m;
-  }
+  receiver_.feed(byte, [this](FrameDecoder::Result r, const FrameDecoder& d) { take(r, d); });
 }
 
-bool SerialCardLink::decode(std::uint8_t byte, bool rescanned) noexcept {
-  if (decoder_.hunting()) {
-    attempt_len_ = 0;
-    attempt_rescanned_ = rescanned;
+// Stream frames to the motion thread, set-up replies to transact().
+void SerialCardLink::take(FrameDecoder::Result r, const FrameDecoder& d) noexcept {
+  if (r == FrameDecoder::Result::Damaged) {
+    ++damaged_;
+    if (!d.setup() && !rx_.push(RxFrame{})) ++overflows_;
+    return;
   }
-  if (attempt_len_ < attempt_.size()) attempt_[attempt_len_++] = byte;
-  switch (decoder_.feed(byte)) {
-    case FrameDecoder::Result::Pending: return true;
-    case FrameDecoder::Result::Damaged:
-      // Counted once: not again for false sync bytes found looking at its bytes a second time.
-      if (!attempt_rescanned_) {
-        ++damaged_;
-        if (!decoder_.setup() && !rx_.push(RxFrame{})) ++overflows_;
-      }
-      return false;
-    case FrameDecoder::Result::Frame: break;
-  }
-  attempt_len_ = 0;
   ++frames_in_;
-  const auto p = decoder_.payload();
-  if (decoder_.setup()) {
+  const auto p = d.payload();
+  if (d.setup()) {
     std::lock_guard lock(mutex_);
     if (waiting_ && reply_len_ < 0 && p.size() >= 2 && p[0] == wanted_tag_) {  // a late reply to an earlier try is not it
       reply_len_ = static_cast<int>(p.size() - 1);
       std::copy(p.begin() + 1, p.end(), reply_.begin());
       replied_.notify_all();
     }
-    return true;
+    return;
   }
   RxFrame f;
   f.len = static_cast<std::uint8_t>(p.size());
   std::copy(p.begin(), p.end(), f.bytes.begin());
   if (!rx_.push(f)) ++overflows_;
-  return true;
 }
 
 bool SerialCardLink::fill_out() noexcept {
@@ -186,8 +145,7 @@ void SerialCardLink::hang_up() noexcept {
   fd_ = -1;
   connected_ = false;
   ++hangups_;
-  decoder_.reset();
-  attempt_len_ = 0;
+  receiver_.reset();
   out_off_ = out_len_ = 0;
 }
 

@@ -7,17 +7,18 @@ using hal::FrameDecoder;
 
 void CardLineEnd::feed(std::uint8_t byte) noexcept {
   reply_len_ = 0;
-  switch (decoder_.feed(byte)) {
-    case FrameDecoder::Result::Pending: return;
-    case FrameDecoder::Result::Damaged:
-      ++damaged_;
-      // A damaged set-up frame is retried by the host; a damaged stream frame breaks the stream.
-      if (!decoder_.setup()) card_.on_damaged_frame();
-      return;
-    case FrameDecoder::Result::Frame: break;
+  receiver_.feed(byte, [this](FrameDecoder::Result r, const FrameDecoder& d) { take(r, d); });
+}
+
+void CardLineEnd::take(FrameDecoder::Result r, const FrameDecoder& d) noexcept {
+  if (r == FrameDecoder::Result::Damaged) {
+    ++damaged_;
+    // A damaged set-up frame is retried by the host; a damaged stream frame is asked for again.
+    if (!d.setup()) card_.on_damaged_frame();
+    return;
   }
-  const auto p = decoder_.payload();
-  if (!decoder_.setup()) {
+  const auto p = d.payload();
+  if (!d.setup()) {
     ++stream_frames_;
     card_.on_stream_frame(p);
     return;

@@ -325,7 +325,7 @@ Status EmulatedCard::set_loops(Op op, LinkReader& r) noexcept {
     Axis& ax = axes_[a];
     if (op == Op::ResetAxes) {
       ax.faults = 0;
-      stream_error_ = starved_ = false;
+      starved_ = false;
     }
     bool close = op == Op::CloseLoops && !(ax.faults & st::kFaultMask);
     if (!close) ax.following = false;

@@ -31,7 +31,8 @@ Status EmulatedCard::start_stream(LinkReader& r, hal::LinkWriter& out) noexcept 
   status_ticks_ = std::max<std::uint32_t>(1, static_cast<std::uint32_t>(std::lround(period_us * 1e-6 / config_.tick)));
   stream_mask_ = mask;
   streaming_ = true;
-  have_seq_ = stream_error_ = false;
+  have_seq_ = resend_wanted_ = false;
+  held_len_.fill(0);
   ack_ = 0;
   frame_status_ = Status::Ok;
   since_status_ = 0;
@@ -40,12 +41,44 @@ Status EmulatedCard::start_stream(LinkReader& r, hal::LinkWriter& out) noexcept 
   return Status::Ok;
 }
 
+// Frames are handled in sequence. One that comes after a missing one is held (up to kHeld
+// ahead) and the missing one asked for (kResendWanted with ack: the host sends the frame
+// after ack again); when it comes, the held ones behind it are handled too. A frame handled
+// already (sent again) is dropped. ResetAxes is taken whatever its seq: the host sends it
+// when it gave up on a broken stream, and the count starts anew from it.
 void EmulatedCard::on_stream_frame(std::span<const std::uint8_t> frame) noexcept {
   LinkReader r(frame);
   const std::uint8_t seq = r.u8();
   const auto op = static_cast<Op>(r.u8());
   if (!r.ok()) return on_damaged_frame();
-  if (have_seq_ && seq != static_cast<std::uint8_t>(ack_ + 1)) stream_fault();  // one went missing
+  if (have_seq_ && seq != static_cast<std::uint8_t>(ack_ + 1) && op != Op::ResetAxes) {
+    if (!card::seq_after(seq, ack_)) return;
+    resend_wanted_ = true;
+    if (static_cast<std::uint8_t>(seq - ack_) <= kHeld) {
+      auto& slot = held_[seq % kHeld];
+      std::copy(frame.begin(), frame.end(), slot.begin());
+      held_len_[seq % kHeld] = static_cast<std::uint16_t>(frame.size());
+    }
+    return;
+  }
+  if (op == Op::ResetAxes) held_len_.fill(0);
+  handle_in_sequence(frame);
+  for (;;) {  // the held frames that follow it
+    const auto next = static_cast<std::uint8_t>(ack_ + 1);
+    auto& len = held_len_[next % kHeld];
+    if (len == 0 || held_[next % kHeld][0] != next) break;
+    const std::size_t n = len;
+    len = 0;
+    handle_in_sequence(std::span<const std::uint8_t>(held_[next % kHeld].data(), n));
+  }
+  resend_wanted_ = false;
+  for (auto len : held_len_) resend_wanted_ = resend_wanted_ || len != 0;  // another is missing
+}
+
+void EmulatedCard::handle_in_sequence(std::span<const std::uint8_t> frame) noexcept {
+  LinkReader r(frame);
+  const std::uint8_t seq = r.u8();
+  const auto op = static_cast<Op>(r.u8());
   have_seq_ = true;
   ack_ = seq;
   hal::LinkWriter reply;  // a stream command's reply data is not sent: status frames say it all
@@ -54,14 +87,9 @@ void EmulatedCard::on_stream_frame(std::span<const std::uint8_t> frame) noexcept
   else if (s != Status::Ok && frame_status_ == Status::Ok) frame_status_ = s;
 }
 
-void EmulatedCard::on_damaged_frame() noexcept { stream_fault(); }
-
-// A host frame damaged or missing: the setpoint stream cannot be trusted; brake, time out.
-void EmulatedCard::stream_fault() noexcept {
-  stream_error_ = true;
-  for (auto& ax : axes_) ax.faults |= st::kCommTimeout;
-  if (following_) end_following(true);
-}
+// A host frame damaged: the frame after ack is asked for again; the buffered path runs on
+// meanwhile (and brakes on itself, starved, when it does not come in time).
+void EmulatedCard::on_damaged_frame() noexcept { resend_wanted_ = true; }
 
 bool EmulatedCard::take_stream_frame(std::span<const std::uint8_t>& frame) noexcept {
   if (!outbox_ready_) return false;
@@ -76,7 +104,11 @@ void EmulatedCard::emit_status() noexcept {
   s.ack = ack_;
   s.ack_status = static_cast<std::uint8_t>(frame_status_);
   frame_status_ = Status::Ok;
-  s.flags = stream_error_ ? card::flag::kStreamError : 0;
+  s.flags = resend_wanted_ ? card::flag::kResendWanted : 0;
+  for (int i = 0; i < 16; ++i) {  // the frames held after the missing one
+    const auto seq = static_cast<std::uint8_t>(ack_ + 2 + i);
+    if (held_len_[seq % kHeld] != 0 && held_[seq % kHeld][0] == seq) s.held |= static_cast<std::uint16_t>(1u << i);
+  }
   s.starvations = static_cast<std::uint8_t>(std::min<unsigned long>(starvations_, 255));
   s.knots = static_cast<std::uint8_t>(knot_count_);
   if (following_) {

@@ -9,7 +9,8 @@ TimedCardLink::TimedCardLink(EmulatedCard& card, const hal::Clock& clock, LineCo
     : card_(card),
       clock_(clock),
       to_card_(config.baud, config.bits_per_byte),
-      to_host_(config.baud, config.bits_per_byte) {}
+      to_host_(config.baud, config.bits_per_byte),
+      host_rx_(hal::card::kMaxCardPayload) {}
 
 void TimedCardLink::sync() noexcept {
   const double t = hal::seconds(clock_.now());
@@ -22,16 +23,14 @@ void TimedCardLink::sync() noexcept {
   for (double at = t_start_ + static_cast<double>(ticks_ + 1) * tick; at <= t + 1e-12;
        at = t_start_ + static_cast<double>(++ticks_ + 1) * tick) {
     to_card_.deliver(at, [this](std::uint8_t b) {
-      switch (card_rx_.feed(b)) {
-        case FrameDecoder::Result::Pending: break;
-        case FrameDecoder::Result::Frame:
-          if (!card_rx_.setup()) card_.on_stream_frame(card_rx_.payload());  // set-up goes through transact()
-          break;
-        case FrameDecoder::Result::Damaged:
+      card_rx_.feed(b, [this](FrameDecoder::Result r, const FrameDecoder& d) {
+        if (r == FrameDecoder::Result::Damaged) {
           ++damaged_at_card_;
           card_.on_damaged_frame();
-          break;
-      }
+        } else if (!d.setup()) {
+          card_.on_stream_frame(d.payload());  // set-up goes through transact()
+        }
+      });
     });
     card_.step();
     std::span<const std::uint8_t> out;
@@ -42,14 +41,14 @@ void TimedCardLink::sync() noexcept {
     }
   }
   to_host_.deliver(t, [this](std::uint8_t b) {
-    const FrameDecoder::Result r = host_rx_.feed(b);
-    if (r == FrameDecoder::Result::Pending) return;
-    if (r == FrameDecoder::Result::Damaged) ++damaged_at_host_;
-    if (inbox_count_ == inbox_.size()) return;  // nobody polls: the oldest stay, this one is dropped
-    const std::size_t slot = (inbox_head_ + inbox_count_++) % inbox_.size();
-    const auto p = host_rx_.payload();
-    inbox_len_[slot] = r == FrameDecoder::Result::Frame ? p.size() : 0;
-    for (std::size_t i = 0; i < inbox_len_[slot]; ++i) inbox_[slot][i] = p[i];
+    host_rx_.feed(b, [this](FrameDecoder::Result r, const FrameDecoder& d) {
+      if (r == FrameDecoder::Result::Damaged) ++damaged_at_host_;
+      if (inbox_count_ == inbox_.size()) return;  // nobody polls: the oldest stay, this one is dropped
+      const std::size_t slot = (inbox_head_ + inbox_count_++) % inbox_.size();
+      const auto p = d.payload();
+      inbox_len_[slot] = r == FrameDecoder::Result::Frame ? p.size() : 0;
+      for (std::size_t i = 0; i < inbox_len_[slot]; ++i) inbox_[slot][i] = p[i];
+    });
   });
 }
 

@@ -3,8 +3,9 @@
 // which then catches up on the ticks it missed with the setpoints it had) through the busy
 // host of busy_host.hpp: probe cycles and a program (the request/reply link faults at the
 // first probe). The whole workload, the cube inspection too, over messcard on a
-// pseudo-terminal, where the card runs on through messd's stops as hardware does, is in
-// test_serial_card.cpp. Both in test_serial_card's executable: one such test at a time.
+// pseudo-terminal, where the card runs on through messd's stops as hardware does, is
+// test_busy_host_card.cpp. This one is in test_serial_card's executable: one test of a real
+// line or of stalls at a time.
 #include "busy_host.hpp"
 
 using namespace imess::test;

@@ -1,7 +1,8 @@
 // The servo card on a real serial line (issue 27): messd's "servo-card" backend against
 // messcard on a pseudo-terminal, both real programs in real time — motion over the stream,
-// the card killed and brought back, the cable pulled, a stall, damaged bytes counted or, when
-// the path cannot survive them, a controlled stop with Fault LinkErrors.
+// the card killed and brought back, the cable pulled, a stall, damaged bytes counted and the
+// host frames they hit sent again or, when the path cannot survive them, a controlled stop
+// with Fault LinkErrors.
 #include <catch2/catch.hpp>
 
 #include <chrono>
@@ -170,24 +171,23 @@ TEST_CASE("servo-card: damaged status frames at rest are counted in Stats LinkEr
   CHECK(card_state_is(c, "free"));  // no fault: each damaged frame is dropped, the next one taken
 }
 
-TEST_CASE("servo-card: a byte error rate the path cannot survive stops it with Fault LinkErrors, on the planned line") {
-  MesscardProcess card({"--corrupt", "0.003", "--seed", "3"});
-  DaemonProcess messd = messd_on(card);
-  LineClient c(messd.port());
-  // Set-up and GoTo survive (set-up retries; damaged status frames are dropped) — or the
-  // GoTo's own command is hit: then Reset and go again.
-  bool there = false;
-  for (int i = 0; i < 5 && !there; ++i) {
-    card_reset(c, 3);
-    there = card_goto(c, 300, 300, 100);
-  }
-  REQUIRE(there);
+// Runs MoveTo 1 from (300, 300, 100) to (700, 500) at 100 mm/s; the first line of Fault or
+// Done 1, and where the machine came to rest, how far off the planned line.
+struct PathEnd {
+  std::string end;
+  double x = NAN, y = NAN, off_line = NAN;
+};
+// `started` runs once the path has begun.
+template <class Started>
+PathEnd run_planned_line(LineClient& c, Started&& started) {
+  PathEnd r;
+  REQUIRE(card_goto(c, 300, 300, 100));
   REQUIRE(c.request("MoveTo 1 X700 Y500 F100") == std::optional<std::string>("Ok MoveTo"));
-  auto fault = c.until([](const std::string& l) { return l.rfind("Fault ", 0) == 0 || l.rfind("Done 1", 0) == 0; }, 10);
-  REQUIRE(fault);
-  std::printf("servo-card: --corrupt 0.003 on a path: %s\n", fault->c_str());
-  CHECK(fault->rfind("Fault LinkErrors", 0) == 0);
-  // The machine comes to rest on the planned line from (300, 300) to (700, 500).
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  started();
+  auto end = c.until([](const std::string& l) { return l.rfind("Fault ", 0) == 0 || l.rfind("Done 1", 0) == 0; }, 15);
+  REQUIRE(end);
+  r.end = *end;
   std::string s, last;
   for (int i = 0; i < 50; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -196,13 +196,42 @@ TEST_CASE("servo-card: a byte error rate the path cannot survive stops it with F
     last = s;
   }
   CHECK(s == last);
-  const double x = card_field(s, "Pos", 0), y = card_field(s, "Pos", 1);
-  const double off_line = std::abs((x - 300) * 200 - (y - 300) * 400) / std::hypot(400.0, 200.0);
-  std::printf("servo-card: stopped at X %.3f Y %.3f, %.4f mm off the planned line; LinkErrors %.0f\n", x, y, off_line,
-              card_link_errors(c));
-  CHECK(off_line < 0.2);
-  CHECK(x >= 300 - 0.2);
-  CHECK(x <= 700 + 0.2);
+  r.x = card_field(s, "Pos", 0);
+  r.y = card_field(s, "Pos", 1);
+  r.off_line = std::abs((r.x - 300) * 200 - (r.y - 300) * 400) / std::hypot(400.0, 200.0);
+  return r;
+}
+
+TEST_CASE("servo-card: damaged bytes on a path: the host frames hit are sent again and the path ends Done") {
+  // From the first byte on: set-up retries what is hit, the GoTo and the path are sent again.
+  MesscardProcess card({"--corrupt", "0.0003", "--seed", "5"});
+  DaemonProcess messd = messd_on(card);
+  LineClient c(messd.port());
+  const double before = card_link_errors(c);
+  const PathEnd r = run_planned_line(c, [] {});
+  const double errors = card_link_errors(c) - before;
+  std::printf("servo-card: --corrupt 0.0003 on a 447 mm path: %s; LinkErrors +%.0f; at X %.3f Y %.3f\n", r.end.c_str(),
+              errors, r.x, r.y);
+  CHECK(r.end.rfind("Done 1", 0) == 0);
+  CHECK(errors >= 1);  // damaged frames were met, counted, and survived
+  CHECK(std::abs(r.x - 700) < 0.01);
+  CHECK(std::abs(r.y - 500) < 0.01);
+  CHECK(card.until("a damaged frame from the host", 2));
+}
+
+TEST_CASE("servo-card: a byte error rate the path cannot survive stops it with Fault LinkErrors, on the planned line") {
+  // Set-up and the GoTo clean; half a second into the path every 20th byte is hit, both ways.
+  MesscardProcess card({"--corrupt", "0.05", "--faults-at-ms", "3600000", "--seed", "3"});
+  DaemonProcess messd = messd_on(card);
+  LineClient c(messd.port());
+  const PathEnd r = run_planned_line(c, [&] { card.signal(SIGUSR2); });
+  std::printf("servo-card: --corrupt 0.05 on a path: %s; stopped at X %.3f Y %.3f, %.4f mm off the planned line; "
+              "LinkErrors %.0f\n", r.end.c_str(), r.x, r.y, r.off_line, card_link_errors(c));
+  CHECK(r.end.rfind("Fault LinkErrors", 0) == 0);
+  // The machine comes to rest on the planned line from (300, 300) to (700, 500).
+  CHECK(r.off_line < 0.2);
+  CHECK(r.x >= 300 - 0.2);
+  CHECK(r.x <= 700 + 0.2);
   CHECK(card.until("a damaged frame from the host", 2));
 }
 

@@ -1,5 +1,6 @@
 // The servo card stream's framing and frames: CRC-16, frames through the decoder, every
-// single-bit error caught, resynchronisation, and the status and setpoint frames round trip.
+// single-bit error caught, resynchronisation (FrameReceiver), and the status and setpoint
+// frames round trip.
 #include <catch2/catch.hpp>
 
 #include <random>
@@ -97,10 +98,11 @@ TEST_CASE("stream frames: the status frame and the timed setpoint round trip —
   s.clock = 0xFFFFFFF0u;
   s.ack = 200;
   s.ack_status = 5;
-  s.flags = card::flag::kLatchData | card::flag::kStreamError;
+  s.flags = card::flag::kLatchData | card::flag::kResendWanted;
   s.starvations = 3;
   s.knots = 4;
   s.margin = 117;
+  s.held = 0xA00F;
   s.mask = (1u << kAxes) - 1;
   for (int a = 0; a < kAxes; ++a) {
     s.position[a] = -123.4567 + a;
@@ -111,7 +113,7 @@ TEST_CASE("stream frames: the status frame and the timed setpoint round trip —
   LinkWriter w;
   card::write_status(w, s);
   REQUIRE(w.ok());
-  CHECK(w.bytes().size() == 12u + 1 + kAxes + 9u * kAxes + 4u * kAxes);
+  CHECK(w.bytes().size() == 12u + 2 + 1 + kAxes + 9u * kAxes + 4u * kAxes);  // held: with kResendWanted
   card::StatusFrame back;
   REQUIRE(card::read_status(w.bytes(), back));
   CHECK(back.clock == s.clock);
@@ -119,6 +121,7 @@ TEST_CASE("stream frames: the status frame and the timed setpoint round trip —
   CHECK(back.ack_status == 5);
   CHECK(back.flags == s.flags);
   CHECK(back.margin == 117);
+  CHECK(back.held == 0xA00F);
   for (int a = 0; a < kAxes; ++a) {
     CHECK(back.position[a] == Approx(s.position[a]).margin(card::kStreamUnit / 2));
     CHECK(back.latched[a] == Approx(s.latched[a]).margin(card::kStreamUnit / 2));
@@ -163,4 +166,40 @@ TEST_CASE("stream frames: an axis table with no axis, too many, an unknown or a 
   CHECK(table({2, 0}) == card::Status::BadLength);
   CHECK(table({}) == card::Status::BadLength);
   CHECK(table({1, 0}) == card::Status::Ok);
+}
+
+TEST_CASE("stream frames: a false sync byte in a damaged frame's CRC costs that frame only (FrameReceiver)") {
+  // A damaged frame whose CRC's high byte reads as a sync byte: the plain decoder takes the
+  // next frame's sync (0xA5 = 165) for a length and swallows the frames behind it; the
+  // receiver looks at those bytes again and finds them.
+  std::vector<std::uint8_t> damaged = wire({0x10, 0x11, 0x12, 0x13});
+  damaged[damaged.size() - 2] ^= 0x01;  // the CRC's low byte: damaged
+  damaged.back() = kFrameSync;          // its high byte a false sync
+  std::vector<std::vector<std::uint8_t>> sent;
+  std::vector<std::uint8_t> bytes = damaged;
+  std::mt19937 rng(7);
+  for (int i = 0; i < 6; ++i) {
+    std::vector<std::uint8_t> p(40);
+    for (auto& b : p) b = static_cast<std::uint8_t>(rng() % 256);
+    sent.push_back(p);
+    const auto w = wire(p);
+    bytes.insert(bytes.end(), w.begin(), w.end());
+  }
+  FrameDecoder plain;
+  int plain_damaged = 0;
+  const auto plain_frames = decode(plain, bytes, &plain_damaged);
+  CHECK(plain_frames.size() < sent.size());  // what the receiver is for
+
+  FrameReceiver receiver;
+  std::vector<std::vector<std::uint8_t>> got;
+  int damaged_count = 0;
+  for (auto b : bytes)
+    receiver.feed(b, [&](Result r, const FrameDecoder& d) {
+      if (r == Result::Frame) got.emplace_back(d.payload().begin(), d.payload().end());
+      else ++damaged_count;
+    });
+  CHECK(got == sent);
+  // The damaged frame, and the false sync's own attempt (no receiver can tell it from a frame
+  // damaged on the line); not the sync bytes found again among bytes looked at twice.
+  CHECK(damaged_count == 2);
 }

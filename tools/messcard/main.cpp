@@ -19,9 +19,10 @@ using namespace imess;
 namespace {
 constexpr int kPriority = 75;  // SCHED_FIFO: below messd's motion loop (80) and its link thread (82)
 std::atomic<bool> g_stop{false};
-std::atomic<bool> g_stall{false};
+std::atomic<bool> g_stall{false}, g_faults{false};
 void on_stop(int) { g_stop = true; }
 void on_stall(int) { g_stall = true; }
+void on_faults(int) { g_faults = true; }
 
 // The machine and the line's rate from the configuration's "sim" section and its backend.
 app::DaemonConfig load(const messcard::Options& o) {
@@ -72,6 +73,8 @@ int main(int argc, char** argv) {
   sigaction(SIGINT, &sa, nullptr);
   sa.sa_handler = on_stall;
   sigaction(SIGUSR1, &sa, nullptr);
+  sa.sa_handler = on_faults;
+  sigaction(SIGUSR2, &sa, nullptr);
   signal(SIGPIPE, SIG_IGN);
 
   std::string scheduling = "time-shared";
@@ -80,13 +83,14 @@ int main(int argc, char** argv) {
     p.sched_priority = kPriority;
     if (sched_setscheduler(0, SCHED_FIFO, &p) == 0) scheduling = "SCHED_FIFO " + std::to_string(kPriority);
   }
-  messcard::Faults faults{o.drop, o.corrupt, o.stall_ms / 1e3, o.stall_at_ms / 1e3, o.seed};
+  messcard::Faults faults{o.drop, o.corrupt, o.faults_at_ms / 1e3, o.stall_ms / 1e3, o.stall_at_ms / 1e3, o.seed};
   messcard::WallCard card(cfg.sim, fd, baud, faults);
   std::printf("messcard: card on %s (%d baud)\n", where.c_str(), baud);
   std::printf("messcard: firmware at 10 kHz on the steady clock, %s\n", scheduling.c_str());
   std::fflush(stdout);
   card.run([&] {
     if (g_stall.exchange(false)) card.stall_now();
+    if (g_faults.exchange(false)) card.faults_now();
     return g_stop.load();
   });
   if (!o.pty.empty()) ::unlink(o.pty.c_str());

@@ -10,7 +10,7 @@ namespace imess::messcard {
 
 const char* usage_text() {
   return "usage: messcard (--pty PATH | --device TTY) --config FILE [--baud N] [--drop RATE] [--corrupt RATE]\n"
-         "                [--stall-ms N [--stall-at-ms T]] [--seed N] [--no-rt]\n"
+         "                [--faults-at-ms T] [--stall-ms N [--stall-at-ms T]] [--seed N] [--no-rt]\n"
          "  The emulated servo card as a program of its own, on a serial line in real time.\n"
          "  --pty PATH      create a pseudo-terminal; PATH becomes a symbolic link to its slave side\n"
          "  --device TTY    serve an existing tty instead (a USB-serial adapter looped to another)\n"
@@ -19,6 +19,8 @@ const char* usage_text() {
          "  --baud N        the line's rate (overrides the configuration; default 115200)\n"
          "  --drop RATE     lose each byte with this probability (0-1), both directions\n"
          "  --corrupt RATE  flip one bit of each byte with this probability (0-1), both directions\n"
+         "  --faults-at-ms T  --drop and --corrupt begin T ms after the host started the stream\n"
+         "                  (default 0: from the first byte, set-up included), or on SIGUSR2\n"
          "  --stall-ms N    stop answering for N ms once (reading nothing, sending nothing; the firmware\n"
          "                  runs on), --stall-at-ms T after the host started the stream (default 1000),\n"
          "                  or at once on SIGUSR1\n"
@@ -62,6 +64,7 @@ Options parse_options(int argc, char** argv) {
     else if (a == "--baud") o.baud = static_cast<int>(number(a, value("a baud rate"), 9600, 4e6));
     else if (a == "--drop") o.drop = number(a, value("a rate"), 0, 1);
     else if (a == "--corrupt") o.corrupt = number(a, value("a rate"), 0, 1);
+    else if (a == "--faults-at-ms") o.faults_at_ms = number(a, value("milliseconds"), 0, 3.6e6);
     else if (a == "--stall-ms") o.stall_ms = number(a, value("milliseconds"), 0, 3.6e6);
     else if (a == "--stall-at-ms") o.stall_at_ms = number(a, value("milliseconds"), 0, 3.6e6);
     else if (a == "--seed") o.seed = static_cast<unsigned>(number(a, value("a whole number"), 0, 4e9));

@@ -12,6 +12,7 @@ struct Options {
   std::string config;   // --config FILE
   std::optional<int> baud;
   double drop = 0, corrupt = 0;  // per byte, both directions
+  double faults_at_ms = 0;       // … from this long after the host started the stream (0: from the start)
   double stall_ms = 0;           // the card stops answering this long, once
   double stall_at_ms = 1000;     // … this long after the host started the stream (or on SIGUSR1)
   unsigned seed = 1;

@@ -35,6 +35,7 @@ WallCard::WallCard(const sim::SimulatedCmmConfig& machine, int fd, double baud, 
   rx_.set_patience(1e9);
   tx_.set_patience(1e9);
   t0_ns_ = monotonic_ns();
+  faulty_ = faults.from_s <= 0;
   card_.advance_to(0);
 }
 
@@ -101,7 +102,7 @@ void WallCard::report() {
   }
   if (line_end_.damaged() != damaged_) {
     damaged_ = line_end_.damaged();
-    std::printf("messcard: a damaged frame from the host (%lu so far); a stream frame brakes the axes until ResetAxes\n",
+    std::printf("messcard: a damaged frame from the host (%lu so far); the frames after the last one taken are asked for again\n",
                 damaged_);
     std::fflush(stdout);
   }
@@ -116,6 +117,13 @@ void WallCard::step() {
     stall_until_ = t + faults_.stall_s;
     std::printf("messcard: stalled: not answering for %.0f ms\n", faults_.stall_s * 1e3);
     std::fflush(stdout);
+  }
+  if (!faulty_ && (faults_request_ || (streaming_ && t >= stream_at_ + faults_.from_s))) {
+    faulty_ = true;
+    if (faults_.drop > 0 || faults_.corrupt > 0) {
+      std::printf("messcard: the line loses %g and damages %g of its bytes from now on\n", faults_.drop, faults_.corrupt);
+      std::fflush(stdout);
+    }
   }
   if (stalled_ && t >= stall_until_) {
     stalled_ = false;

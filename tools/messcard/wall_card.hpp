@@ -19,6 +19,7 @@ namespace imess::messcard {
 
 struct Faults {
   double drop = 0, corrupt = 0;  // per byte
+  double from_s = 0;             // from this long after the stream started (0: from the start)
   double stall_s = 0, stall_at_s = 1;
   unsigned seed = 1;
 };
@@ -33,6 +34,7 @@ class WallCard {
     pull();
   }
   void stall_now() noexcept { stall_request_ = true; }
+  void faults_now() noexcept { faults_request_ = true; }
 
  private:
   void step();  // one pass: read, tick up to now, write, sleep
@@ -41,7 +43,7 @@ class WallCard {
   void tick(double at);
   void from_host(const std::uint8_t* bytes, std::size_t n, double at);
   void to_host(std::span<const std::uint8_t> bytes, double at);
-  bool fault(double rate) { return rate > 0 && uniform_(rng_) < rate; }
+  bool fault(double rate) { return rate > 0 && faulty_ && uniform_(rng_) < rate; }
   void report();  // what the card did that people should see (watchdog, damaged frames)
 
   sim::Mechanics mechanics_;
@@ -57,8 +59,9 @@ class WallCard {
   long long t0_ns_ = 0;
   long ticks_ = 0;
   bool streaming_ = false;
+  bool faulty_ = false;  // the line damages and loses bytes (from the start, or from --faults-at-ms)
   double stream_at_ = 0;
-  bool stalled_ = false, stall_done_ = false, stall_request_ = false;
+  bool stalled_ = false, stall_done_ = false, stall_request_ = false, faults_request_ = false;
   double stall_until_ = 0;
   unsigned long starvations_ = 0, damaged_ = 0, dropped_ = 0, corrupted_ = 0;
   std::uint32_t last_faults_ = 0;

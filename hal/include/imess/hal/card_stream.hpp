@@ -23,21 +23,31 @@ inline double from_units(std::int32_t u) noexcept { return u * kStreamUnit; }
 void write_table(LinkWriter& w, unsigned mask) noexcept;
 Status read_table(LinkReader& r, unsigned& mask) noexcept;
 
+// The longest frame the card sends (a status frame with latch data is 55 bytes, the longest
+// set-up reply ReadInfo's 5 + its revision): a receiver takes a longer length byte as damaged
+// at once rather than wait for the bytes of the frames behind it.
+inline constexpr std::size_t kMaxCardPayload = 96;
+
 // Status frame flags.
 namespace flag {
-inline constexpr std::uint8_t kStreamError = 0x1;  // a host frame failed its CRC or a sequence number was skipped
+// A host frame failed its CRC or a sequence number was skipped: the frame after ack is
+// wanted again (the card holds the frames that came after it until it comes), and those of
+// the next 16 that the held bits do not name.
+inline constexpr std::uint8_t kResendWanted = 0x1;
 inline constexpr std::uint8_t kLatchData = 0x2;    // latched positions follow the axis data
 }
 
 // The card's periodic status frame: Op::Status, u32 clock (card ticks when sampled), u8 ack
 // (sequence number of the last host frame handled), u8 ack_status (its Status), u8 flags,
 // u8 starvations (saturating count), u8 knots (setpoints buffered), u16 margin (ticks from
-// now to the last buffered setpoint), table, per axis i32 position, u32 status word,
-// u8 inputs; with kLatchData per axis i32 latched position.
+// now to the last buffered setpoint), with kResendWanted u16 held (bit i: the card holds
+// host frame ack + 2 + i), table, per axis i32 position, u32 status word, u8 inputs; with
+// kLatchData per axis i32 latched position.
 struct StatusFrame {
   std::uint32_t clock = 0;
   std::uint8_t ack = 0, ack_status = 0, flags = 0, starvations = 0, knots = 0;
   std::uint16_t margin = 0;
+  std::uint16_t held = 0;  // with kResendWanted
   unsigned mask = 0;
   AxisArray<double> position{}, latched{};
   AxisArray<std::uint32_t> status{};

@@ -5,11 +5,14 @@
 // way will change laid over it (a move sent clears "profile end" until the card has it). A
 // lost or damaged status frame is counted (errors()) and the stream goes on with the next
 // one; status frames that stop coming latch a communication timeout
-// (status bit 0 on every axis, the core's CommLost); a frame the card does not acknowledge in
-// time, a malformed status frame or a card that reports a damaged or missing host frame
-// latch status::kLinkErrors (the core's LinkErrors) — each until reset(). A starved card (the
-// host stalled longer than the lead) is no fault: it reports kHostStarved. Real-time calls
-// are noexcept and allocate nothing.
+// (status bit 0 on every axis, the core's CommLost). A host frame the card saw damaged or
+// missing (it asks for the frame after its ack again, holding those that came after it), or
+// did not acknowledge in time, is sent again (from the last kResendWindow frames kept);
+// the same frame still not through after resend_tries, a frame no longer kept, a card that
+// starved while a resend was under way or a malformed status frame latch status::kLinkErrors
+// (the core's LinkErrors) — each until reset(). A starved card (the host stalled longer than
+// the lead) is no fault: it reports kHostStarved. Real-time calls are noexcept and allocate
+// nothing.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -29,8 +32,12 @@ struct StreamSettings {
   double lead = 0.060;
   double max_lead = 0.200;        // s, the most the lead grows to after longer stalls (the card buffers 64 knots)
   double baud = 115200;           // the line, for the age of a status frame when it is read (0: no delay)
-  int timeout_cycles = 20;        // periods without a status frame, or without the ack of a frame: CommLost
+  int timeout_cycles = 20;        // periods without a status frame: CommLost
+  int resend_tries = 8;           // a frame sent again this often and still not acknowledged: LinkErrors
 };
+
+// Host frames kept for sending again: 64 frames, 256 ms of setpoints (more than the longest lead).
+inline constexpr int kResendWindow = 64;
 
 class CardStreamSession {
  public:
@@ -62,9 +69,11 @@ class CardStreamSession {
   unsigned long status_frames() const noexcept { return status_frames_; }
   unsigned long knots_sent() const noexcept { return knots_sent_; }
   unsigned long errors() const noexcept { return errors_; }
+  unsigned long frames_resent() const noexcept { return frames_resent_; }
   bool comm_lost() const noexcept { return comm_lost_; }
   bool link_broken() const noexcept { return link_broken_; }
-  // No status frame for more than timeout_cycles periods: the card is gone (or stalled).
+  // No status frame for more than timeout_cycles periods: the card is gone (or stalled), or the
+  // line damages every frame.
   bool silent() const noexcept { return cycle_ - status_cycle_ > static_cast<std::uint32_t>(settings_.timeout_cycles); }
   unsigned starvations() const noexcept { return newest_.starvations; }
   // The lead the next path gets: the configured one, or 1.5 × the longest stall seen while
@@ -81,6 +90,10 @@ class CardStreamSession {
     std::uint8_t seq = 0;
   };
   bool send(std::span<const std::uint8_t> op_frame) noexcept;
+  void queue_on_line(std::size_t payload_bytes) noexcept;  // sent_at_[seq_] and line_free_ for a frame queued now
+  bool resend_due() const noexcept;  // the card asked for frames again, or one is overdue
+  void resend() noexcept;            // the frames from the first not acknowledged on, again
+  std::uint8_t first_unacked() const noexcept;
   void take(std::span<const std::uint8_t> frame) noexcept;
   void lost() noexcept;    // the card went quiet or starved: CommLost
   void broken() noexcept;  // the link lost a frame the stream cannot do without: LinkErrors
@@ -94,11 +107,20 @@ class CardStreamSession {
   LinkWriter frame_;
   std::array<std::uint8_t, kMaxFrame> rx_{};
   std::uint8_t seq_ = 0;                     // of the last frame sent
-  std::array<std::uint32_t, 256> sent_at_{};  // the cycle each sequence number went out
+  std::array<std::uint32_t, 256> sent_at_{};  // the cycle each sequence number crossed the line
+  // The frames kept for a resend (payload with its seq), by seq modulo the window.
+  std::array<std::array<std::uint8_t, kMaxFrame>, kResendWindow> kept_{};
+  std::array<std::uint16_t, kResendWindow> kept_len_{};
+  std::uint8_t resend_first_ = 0;   // the first frame of the last resend
+  int resend_tries_ = 0;            // resends from resend_first_ so far (0: none under way)
+  std::uint32_t resend_hold_ = 0;   // no resend before this cycle: the last one's frames are on their way
+  std::uint32_t answer_cycles_ = 0; // periods from a frame crossing the line to its ack at the host
+  std::uint32_t status_line_cycles_ = 0;  // periods from a status frame's sample to its reading here
   card::StatusFrame newest_{};
   bool stream_status_ = false;  // newest_ came on the stream (not from set-up)
   bool damaged_since_ = false;  // a damaged frame came since the last status frame (already counted)
-  std::uint32_t cycle_ = 0, status_cycle_ = 0;
+  std::uint32_t cycle_ = 0, status_cycle_ = 0, damaged_cycle_ = 0;
+  bool damaged_seen_ = false;  // a damaged frame came (at damaged_cycle_)
   bool comm_lost_ = false, link_broken_ = false, refused_ = false;
   Pending motion_, loops_, reset_, latch_;
   bool loops_closed_ = false;
@@ -112,7 +134,7 @@ class CardStreamSession {
   double line_free_ = 0;   // the cycle (fractional) by which every frame sent has crossed the line
   double longest_gap_ = 0;  // s: the longest path step between two follow() calls lately (decays)
   bool last_knot_rest_ = false;
-  unsigned long frames_sent_ = 0, status_frames_ = 0, knots_sent_ = 0, errors_ = 0;
+  unsigned long frames_sent_ = 0, status_frames_ = 0, knots_sent_ = 0, errors_ = 0, frames_resent_ = 0;
 };
 
 }  // namespace imess::hal

@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "imess/hal/card_stream.hpp"
 #include "imess/hal/link.hpp"
 #include "imess/hal/spsc_ring.hpp"
 #include "imess/hal/stream_frame.hpp"
@@ -28,10 +29,8 @@ struct SerialLinkSettings {
   int baud = 115200;
   double setup_timeout = 0.1;  // s to wait for a set-up reply (plus both frames' time on the line)
   int setup_tries = 5;
-  int realtime_priority = 0;
-  // The longest frame the card sends (a status frame with latch data is 55 bytes, the longest
-  // set-up reply ReadInfo's 5 + its revision): a longer length byte is damaged at once.
-  std::size_t max_rx_payload = 96;   // > 0: the I/O thread asks for SCHED_FIFO at this priority (below the loop's 80)
+  int realtime_priority = 0;        // > 0: the I/O thread asks for SCHED_FIFO at this priority
+  std::size_t max_rx_payload = card::kMaxCardPayload;
 };
 
 struct SerialLinkCounters {
@@ -74,9 +73,7 @@ class SerialCardLink final : public Link, public StreamLink {
   bool reopen() noexcept;
   void hang_up() noexcept;
   void received(std::uint8_t byte) noexcept;
-  // One byte through the decoder; false when it ended a damaged frame (then attempt_ holds
-  // the bytes of that frame, sync first).
-  bool decode(std::uint8_t byte, bool rescanned) noexcept;
+  void take(FrameDecoder::Result r, const FrameDecoder& d) noexcept;  // a frame, or a damaged one
   bool fill_out() noexcept;  // the next bytes to write: set-up first, then the stream's
 
   SerialLinkSettings settings_;
@@ -86,12 +83,7 @@ class SerialCardLink final : public Link, public StreamLink {
 
   SpscRing<std::uint8_t, 8192> tx_;  // motion thread → I/O thread: encoded stream frames
   SpscRing<RxFrame, 256> rx_;        // I/O thread → motion thread: stream frames (1.28 s of status frames)
-  FrameDecoder decoder_;             // the I/O thread's
-  // The bytes of the frame being decoded: after a damaged frame the decoder looks for the next
-  // sync byte among them again (a damaged length byte must not swallow the frames behind it).
-  std::array<std::uint8_t, kMaxWireFrame> attempt_{};
-  std::size_t attempt_len_ = 0;
-  bool attempt_rescanned_ = false;  // the frame began in bytes looked at a second time
+  FrameReceiver receiver_;           // the I/O thread's
   std::array<std::uint8_t, 512> out_{};
   std::size_t out_len_ = 0, out_off_ = 0;
 

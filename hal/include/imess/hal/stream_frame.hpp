@@ -54,4 +54,73 @@ class FrameDecoder {
   std::size_t max_ = kMaxPayload;
 };
 
+// FrameReceiver: a FrameDecoder that resynchronises. After a damaged frame the bytes after its
+// sync byte are decoded again: the next frame's sync may lie among them (a false sync byte in
+// a damaged frame's CRC, or a damaged length byte, had the decoder take the next frames'
+// bytes for its payload). Bounded: at most a frame's bytes wait for a second look. Each
+// damaged frame is reported once, not the false sync bytes found among its bytes.
+// sink(FrameDecoder::Result::Frame or ::Damaged, const FrameDecoder&) for each; no allocation.
+class FrameReceiver {
+ public:
+  explicit FrameReceiver(std::size_t max_payload = kMaxPayload) noexcept : decoder_(max_payload) {}
+  template <class Sink>
+  void feed(std::uint8_t byte, Sink&& sink) noexcept {
+    if (decode(byte, false, sink)) return;
+    std::array<std::uint8_t, 2 * kMaxWireFrame> work{};
+    std::array<bool, 2 * kMaxWireFrame> again{};
+    std::size_t head = 0, n = 0;
+    for (;;) {  // damaged: look again at the bytes after its sync byte, ahead of those not yet decoded
+      std::array<std::uint8_t, 2 * kMaxWireFrame> rest{};
+      std::array<bool, 2 * kMaxWireFrame> rest_again{};
+      std::size_t m = 0;
+      for (std::size_t i = 1; i < attempt_len_ && m < rest.size(); ++i, ++m) {
+        rest[m] = attempt_[i];
+        rest_again[m] = true;
+      }
+      for (std::size_t i = head; i < n && m < rest.size(); ++i, ++m) {
+        rest[m] = work[i];
+        rest_again[m] = again[i];
+      }
+      attempt_len_ = 0;
+      work = rest;
+      again = rest_again;
+      head = 0;
+      n = m;
+      while (head < n && decode(work[head], again[head], sink)) ++head;
+      if (head >= n) return;
+      ++head;
+    }
+  }
+  void reset() noexcept {
+    decoder_.reset();
+    attempt_len_ = 0;
+  }
+
+ private:
+  // One byte through the decoder; false when it ended a damaged frame (attempt_ holds its bytes).
+  template <class Sink>
+  bool decode(std::uint8_t byte, bool rescanned, Sink& sink) noexcept {
+    if (decoder_.hunting()) {
+      attempt_len_ = 0;
+      attempt_rescanned_ = rescanned;
+    }
+    if (attempt_len_ < attempt_.size()) attempt_[attempt_len_++] = byte;
+    switch (decoder_.feed(byte)) {
+      case FrameDecoder::Result::Pending: return true;
+      case FrameDecoder::Result::Damaged:
+        if (!attempt_rescanned_) sink(FrameDecoder::Result::Damaged, decoder_);
+        return false;
+      case FrameDecoder::Result::Frame: break;
+    }
+    attempt_len_ = 0;
+    sink(FrameDecoder::Result::Frame, decoder_);
+    return true;
+  }
+
+  FrameDecoder decoder_;
+  std::array<std::uint8_t, kMaxWireFrame> attempt_{};  // the bytes of the frame being decoded
+  std::size_t attempt_len_ = 0;
+  bool attempt_rescanned_ = false;  // it began in bytes looked at a second time
+};
+
 }  // namespace imess::hal

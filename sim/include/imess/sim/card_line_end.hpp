@@ -30,7 +30,9 @@ class CardLineEnd {
 
  private:
   EmulatedCard& card_;
-  hal::FrameDecoder decoder_;
+  void take(hal::FrameDecoder::Result r, const hal::FrameDecoder& d) noexcept;
+
+  hal::FrameReceiver receiver_;
   std::array<std::uint8_t, hal::kMaxWireFrame> reply_wire_{}, status_wire_{};
   std::size_t reply_len_ = 0;
   unsigned long setup_requests_ = 0, stream_frames_ = 0, damaged_ = 0;

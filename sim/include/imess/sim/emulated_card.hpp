@@ -54,6 +54,8 @@ class EmulatedCard {
   // A host frame {seq, op, arguments} that arrived intact / a frame that failed its CRC.
   void on_stream_frame(std::span<const std::uint8_t> frame) noexcept;
   void on_damaged_frame() noexcept;
+  // Frames held after a missing one, until it comes again.
+  static constexpr int kHeld = 16;
   // The status frame the last tick produced, if it produced one (valid until the next tick).
   bool take_stream_frame(std::span<const std::uint8_t>& frame) noexcept;
   // Counters for tests: setpoint buffer underruns, setpoints buffered, the card clock.
@@ -96,7 +98,7 @@ class EmulatedCard {
   // last one at rest following ends, without one (starved) the axes brake along the path
   // and report kHostStarved until the next motion command.
   void knot_tick() noexcept;
-  void stream_fault() noexcept;
+  void handle_in_sequence(std::span<const std::uint8_t> frame) noexcept;
   void emit_status() noexcept;
   void shift_axis(int a, double new_offset) noexcept;
   // Every axis latched where it stands now (unless a latch is held): a probe power edge.
@@ -139,7 +141,9 @@ class EmulatedCard {
   bool streaming_ = false;
   unsigned stream_mask_ = 0;
   std::uint32_t status_ticks_ = 50, since_status_ = 0;
-  bool have_seq_ = false, stream_error_ = false;
+  bool have_seq_ = false, resend_wanted_ = false;
+  std::array<std::array<std::uint8_t, hal::kMaxFrame>, kHeld> held_{};  // by seq modulo kHeld
+  std::array<std::uint16_t, kHeld> held_len_{};                         // 0: none held there
   std::uint8_t ack_ = 0;
   Status frame_status_ = Status::Ok;  // the first refusal since the last status frame
   unsigned long starvations_ = 0;

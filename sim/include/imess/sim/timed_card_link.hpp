@@ -35,12 +35,11 @@ class TimedCardLink final : public hal::Link, public hal::StreamLink {
 
  private:
   void sync() noexcept;  // runs the line and the card up to the clock's time
-  void received(const hal::FrameDecoder& d) noexcept;
 
   EmulatedCard& card_;
   const hal::Clock& clock_;
   SerialChannel to_card_, to_host_;
-  hal::FrameDecoder card_rx_, host_rx_;
+  hal::FrameReceiver card_rx_, host_rx_;
   bool started_ = false;
   double t_start_ = 0;
   long ticks_ = 0;
