@@ -250,6 +250,7 @@ class Capture {
       text.push_back(' ');
       protocol::append_mm(text, v);
     }
+    if (seq) text += " (hit " + std::to_string(*seq) + ")";  // its number for Align, Replay
     std::printf("%s\n", text.c_str());
     std::fflush(stdout);
   }

@@ -1,6 +1,7 @@
 // The HTML report of messcap inspect: one self-contained page (no scripts, no external files):
-// the characteristics with a deviation bar each, the points in three orthographic views
-// coloured by their deviation from the nominal feature, the part frame and the fitted features.
+// the characteristics with a deviation bar each, three orthographic views of the nominal part
+// with the points coloured by their deviation (inspect_views.cpp), the part frame and the fitted
+// features.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <sstream>
 
 #include "inspect_report.hpp"
+#include "inspect_views.hpp"
 
 namespace imess::messcap {
 namespace {
@@ -29,24 +31,6 @@ std::string esc(const std::string& s) {
 std::string num(double v, const char* fmt = "%.4f") {
   char buf[48];
   std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
-}
-
-// Blue (-1) through green (0) to red (+1).
-std::string colour(double t) {
-  t = std::clamp(t, -1.0, 1.0);
-  int r, g, b;
-  if (t < 0) {
-    r = 0;
-    g = static_cast<int>(160 - 80 * -t);
-    b = static_cast<int>(255 * -t);
-  } else {
-    r = static_cast<int>(220 * t);
-    g = static_cast<int>(160 * (1 - t));
-    b = 0;
-  }
-  char buf[16];
-  std::snprintf(buf, sizeof buf, "#%02x%02x%02x", r, g, b);
   return buf;
 }
 
@@ -78,61 +62,14 @@ std::string deviation_bar(const metrology::CharacteristicResult& c) {
   return s.str();
 }
 
-struct View {
-  const char* title;
-  int u, v;  // coordinate indices shown across and up
-  const char* u_name;
-  const char* v_name;
-};
-
-std::string point_view(const metrology::InspectionResult& r, const View& view, double scale) {
-  const double w = 330, h = 250, m = 28;
-  double u0 = 1e300, u1 = -1e300, v0 = 1e300, v1 = -1e300;
-  for (const auto& p : r.points) {
-    u0 = std::min(u0, p.part[view.u]);
-    u1 = std::max(u1, p.part[view.u]);
-    v0 = std::min(v0, p.part[view.v]);
-    v1 = std::max(v1, p.part[view.v]);
-  }
-  const double k = std::min((w - 2 * m) / std::max(u1 - u0, 1e-9), (h - 2 * m) / std::max(v1 - v0, 1e-9));
-  const double cu = 0.5 * (u0 + u1), cv = 0.5 * (v0 + v1);
-  auto X = [&](double u) { return w / 2 + (u - cu) * k; };
-  auto Y = [&](double v) { return h / 2 - (v - cv) * k; };
-  std::ostringstream s;
-  s << "<figure><svg width=\"" << w << "\" height=\"" << h << "\" viewBox=\"0 0 " << w << " " << h
-    << "\"><rect width=\"100%\" height=\"100%\" fill=\"#fafafa\" stroke=\"#ccc\"/>";
-  // Axes through the part origin, when it is in view.
-  s << "<line x1=\"" << num(X(0), "%.1f") << "\" y1=\"0\" x2=\"" << num(X(0), "%.1f") << "\" y2=\"" << h
-    << "\" stroke=\"#e0e0e0\"/><line x1=\"0\" y1=\"" << num(Y(0), "%.1f") << "\" x2=\"" << w << "\" y2=\"" << num(Y(0), "%.1f")
-    << "\" stroke=\"#e0e0e0\"/>";
-  std::map<std::string, std::pair<Eigen::Vector2d, int>> centres;
-  for (const auto& p : r.points) {
-    const double px = X(p.part[view.u]), py = Y(p.part[view.v]);
-    s << "<circle cx=\"" << num(px, "%.1f") << "\" cy=\"" << num(py, "%.1f") << "\" r=\"3.5\" fill=\""
-      << colour(p.deviation / scale) << "\" stroke=\"#333\" stroke-width=\"0.4\"><title>" << esc(p.feature) << ": "
-      << num(p.part.x(), "%.3f") << " " << num(p.part.y(), "%.3f") << " " << num(p.part.z(), "%.3f") << ", deviation "
-      << num(p.deviation) << "</title></circle>";
-    auto& c = centres[p.feature];
-    c.first += Eigen::Vector2d(px, py);
-    ++c.second;
-  }
-  for (const auto& [name, c] : centres) {
-    const Eigen::Vector2d at = c.first / c.second;
-    s << "<text x=\"" << num(at.x() + 6, "%.1f") << "\" y=\"" << num(at.y() - 6, "%.1f")
-      << "\" font-size=\"10\" fill=\"#666\">" << esc(name) << "</text>";
-  }
-  s << "<text x=\"" << w - 14 << "\" y=\"" << h - 6 << "\" font-size=\"11\">" << view.u_name << "</text><text x=\"6\" y=\"14\" font-size=\"11\">"
-    << view.v_name << "</text></svg><figcaption>" << view.title << "</figcaption></figure>";
-  return s.str();
-}
-
+// The colour scale under the views: its ends and its middle numbered, inside the picture.
 std::string legend(double scale) {
   std::ostringstream s;
-  s << "<svg width=\"330\" height=\"40\" viewBox=\"0 0 330 40\">";
+  s << "<svg class=\"legend\" width=\"360\" height=\"40\" viewBox=\"0 0 360 40\" font-family=\"sans-serif\" font-size=\"11\">";
   for (int i = 0; i < 60; ++i)
-    s << "<rect x=\"" << 15 + i * 5 << "\" y=\"4\" width=\"5.5\" height=\"14\" fill=\"" << colour(-1 + i / 29.5) << "\"/>";
-  s << "<text x=\"15\" y=\"34\" font-size=\"11\">" << num(-scale) << "</text><text x=\"160\" y=\"34\" font-size=\"11\">0</text>"
-    << "<text x=\"270\" y=\"34\" font-size=\"11\">" << num(scale, "%+.4f") << " mm</text></svg>";
+    s << "<rect x=\"" << 30 + i * 5 << "\" y=\"4\" width=\"5.5\" height=\"14\" fill=\"" << deviation_colour(-1 + i / 29.5) << "\"/>";
+  s << "<text x=\"30\" y=\"34\" text-anchor=\"start\">" << num(-scale, "%+.4f") << "</text><text x=\"180\" y=\"34\" "
+    << "text-anchor=\"middle\">0</text><text x=\"330\" y=\"34\" text-anchor=\"end\">" << num(scale, "%+.4f") << " mm</text></svg>";
   return s.str();
 }
 
@@ -178,9 +115,11 @@ std::string inspection_html(const metrology::InspectionPlan& plan, const metrolo
     const std::string cls = !c.evaluated() ? "none" : c.in_tolerance ? "ok" : "out";
     s << "<tr><td>" << esc(c.spec.name) << "</td><td>" << metrology::to_string(c.spec.kind) << "</td><td>" << esc(c.spec.feature)
       << (c.spec.other.empty() ? "" : (metrology::is_zone(c.spec.kind) ? " to " : " – ") + esc(c.spec.other)) << "</td>";
+    const int d = decimals_for(c);  // enough to see the verdict in the figures
+    const std::string plain = "%." + std::to_string(d) + "f", sign = "%+." + std::to_string(d) + "f";
     if (c.evaluated())
-      s << "<td class=\"n\">" << num(c.nominal) << "</td><td class=\"n\">" << num(c.actual) << "</td><td class=\"n\">"
-        << num(c.deviation, "%+.4f") << "</td>";
+      s << "<td class=\"n\">" << num(c.nominal, plain.c_str()) << "</td><td class=\"n\">" << num(c.actual, plain.c_str())
+        << "</td><td class=\"n\">" << num(c.deviation, sign.c_str()) << "</td>";
     else
       s << "<td colspan=\"3\" class=\"none\">not evaluated: " << esc(c.error) << "</td>";
     s << "<td class=\"n\">" << tolerance_text(c) << " " << unit_of(c) << "</td><td>" << deviation_bar(c) << "</td><td class=\""
@@ -191,10 +130,13 @@ std::string inspection_html(const metrology::InspectionPlan& plan, const metrolo
 
   double scale = 1e-3;
   for (const auto& p : result.points) scale = std::max(scale, std::abs(p.deviation));
-  s << "<h2>Points</h2>\n<p>Part coordinates (mm), each point coloured by its deviation from its nominal feature "
-       "(positive: out of the material).</p>\n<div>"
-    << point_view(result, {"top (X–Y)", 0, 1, "X", "Y"}, scale) << point_view(result, {"front (X–Z)", 0, 2, "X", "Z"}, scale)
-    << point_view(result, {"side (Y–Z)", 1, 2, "Y", "Z"}, scale) << "</div>\n" << legend(scale) << "\n";
+  s << "<h2>Points</h2>\n<p>Part coordinates (mm). Grey and blue: the nominal part from the plan — its outline between "
+       "opposite planes, each plane over the part and its probe points (dashed where it faces you), circles, cylinders and "
+       "their axes; each point coloured by its deviation from its nominal feature (positive: out of the "
+       "material).</p>\n<div>"
+    << inspection_view(plan, result, {"top (X–Y)", 0, 1, "X", "Y"}, scale)
+    << inspection_view(plan, result, {"front (X–Z)", 0, 2, "X", "Z"}, scale)
+    << inspection_view(plan, result, {"right side (Y–Z)", 1, 2, "Y", "Z"}, scale) << "</div>\n" << legend(scale) << "\n";
 
   const auto& a = result.alignment;
   auto v = [](const Eigen::Vector3d& p, const char* f) { return num(p.x(), f) + " " + num(p.y(), f) + " " + num(p.z(), f); };

@@ -24,9 +24,13 @@ std::string inspection_html(const metrology::InspectionPlan& plan, const metrolo
                             const ReportSource& source);
 
 // Shared by the reports: "ok", "OUT" or "--" (not evaluated), and the tolerance as text
-// ("-0.0500/+0.0500", "<= 0.0100").
+// ("-0.0500/+0.0500", "<= 0.0100") with decimals_for(c) decimals.
 std::string verdict_text(const metrology::CharacteristicResult& c);
 std::string tolerance_text(const metrology::CharacteristicResult& c);
+// Decimals for a characteristic's figures: 4, or more until the printed deviation and limits
+// show the verdict (a zone of 0.000104 against 0.0001 prints "0.000104 <= 0.000100 OUT",
+// never "0.0001 <= 0.0001 OUT"); at most 9.
+int decimals_for(const metrology::CharacteristicResult& c);
 // Units of a characteristic's values: "deg" for angles, "mm" otherwise.
 const char* unit_of(const metrology::CharacteristicResult& c);
 

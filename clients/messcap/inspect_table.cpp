@@ -7,13 +7,26 @@
 namespace imess::messcap {
 namespace {
 
-std::string fixed(double v, bool sign = false) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, sign ? "%+.4f" : "%.4f", v);
+std::string fixed(double v, int decimals, bool sign = false) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, sign ? "%+.*f" : "%.*f", decimals, v);
   return buf;
 }
 
+// v as printed with `decimals` decimals, read back.
+double printed(double v, int decimals) { return std::stod(fixed(v, decimals)); }
+
 }  // namespace
+
+int decimals_for(const metrology::CharacteristicResult& c) {
+  if (!c.evaluated()) return 4;
+  for (int d = 4; d < 9; ++d) {
+    const double dev = printed(c.deviation, d), lo = printed(c.spec.lower, d), hi = printed(c.spec.upper, d);
+    const bool inside = dev >= lo && dev <= hi;
+    if (inside == c.in_tolerance) return d;  // what the reader sees is what was decided
+  }
+  return 9;
+}
 
 std::string verdict_text(const metrology::CharacteristicResult& c) {
   if (!c.evaluated()) return "--";
@@ -21,8 +34,9 @@ std::string verdict_text(const metrology::CharacteristicResult& c) {
 }
 
 std::string tolerance_text(const metrology::CharacteristicResult& c) {
-  if (metrology::is_zone(c.spec.kind)) return "<= " + fixed(c.spec.upper);
-  return fixed(c.spec.lower, true) + "/" + fixed(c.spec.upper, true);
+  const int d = decimals_for(c);
+  if (metrology::is_zone(c.spec.kind)) return "<= " + fixed(c.spec.upper, d);
+  return fixed(c.spec.lower, d, true) + "/" + fixed(c.spec.upper, d, true);
 }
 
 const char* unit_of(const metrology::CharacteristicResult& c) {
@@ -56,8 +70,9 @@ void print_inspection_table(std::ostream& out, const metrology::InspectionPlan& 
       out << line << "    not evaluated: " << c.error << "\n";
       continue;
     }
-    std::snprintf(line, sizeof line, "%-28s %-16s %11.4f %11.4f %+10.4f %17s  %s%s\n", c.spec.name.c_str(), type.c_str(),
-                  c.nominal, c.actual, c.deviation, tolerance_text(c).c_str(), verdict_text(c).c_str(),
+    const int d = decimals_for(c);
+    std::snprintf(line, sizeof line, "%-28s %-16s %11.*f %11.*f %+10.*f %17s  %s%s\n", c.spec.name.c_str(), type.c_str(), d,
+                  c.nominal, d, c.actual, d, c.deviation, tolerance_text(c).c_str(), verdict_text(c).c_str(),
                   c.spec.kind == metrology::CharacteristicKind::Angle ? "  (deg)" : "");
     out << line;
   }

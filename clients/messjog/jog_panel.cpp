@@ -174,7 +174,9 @@ void JogPanel::reply_received(bool ok, std::string_view text, int code) {
   if (ok) return;
   note(verb + " refused: " + std::string(text));
   if (code == static_cast<int>(protocol::ErrorCode::NotInControl))
-    note("another client controls the machine: Space (stop) still works from here");
+    note("another client controls the machine: once it leaves the machine at rest and sends nothing for "
+         "messd's control.handover_s (2 s by default), your next key takes control; t t takes it now; "
+         "Space (stop) still works from here");
   else if (code == static_cast<int>(protocol::ErrorCode::HostNotAllowed))
     note("this host may only watch and stop the machine (messd's control.hosts)");
   bool another_start_pending = false;

@@ -1,5 +1,5 @@
 // Drawing of the jog panel. Layout (top to bottom): title and link, positions, speed and
-// motion, key map, messages filling the rest of the terminal.
+// motion, key map, messages (wrapped to the width) filling the rest of the terminal.
 #define NCURSES_NOMACROS
 #include "jog_screen.hpp"
 
@@ -11,6 +11,7 @@
 #include <string>
 
 #include "key_map.hpp"
+#include "note_rows.hpp"
 
 namespace imess::messjog {
 namespace {
@@ -93,10 +94,8 @@ void JogScreen::draw(const JogSession& session) {
 
   ++row;
   put(row++, 0, "Messages", A_UNDERLINE);
-  const auto& notes = panel.notes();
-  int room = std::max(0, LINES - row);
-  std::size_t shown = std::min<std::size_t>(notes.size(), static_cast<std::size_t>(room));
-  for (std::size_t i = notes.size() - shown; i < notes.size(); ++i) put(row++, 2, notes[i]);
+  // Wrapped, never cut at the right edge: the newest at the bottom, as many as fit.
+  for (const auto& text : note_rows(panel.notes(), COLS - 3, std::max(0, LINES - row))) put(row++, 2, text);
   refresh();
 }
 

@@ -100,6 +100,7 @@ void read_control(JsonObject& c, const std::string& path, net::ControlConfig& ou
   hosts("force_hosts", out.force_hosts);
   out.reserved_slots = static_cast<std::size_t>(c.number("reserved_slots", double(out.reserved_slots), 0, 10000));
   out.idle_drop_s = c.number("idle_drop_s", out.idle_drop_s, 1, 86400);
+  out.handover_s = c.number("handover_s", out.handover_s, 0, 86400);
   out.no_command_drop_s = c.number("no_command_drop_s", out.no_command_drop_s, 0, 86400);
   out.write_stall_s = c.number("write_stall_s", out.write_stall_s, 0.5, 3600);
   out.max_in_flight = static_cast<std::uint32_t>(c.number("max_in_flight", out.max_in_flight, 1, 200));

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "jog_panel.hpp"
+#include "note_rows.hpp"
 #include "key_map.hpp"
 
 using namespace imess::messjog;
@@ -278,6 +279,7 @@ TEST_CASE("JogPanel: shows who controls the machine and explains NotInControl") 
   CHECK_FALSE(p.moving());
   CHECK(noted(p, "telnet at 10.0.0.7"));
   CHECK(noted(p, "Space (stop) still works"));
+  CHECK(noted(p, "your next key takes control"));  // the handover: the operator need not release it elsewhere
   p.on_line("Control none");
   CHECK(p.controller() == "none");
   p.on_line("Control messjog 127.0.0.1");
@@ -320,4 +322,33 @@ TEST_CASE("JogPanel: t t takes control over (Take force), a single t only asks f
   CHECK(p.act(JogAction::TakeOver, t0 + std::chrono::seconds(1)) == Lines{"Take force"});
   CHECK(p.act(JogAction::TakeOver, t0 + std::chrono::seconds(2)).empty());  // armed again, not sent
   CHECK(p.act(JogAction::TakeOver, t0 + std::chrono::seconds(6)).empty());  // too late: asks again
+}
+
+TEST_CASE("JogPanel messages wrap at the terminal's width, nothing is cut off") {
+  const std::string refusal =
+      "StartMv refused: Err 209 the machine is controlled by telnet at 127.0.0.1 (client 3); StopMv is open to all, "
+      "Status shows the owner";
+  const auto rows = wrap_message(refusal, 40);
+  REQUIRE(rows.size() > 2);
+  std::string joined;
+  for (const auto& r : rows) {
+    CHECK(r.size() <= 40);
+    joined += (joined.empty() ? "" : " ") + r.substr(r.rfind("  ", 0) == 0 ? 2 : 0);
+  }
+  CHECK(joined == refusal);  // every word, in order: "StopMv is open" is not cut to "StopMv is o"
+  CHECK(rows[1].rfind("  ", 0) == 0);  // continuation rows are indented
+  // A word longer than a row is broken, not lost.
+  const auto long_word = wrap_message(std::string(25, 'x'), 10);
+  REQUIRE(long_word.size() == 3);
+  CHECK(long_word[0] == std::string(10, 'x'));
+  CHECK(long_word[1] == "  " + std::string(8, 'x'));
+  CHECK(long_word[2] == "  " + std::string(7, 'x'));
+  CHECK(wrap_message("", 40) == std::vector<std::string>{""});
+  // The newest rows fill the area from the bottom.
+  std::deque<std::string> notes{"first", refusal, "last"};
+  const auto shown = note_rows(notes, 40, 3);
+  REQUIRE(shown.size() == 3);
+  CHECK(shown.back() == "last");
+  CHECK(shown[0] == rows[rows.size() - 2]);
+  CHECK(note_rows(notes, 40, 100).front() == "first");
 }

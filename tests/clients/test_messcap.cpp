@@ -185,7 +185,7 @@ std::string meas(double z) {
 }
 }  // namespace
 
-TEST_CASE("messcap takes Hit lines, keeps their numbers in .xyz, and does not count their MeasPt twice") {
+TEST_CASE("messcap takes Hit lines, keeps their numbers in .xyz and on screen, and does not count their MeasPt twice") {
   TempDir dir;
   auto xyz = dir.file("hits.xyz");
   FakeDaemonScript script{0, {"CurrCor 0.000 0.000 0.000", hit(5, 80), meas(80), "State retract", hit(6, 81.25), meas(81.25)},
@@ -198,7 +198,7 @@ TEST_CASE("messcap takes Hit lines, keeps their numbers in .xyz, and does not co
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK(read_file(xyz) == "430.000 330.000 80.000 # hit 5\n430.000 330.000 81.250 # hit 6\n");
-  CHECK(r.out == "point 1: 430.000 330.000 80.000\npoint 2: 430.000 330.000 81.250\n");
+  CHECK(r.out == "point 1: 430.000 330.000 80.000 (hit 5)\npoint 2: 430.000 330.000 81.250 (hit 6)\n");  // numbers for Align
   // messcap fit reads the file back: the numbers are comments.
   auto fit = imess::test::run_program({client_binary("messcap"), "fit", "line", xyz});
   CHECK(fit.status == 0);

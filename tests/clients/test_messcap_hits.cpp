@@ -217,7 +217,7 @@ TEST_CASE("messcap -o FILE.hits: every Hit with its approach and tip radius, tur
   CHECK((vec(in_part["center"]) - frame.rotation().transpose() * (kCentre - frame.translation())).norm() < 2e-4);
   const Vector3d first = frame.point_from_parent(touches[0].reported());
   char printed_first[96];
-  std::snprintf(printed_first, sizeof printed_first, "point 1: %.3f %.3f %.3f\n", first.x(), first.y(), first.z());
+  std::snprintf(printed_first, sizeof printed_first, "point 1: %.3f %.3f %.3f (hit ", first.x(), first.y(), first.z());
   CHECK_THAT(r.out, Catch::StartsWith(printed_first));
 }
 

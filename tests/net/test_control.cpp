@@ -26,6 +26,7 @@ TEST_CASE("command_need: motion and changes need control, StopMv is open to all 
   CHECK(need("Take") == CommandNeed::Own);
   CHECK(need("Take force") == CommandNeed::Own);
   CHECK(need("Release") == CommandNeed::Own);
+  CHECK(need("Key Done") == CommandNeed::Operator);  // the operator's keys: from any control host
 }
 
 TEST_CASE("Control: the first controlling command takes free control, others are refused naming the owner") {
@@ -58,6 +59,39 @@ TEST_CASE("Control: Take waits for free control, Take force only from force host
   REQUIRE(c.previous());
   CHECK(c.previous()->session == 1);
   CHECK(c.claim(who(1), true) == ControlOutcome::HeldByOther);  // the old owner is an observer now
+}
+
+TEST_CASE("Control: an idle owner hands over to the next who asks, a busy or recent one does not") {
+  Control c(2.0);
+  REQUIRE(c.claim(who(1), true) == ControlOutcome::Taken);
+  const Activity idle{false, false, 2.0};
+  // Each condition alone keeps control where it is.
+  CHECK(c.claim(who(2), true, Activity{true, false, 60}) == ControlOutcome::HeldByOther);   // the machine moves
+  CHECK(c.claim(who(2), true, Activity{false, true, 60}) == ControlOutcome::HeldByOther);   // moves are queued
+  CHECK(c.claim(who(2), true, Activity{false, false, 1.99}) == ControlOutcome::HeldByOther);  // the owner spoke lately
+  CHECK(c.claim(who(2), true) == ControlOutcome::HeldByOther);  // the default: a busy owner
+  CHECK(c.take(who(2), true, false, false, Activity{false, false, 1.0}) == ControlOutcome::HeldByOther);
+  CHECK(c.claim(who(3, "192.168.7.7"), false, idle) == ControlOutcome::HostNotAllowed);  // an observer host never
+  CHECK(c.owns(1));
+  CHECK(c.claim(who(2), true, idle) == ControlOutcome::HandedOver);
+  CHECK(c.owns(2));
+  CHECK(c.previous()->session == 1);
+  CHECK(c.take(who(1), true, false, false, idle) == ControlOutcome::HandedOver);  // Take asks as well
+  CHECK(c.owns(1));
+  CHECK(c.previous()->session == 2);
+}
+
+TEST_CASE("Control: never handed over with handover_s 0, nor from the I++ DME session") {
+  const Activity idle{false, false, 1e9};
+  Control never(0);
+  REQUIRE(never.claim(who(1), true) == ControlOutcome::Taken);
+  CHECK(never.claim(who(2), true, idle) == ControlOutcome::HeldByOther);
+  Control c(2.0);
+  REQUIRE(c.claim(Controller{kIppSession, "ippdme", "127.0.0.1"}, true) == ControlOutcome::Taken);
+  CHECK_FALSE(c.hands_over(idle));
+  CHECK(c.claim(who(2), true, idle) == ControlOutcome::HeldByOther);
+  CHECK(c.take(who(2), true, false, true, idle) == ControlOutcome::HeldByOther);
+  CHECK(c.take(who(2), true, true, true, idle) == ControlOutcome::TakenOver);  // the operator's force still works
 }
 
 TEST_CASE("Control: release and disconnect free control, only the owner's release counts") {

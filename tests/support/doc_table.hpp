@@ -16,7 +16,7 @@ inline std::string read_source_file(const std::string& relative) {
 }
 
 // The rows of the first markdown table after `heading`: first cell -> all cells after it.
-// Cells are trimmed and lose their backticks; the header and separator rows are skipped.
+// Cells are trimmed and lose their backticks, an escaped bar reads as a bar; the header and separator rows are skipped.
 inline std::map<std::string, std::vector<std::string>> doc_table(const std::string& doc, const std::string& heading) {
   std::map<std::string, std::vector<std::string>> rows;
   auto at = doc.find(heading);
@@ -38,6 +38,8 @@ inline std::map<std::string, std::vector<std::string>> doc_table(const std::stri
         while (!cell.empty() && cell.back() == ' ') cell.pop_back();
         cells.push_back(cell);
         cell.clear();
+      } else if (line[i] == '\\' && i + 1 < line.size() && line[i + 1] == '|') {
+        // "\|": a bar inside a cell, read as "|"
       } else if (line[i] != '`') {
         cell += line[i];
       }

@@ -18,26 +18,37 @@ CommandNeed command_need(const protocol::Command& cmd) {
     case protocol::Access::Moving: return CommandNeed::Controlling;  // ForcePt too: a point in everyone's capture
     case protocol::Access::Stop: return CommandNeed::Stop;
     case protocol::Access::Own: return CommandNeed::Own;
+    case protocol::Access::Operator: return CommandNeed::Operator;
   }
   return CommandNeed::Controlling;
 }
 
-ControlOutcome Control::claim(const Controller& who, bool may_control) {
+bool Control::hands_over(const Activity& now) const {
+  return owner_ && owner_->session != kIppSession && handover_s_ > 0 && !now.machine_moves && !now.queue &&
+         now.owner_silent_s >= handover_s_;
+}
+
+ControlOutcome Control::claim(const Controller& who, bool may_control, const Activity& now) {
   if (owns(who.session)) return ControlOutcome::Kept;
   if (!may_control) return ControlOutcome::HostNotAllowed;
-  if (owner_) return ControlOutcome::HeldByOther;
+  if (owner_) {
+    if (!hands_over(now)) return ControlOutcome::HeldByOther;
+    previous_ = owner_;
+    owner_ = who;
+    return ControlOutcome::HandedOver;
+  }
   owner_ = who;
   return ControlOutcome::Taken;
 }
 
-ControlOutcome Control::take(const Controller& who, bool may_control, bool force, bool may_force) {
+ControlOutcome Control::take(const Controller& who, bool may_control, bool force, bool may_force, const Activity& now) {
   if (owns(who.session)) return ControlOutcome::Kept;
   if (!may_control) return ControlOutcome::HostNotAllowed;
   if (!owner_) {
     owner_ = who;
     return ControlOutcome::Taken;
   }
-  if (!force) return ControlOutcome::HeldByOther;
+  if (!force || (!may_force && hands_over(now))) return claim(who, may_control, now);  // HandedOver when idle
   if (!may_force) return ControlOutcome::ForceNotAllowed;
   previous_ = owner_;
   owner_ = who;

@@ -1,6 +1,8 @@
 // Part frames on the wire: Frames, Frame, PartPos, UseFrame, SetFrame, Align, DelFrame
 // (docs/protocol.md, "Part frames"). The store is FrameService's; alignments fit journaled
 // hits with the metrology library.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -151,6 +153,41 @@ void FrameVerbs::set_frame(Session& s, std::uint32_t slot, const protocol::SetFr
   }
 }
 
+// Align's hit sets: three given, or the one word `last` (the newest 6 hits, for holes 9), which
+// become their numbers in `sets` and `used` ("7-9 10,11 12"). False: refused (answered).
+bool FrameVerbs::last_hits(Session& s, std::uint32_t slot, const protocol::Align& c, const std::string& head,
+                           std::array<std::string, 3>& sets, std::string& used) {
+  const bool last = c.hits[0].size() == 4 && std::equal(c.hits[0].begin(), c.hits[0].end(), "last", [](char a, char b) {
+                      return std::tolower(static_cast<unsigned char>(a)) == b;
+                    });
+  const std::string usage = "; usage: Align name 321|holes plane-hits hits hits, or Align name 321|holes last";
+  if (last && (!c.hits[1].empty() || !c.hits[2].empty())) {
+    reply(s, slot, format_err(ErrorCode::BadArguments, head + "'last' takes the newest hits and stands alone" + usage));
+    return false;
+  }
+  if (!last && (c.hits[1].empty() || c.hits[2].empty())) {
+    reply(s, slot, format_err(ErrorCode::BadArguments, head + "needs three hit sets (" + (c.holes ? "plane, hole, hole" : "plane, line, point") +
+                                                          ") or the word 'last'" + usage));
+    return false;
+  }
+  if (!last) return true;
+  const std::uint64_t n = c.holes ? 9 : 6, newest = journal_.newest();
+  if (newest < n || journal_.oldest() > newest - n + 1) {
+    reply(s, slot, format_err(ErrorCode::BadValue, head + "'last' takes the newest " + std::to_string(n) + " hits; the journal holds " +
+                                                       (newest == 0 ? std::string("none") : "hits " + std::to_string(journal_.oldest()) + " to " + std::to_string(newest))));
+    return false;
+  }
+  const std::uint64_t first = newest - n + 1;
+  auto range = [](std::uint64_t a, std::uint64_t b) { return std::to_string(a) + "-" + std::to_string(b); };
+  if (c.holes) {
+    sets = {range(first, first + 2), range(first + 3, first + 5), range(first + 6, first + 8)};
+  } else {
+    sets = {range(first, first + 2), std::to_string(first + 3) + "," + std::to_string(first + 4), std::to_string(first + 5)};
+  }
+  used = sets[0] + " " + sets[1] + " " + sets[2];
+  return true;
+}
+
 // Align name 321|holes plane line|hole point|hole: fits the journaled hits and builds the frame.
 void FrameVerbs::align(Session& s, std::uint32_t slot, const protocol::Align& c) {
   if (!frames_usable(s, slot, "Align")) return;
@@ -163,11 +200,16 @@ void FrameVerbs::align(Session& s, std::uint32_t slot, const protocol::Align& c)
   static constexpr const char* kRolesHoles[3] = {"plane", "first hole", "second hole"};
   static constexpr std::size_t kMinimum321[3] = {3, 2, 1};
   static constexpr std::size_t kMinimumHoles[3] = {3, 3, 3};
+  // The hit sets as given, or `last`: the journal's newest hits, taken in order (321: three for
+  // the plane, two for the line, one for the point; holes: three each), named in the reply.
+  std::array<std::string, 3> sets = c.hits;
+  std::string hits_used;
+  if (!last_hits(s, slot, c, head, sets, hits_used)) return;
   HitGroup groups[3];
   for (int g = 0; g < 3; ++g) {
     const char* role = c.holes ? kRolesHoles[g] : kRoles321[g];
     std::string why;
-    const auto seqs = protocol::parse_hit_set(c.hits[static_cast<std::size_t>(g)], why);
+    const auto seqs = protocol::parse_hit_set(sets[static_cast<std::size_t>(g)], why);
     if (seqs.empty()) {
       reply(s, slot, format_err(ErrorCode::BadValue, head + role + ": " + why));
       return;
@@ -261,6 +303,7 @@ void FrameVerbs::align(Session& s, std::uint32_t slot, const protocol::Align& c)
       reply(s, slot, format_err(ErrorCode::BadValue, head + "the frame's origin lies beyond -1000000 to 1000000 mm; probe other features"));
       return;
     }
+    if (!hits_used.empty()) extra += " Hits " + hits_used;
     store_frame(s, slot, "Align", c.name, frame, extra);
   } catch (const std::exception& e) {  // AlignmentError, FrameError
     reply(s, slot, format_err(ErrorCode::BadValue, head + e.what()));

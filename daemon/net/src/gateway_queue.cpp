@@ -217,11 +217,13 @@ void MotionGateway::on_segment_end(const core::Event& e) {
   MotionObserver* owner = observers_.owner_of(e.id);
   if (owner && owner != observers_.fallback()) {
     owner->guarded("SegmentEnd", [&] { owner->segment_end(e); });
+    fail_deferred();
     flush_check();
     return;
   }
   const bool probe_closed = probe_open_ && *probe_open_ == e.id && (e.kind == core::EventKind::Failed || e.probe_end);
   if (owner) owner->guarded("SegmentEnd", [&] { owner->segment_end(e); });
+  fail_deferred();  // the ids queued behind this one, failed by a stop: after it, in queue order
   end_plan_if_idle();  // the queue ran out: the next one starts where the machine stands
   if (probe_closed) {
     probe_open_.reset();
@@ -235,11 +237,41 @@ void MotionGateway::on_segment_end(const core::Event& e) {
 
 // Held commands are MESSD's queued moves (the fallback's), whatever their id.
 void MotionGateway::failed_held(std::uint32_t id, core::FailReason why) {
-  if (MotionObserver* o = observers_.fallback()) o->guarded("Failed", [&] { o->unsent_failed(id, why); });
+  if (MotionObserver* o = observers_.fallback()) {
+    if (defer_failure(id, why)) return;
+    o->guarded("Failed", [&] { o->unsent_failed(id, why); });
+  }
 }
 
 void MotionGateway::failed_unsent(std::uint32_t id, core::FailReason why) {
-  if (MotionObserver* owner = observers_.owner_of(id)) owner->guarded("Failed", [&] { owner->unsent_failed(id, why); });
+  MotionObserver* owner = observers_.owner_of(id);
+  if (!owner) return;
+  if (owner == observers_.fallback() && defer_failure(id, why)) return;
+  owner->guarded("Failed", [&] { owner->unsent_failed(id, why); });
+}
+
+// A MESSD client reads its Failed lines in queue order: the ids the loop holds fail there (their
+// events arrive a cycle later), so the ids queued behind them, which fail here, wait for those.
+bool MotionGateway::defer_failure(std::uint32_t id, core::FailReason why) {
+  if (in_loop_.empty() && deferred_.empty()) return false;
+  if (deferred_.empty()) {
+    deferred_until_.clear();
+    for (const auto& [loop_id, seconds] : in_loop_) deferred_until_.push_back(loop_id);
+  }
+  deferred_.emplace_back(id, why);
+  return true;
+}
+
+void MotionGateway::fail_deferred() {
+  if (deferred_.empty()) return;
+  for (auto id : deferred_until_)
+    if (std::any_of(in_loop_.begin(), in_loop_.end(), [&](const auto& x) { return x.first == id; })) return;
+  const auto fails = std::move(deferred_);
+  deferred_.clear();
+  deferred_until_.clear();
+  MotionObserver* o = observers_.fallback();
+  for (const auto& [id, why] : fails)
+    if (o) o->guarded("Failed", [&] { o->unsent_failed(id, why); });
 }
 
 void MotionGateway::drop_planned(core::FailReason why) {

@@ -380,6 +380,7 @@ bool IppServer::claim_control(bool at_start, std::string& why) {
   const bool standing = (snap.mode == core::Mode::Idle || snap.mode == core::Mode::Free) && !gateway_.planning() &&
                         !gateway_.loop_holds_segments() && !programs_.running();
   if (!user_enabled_ && !(at_start && standing)) {
+    if (control.claim(me, true) == ControlOutcome::HandedOver) return true;  // an idle owner hands over, as to anyone
     why = "the machine is controlled by " + describe(*control.owner());
     return false;
   }

@@ -24,10 +24,16 @@ Controller MessdDispatch::controller(Session& s) const { return {s.id(), control
 
 // Returns false (and answers the slot) when cmd may not run for this session.
 bool MessdDispatch::allowed(Session& s, const protocol::Command& cmd, std::uint32_t slot) {
-  if (command_need(cmd) != CommandNeed::Controlling) return true;
+  const CommandNeed need = command_need(cmd);
+  if (need == CommandNeed::Operator && !s.info().may_control) {  // the operator's keys: from a control host
+    reply(s, slot, format_err(ErrorCode::HostNotAllowed, host_text(s)));
+    return false;
+  }
+  if (need != CommandNeed::Controlling) return true;
   switch (control_.claim(controller(s), s.info().may_control)) {
     case ControlOutcome::Kept: return true;
-    case ControlOutcome::Taken: return true;  // announced
+    case ControlOutcome::Taken: return true;       // announced
+    case ControlOutcome::HandedOver: return true;  // from an idle owner; announced
     case ControlOutcome::HostNotAllowed:
       log_limited(log_, spdlog::level::info, "refused-control", "client " + std::to_string(s.id()) + ": " + host_text(s));
       reply(s, slot, format_err(ErrorCode::HostNotAllowed, host_text(s)));
@@ -42,8 +48,9 @@ void MessdDispatch::take(Session& s, std::uint32_t slot, const protocol::Take& t
   auto outcome = control_.take(controller(s), s.info().may_control, t.force, s.info().may_force);
   switch (outcome) {
     case ControlOutcome::Kept: reply(s, slot, format_ok("Take")); return;
-    case ControlOutcome::Taken:     // announced
-    case ControlOutcome::TakenOver:  // the machine stopped, who lost it warned, announced
+    case ControlOutcome::Taken:       // announced
+    case ControlOutcome::HandedOver:  // from an idle owner; announced
+    case ControlOutcome::TakenOver:   // the machine stopped, who lost it warned, announced
       reply(s, slot, format_ok("Take"));
       return;
     case ControlOutcome::HeldByOther:

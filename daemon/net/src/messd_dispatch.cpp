@@ -55,6 +55,7 @@ void MessdDispatch::on_line(Session& s, const protocol::FramedLine& line) {
         return;
       }
     }
+    control_.heard(s.id());  // a program's lines: its owner is busy, not silent
     upload_line(s, line);
     return;
   }
@@ -106,6 +107,7 @@ void MessdDispatch::stop_request(Session& s, std::uint32_t slot) {
 void MessdDispatch::on_command(Session& s, std::uint32_t slot, const protocol::Command& cmd) {
   using core::CommandKind;
   s.info().commanded = true;  // no longer a candidate for control.no_command_drop_s
+  control_.heard(s.id());     // the owner's silence (control.handover_s) starts anew
   if (!allowed(s, cmd, slot)) return;
   // What would move the machine besides the program (its declaration says so): refused while one runs.
   if (protocol::moves_machine(cmd) && programs_.busy(protocol::verb_name(cmd), answer(s, slot))) return;

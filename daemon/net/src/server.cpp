@@ -22,7 +22,7 @@ Server::Server(asio::io_context& io, ServerConfig config, core::MotionCore& core
       frames_(observers_, log_limiter_),
       programs_(gateway_, config_.programs, frames_, log_limiter_,
                 [this](const std::string& line) { sessions_.broadcast(line); }),
-      control_(gateway_, programs_, observers_, log_limiter_),
+      control_(gateway_, programs_, observers_, log_limiter_, config_.control.handover_s),
       hits_(journal, observers_, config_.probe_offset, {config_.log_motion, config_.beep}),
       sessions_(io, config_, log_limiter_),
       stream_(io, config_, gateway_, sessions_,

@@ -76,6 +76,7 @@ enum class Access : std::uint8_t {
   Moving,       // as Controlling, and it moves the machine: refused while a program runs
   Stop,         // anyone, always (StopMv)
   Own,          // changes who controls (Take, Release)
+  Operator,     // any client on a host that may control, without taking control (Key: the operator's keys)
 };
 
 struct VerbSpec {

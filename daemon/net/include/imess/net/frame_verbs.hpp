@@ -2,6 +2,7 @@
 // Align, DelFrame (docs/protocol.md, "Part frames"). The frames are FrameService's; Align
 // reads its hits from the journal and fits them with the metrology library.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -28,6 +29,8 @@ class FrameVerbs {
 
  private:
   bool frames_usable(Session& s, std::uint32_t slot, std::string_view verb);
+  bool last_hits(Session& s, std::uint32_t slot, const protocol::Align& c, const std::string& head,
+                 std::array<std::string, 3>& sets, std::string& used);
   const metrology::Frame* frame_named(Session& s, std::uint32_t slot, std::string_view verb, std::string& name);
   void store_frame(Session& s, std::uint32_t slot, std::string_view verb, const std::string& name,
                    const metrology::Frame& frame, std::string_view extra);

@@ -96,6 +96,8 @@ class MotionGateway {
   void drop_planned(core::FailReason why);    // fail what the loop has not received, plan anew
   void failed_unsent(std::uint32_t id, core::FailReason why);  // to the id's owner
   void failed_held(std::uint32_t id, core::FailReason why);    // to the fallback (MESSD's)
+  bool defer_failure(std::uint32_t id, core::FailReason why);  // MESSD's: wait for the ids the loop holds
+  void fail_deferred();  // once those have ended: the waiting failures, in queue order
 
   boost::asio::io_context& io_;
   core::MotionCore& core_;
@@ -112,6 +114,9 @@ class MotionGateway {
   std::optional<std::uint32_t> probe_open_;  // a Probe planned whose Done has not come yet
   std::deque<QueuedCommand> held_;           // commands queued after it, unplanned
   bool flush_check_posted_ = false;
+  // MESSD's ids failed by a drop while earlier ones were still in the loop, and those earlier ids.
+  std::vector<std::pair<std::uint32_t, core::FailReason>> deferred_;
+  std::vector<std::uint32_t> deferred_until_;
 };
 
 }  // namespace imess::net

@@ -22,6 +22,8 @@ struct ControlConfig {
   HostList force_hosts = loopback_hosts();    // may Take force (must also be in hosts)
   std::size_t reserved_slots = 4;             // of max_clients, only for hosts in `hosts`
   double idle_drop_s = 300;                   // silent this long while controlling or watching: dropped
+  double handover_s = 2;                      // an owner without a command this long, the machine at rest
+                                              // and nothing queued, hands control to the next who asks (0: never)
   double no_command_drop_s = 300;             // from a control host, no command this long after connecting: dropped (0: never)
   double write_stall_s = 10;                  // one write unfinished this long (not reading): dropped
   std::uint32_t max_in_flight = 32;           // per client, commands waiting in the motion loop's ring
