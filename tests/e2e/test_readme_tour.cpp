@@ -99,7 +99,7 @@ class PtyProcess {
   }
   void keys(const std::string& k) { (void)!write(fd_, k.data(), k.size()); }
   // Reads the screen's bytes until `text` has appeared in them (or the time is up).
-  bool shows(const std::string& text, std::chrono::milliseconds timeout = 5s) {
+  bool shows(const std::string& text, std::chrono::milliseconds timeout = 15s) {  // a loaded host starts programs slowly
     const auto until = std::chrono::steady_clock::now() + timeout;
     while (screen_.find(text) == std::string::npos) {
       const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
