@@ -77,7 +77,10 @@ $('release').onclick = () => reply(messd.send('Release'));
 $('measure-here').onclick = () => reply(messd.send('ForcePt'));
 $('stats-refresh').onclick = async () => {
   const r = await reply(messd.send('Stats'));
-  if (r.type === 'Ok') $('stats').textContent = r.args.join(' ').replace(/ (?=[A-Z])/g, '\n').replace(/\n(?=\d)/g, ' ');
+  if (r.type !== 'Ok') return;
+  const pairs = [];  // "Period 1000", "LatP50 12" ...
+  for (let i = 0; i + 1 < r.args.length; i += 2) pairs.push(`${r.args[i]} ${r.args[i + 1]}`);
+  $('stats').textContent = pairs.join('\n');
 };
 $('console').onsubmit = async (ev) => {
   ev.preventDefault();
