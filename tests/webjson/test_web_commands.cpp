@@ -65,6 +65,7 @@ TEST_CASE("web commands: arguments become words, numbers in their shortest exact
 TEST_CASE("web commands: the keep-alive is the blank line, a typed line goes as it is, an upload ends with its dot") {
   CHECK(lines_of(R"({"cmd":""})") == std::vector<std::string>{""});
   CHECK(lines_of(R"({"line":"GoTo 1 2 3"})") == std::vector<std::string>{"GoTo 1 2 3"});
+  CHECK(lines_of(R"({"line":"GoTo\t1 2 3"})") == std::vector<std::string>{"GoTo\t1 2 3"});  // a tab, as 1066 takes it
   CHECK(lines_of(R"({"cmd":"Upload","args":["p.ngc"],"lines":["G0 X1","M2"]})") ==
         std::vector<std::string>{"Upload p.ngc", "G0 X1", "M2", "."});
 }
@@ -91,6 +92,7 @@ TEST_CASE("web commands: what is no command is refused with the line protocol's 
       {R"({"cmd":"Load","args":[""]})", 101, "empty"},
       {R"({"line":"StopMv\nFree"})", 104, "control"},
       {R"({"cmd":"Hello","args":["x\r"]})", 104, "control"},
+      {R"({"cmd":"Hello","args":["x\ty"]})", 104, "control"},
       {R"({"line":"caf\u00e9"})", 104, "non-ASCII"},
       {R"({"cmd":"","args":[]})", 101, "keep-alive"},
       {R"({"cmd":"Load","lines":["G0"]})", 101, "only with"},

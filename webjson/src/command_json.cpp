@@ -20,10 +20,11 @@ constexpr const char* kAccepted =
 
 Refusal refuse(std::string what, int code = 101) { return {code, std::move(what) + "; " + kAccepted}; }
 
-// Printable ASCII only, as the line protocol's framer keeps it (docs/protocol.md).
+// Printable ASCII (and tab within a line), as the line protocol's framer keeps it (docs/protocol.md).
 std::optional<Refusal> check_text(std::string_view text, std::string_view what, bool spaces) {
   if (text.size() > protocol::kMaxLineLength) return refuse(std::string(what) + " is longer than " + std::to_string(protocol::kMaxLineLength) + " characters", 103);
   for (unsigned char c : text) {
+    if (c == '\t' && spaces) continue;  // a line may hold a tab, as on 1066; an argument is one word
     if (c < 32 || c > 126)
       return refuse(std::string(what) + " holds a control or non-ASCII character (byte " + std::to_string(c) + ")", 104);
     if (c == ' ' && !spaces) return refuse(std::string(what) + " holds a space: each argument is one word");
