@@ -2,7 +2,8 @@
 """The web panel in a real browser (Debian's chromium, chromedriver, python3-selenium) against
 a real messd: the page loads and shows the position, Load/Run of a shipped program shows its
 progress to ProgEnd, press-and-hold -Z touches the cube and the hit appears in the list and the
-views, releasing a jog button stops, closing the tab mid-jog stops the machine, and a browser
+views, 40 ForcePt points reach the page's list (the delay after the line protocol's push is
+printed as figures), releasing a jog button stops, closing the tab mid-jog stops the machine, and a browser
 from a host that may not control watches but cannot move. Screenshots of each state go to
 OUT_DIR (docs/web/ holds one set). Usage: test_web_panel.py BIN_DIR SOURCE_DIR OUT_DIR"""
 import os
@@ -12,6 +13,7 @@ import socket
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 
 try:
@@ -57,34 +59,69 @@ class Messd:
 
 
 class Line:
-    """A telnet-like client on 1066 that watches what every client sees."""
+    """A telnet-like client on 1066 that watches what every client sees; a thread reads it and
+    stamps each line with its arrival (time.monotonic())."""
 
     def __init__(self, port):
         self.sock = socket.create_connection(("127.0.0.1", port), timeout=5)
-        self.buf = b""
+        self.sock.settimeout(None)
+        self.lines = []  # (arrival, text)
+        self.cursor = 0
+        self.cond = threading.Condition()
+        threading.Thread(target=self._read, daemon=True).start()
+
+    def _read(self):
+        buf = b""
+        while True:
+            try:
+                data = self.sock.recv(65536)
+            except OSError:
+                data = b""
+            now = time.monotonic()
+            with self.cond:
+                if not data:
+                    self.lines.append((now, None))
+                    self.cond.notify_all()
+                    return
+                buf += data
+                while b"\n" in buf:
+                    line, buf = buf.split(b"\n", 1)
+                    self.lines.append((now, line.decode(errors="replace")))
+                self.cond.notify_all()
 
     def until(self, prefix, timeout):
         deadline = time.time() + timeout
-        while time.time() < deadline:
-            while b"\n" in self.buf:
-                line, self.buf = self.buf.split(b"\n", 1)
-                text = line.decode(errors="replace")
-                if text.startswith(prefix):
-                    return text
-            self.sock.settimeout(max(0.01, deadline - time.time()))
-            try:
-                data = self.sock.recv(65536)
-            except socket.timeout:
-                break
-            if not data:
-                break
-            self.buf += data
+        with self.cond:
+            while True:
+                while self.cursor < len(self.lines):
+                    _, text = self.lines[self.cursor]
+                    self.cursor += 1
+                    if text is None:
+                        return None
+                    if text.startswith(prefix):
+                        return text
+                left = deadline - time.time()
+                if left <= 0:
+                    return None
+                self.cond.wait(left)
+
+    def find(self, prefix):
+        """The first line with prefix seen so far, read or not: (arrival, text)."""
+        with self.cond:
+            for at, text in self.lines:
+                if text and text.startswith(prefix):
+                    return at, text
         return None
 
     def request(self, line):
         self.sock.sendall((line + "\n").encode())
         verb = line.split()[0]
         return self.until("Ok " + verb, 5) or self.until("Err", 1)
+
+
+def percentile(values, p):
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, int(round(p / 100.0 * (len(ordered) - 1))))]
 
 
 def browser():
@@ -169,6 +206,27 @@ def main():
             " return n;")
         check(painted > 50, "the hit is drawn in the view (%d pixels)" % painted)
         shot(driver, "panel-hit")
+
+        # The browser path against the line protocol's push, in the same run: for each
+        # ForcePt's Hit, its line's arrival on 1066 here and its row's appearance in the page's
+        # list (the page stamps it with its wall clock, brought to time.monotonic() here).
+        offset = time.time() - time.monotonic()
+        first = len(driver.find_elements(By.CSS_SELECTOR, "#points tbody tr"))
+        for _ in range(40):
+            driver.execute_script("window.imess.send('ForcePt')")
+            time.sleep(0.05)
+        wait_for(lambda: len(driver.find_elements(By.CSS_SELECTOR, "#points tbody tr")) >= first + 40, 10)
+        rows = driver.execute_script(
+            "return [...document.querySelectorAll('#points tbody tr')].map(r => [Number(r.dataset.seq), Number(r.dataset.shownAt)]);")
+        later_ms = []
+        for seq, shown_at in rows[: len(rows) - first]:
+            found = watcher.find("Hit %d " % seq)
+            if found:
+                later_ms.append((shown_at / 1000 - offset - found[0]) * 1000)
+        if check(len(later_ms) >= 30, "the browser path measured for %d points" % len(later_ms)):
+            print("figures: a hit's row in the page after its line on 1066: p50 %.2f ms p99 %.2f ms (%d points)"
+                  % (percentile(later_ms, 50), percentile(later_ms, 99), len(later_ms)), flush=True)
+            check(percentile(later_ms, 50) < 250, "a point reaches the page's list within 250 ms of the line protocol's push (p50)")
 
         # Releasing a held button stops the machine.
         wait_for(lambda: text(driver, "state") == "idle", 5)

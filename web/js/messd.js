@@ -29,6 +29,7 @@ export class Messd {
   dispatch(e) {
     if ((e.type === 'Ok' || e.type === 'Err') && this.pending.length) {
       e.data = this.data;
+      e.reply = true;  // the answer to a send(): its caller shows it
       this.data = [];
       this.pending.shift()(e);
     } else if (this.pending.length && (e.type === 'Data')) {

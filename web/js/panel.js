@@ -57,7 +57,7 @@ messd.on('State', (e) => { $('state').textContent = e.state; });
 messd.on('Control', (e) => { $('control').textContent = e.name === null ? 'none' : `${e.name}@${e.host}`; });
 messd.on('Frame', (e) => { $('frame').textContent = e.name === 'machine' ? '' : `frame ${e.name}`; });
 for (const type of ['Warn', 'Fault', 'Limit', 'Homed']) messd.on(type, log);
-messd.on('Err', (e) => { if (!messd.pending.length) log(e); });  // a refusal at connect, a drop
+messd.on('Err', (e) => { if (!e.reply) log(e); });  // no command's answer: a refusal at connect, a drop
 messd.on('*', (e) => {
   if (e.type !== 'CurrCor' && e.type !== 'AxPos' && e.type !== 'Ok') $('last').textContent = e.line;
 });

@@ -12,6 +12,7 @@ export function setupPoints(messd) {
     const row = document.createElement('tr');
     row.className = 'new';
     row.dataset.seq = e.seq;
+    row.dataset.shownAt = String(performance.timeOrigin + performance.now());  // wall clock, ms: the latency test reads it
     for (const text of [e.seq, e.x.toFixed(3), e.y.toFixed(3), e.z.toFixed(3),
       `${e.i.toFixed(3)} ${e.j.toFixed(3)} ${e.k.toFixed(3)}`]) {
       const cell = document.createElement('td');
