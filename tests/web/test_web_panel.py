@@ -3,7 +3,7 @@
 a real messd: the page loads and shows the position, Load/Run of a shipped program shows its
 progress to ProgEnd, press-and-hold -Z touches the cube and the hit appears in the list and the
 views, 40 ForcePt points reach the page's list (the delay after the line protocol's push is
-printed as figures), releasing a jog button stops, closing the tab mid-jog stops the machine, and a browser
+printed as figures), a reloaded page lists the journal's newest hits, releasing a jog button stops, closing the tab mid-jog stops the machine, and a browser
 from a host that may not control watches but cannot move. Screenshots of each state go to
 OUT_DIR (docs/web/ holds one set). Usage: test_web_panel.py BIN_DIR SOURCE_DIR OUT_DIR"""
 import os
@@ -227,6 +227,14 @@ def main():
             print("figures: a hit's row in the page after its line on 1066: p50 %.2f ms p99 %.2f ms (%d points)"
                   % (percentile(later_ms, 50), percentile(later_ms, 99), len(later_ms)), flush=True)
             check(percentile(later_ms, 50) < 250, "a point reaches the page's list within 250 ms of the line protocol's push (p50)")
+
+        # A reloaded page starts with the journal's newest 20 hits (Replay), the newest on top.
+        newest = max(seq for seq, _ in rows)
+        driver.refresh()
+        listed = wait_for(lambda: len(driver.find_elements(By.CSS_SELECTOR, "#points tbody tr")) == 20 and driver.execute_script(
+            "return [...document.querySelectorAll('#points tbody tr')].map(r => Number(r.dataset.seq));"), 10)
+        check(listed == list(range(newest, newest - 20, -1)), "a reloaded page lists the journal's newest 20 hits: %s" % listed)
+        wait_for(lambda: position(driver) != "– – –" and text(driver, "link") == "online", 5)
 
         # Releasing a held button stops the machine.
         wait_for(lambda: text(driver, "state") == "idle", 5)

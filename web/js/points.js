@@ -7,7 +7,10 @@ export function setupPoints(messd) {
   const top = document.getElementById('view-top');
   const front = document.getElementById('view-front');
 
+  const known = new Set();  // hit numbers in the list: a replayed hit may also arrive live
   messd.on('Hit', (e) => {
+    if (known.has(e.seq)) return;
+    known.add(e.seq);
     points.push(e);
     const row = document.createElement('tr');
     row.className = 'new';
@@ -25,6 +28,15 @@ export function setupPoints(messd) {
     draw();
   });
   messd.on('CurrCor', (e) => { probe = e; draw(); });
+
+  // On connect, the journal's newest hits (up to 20), so the list does not start empty after a
+  // reload: Replay from beyond the newest answers with the newest number, then Replay from there.
+  messd.on('open', async () => {
+    const newest = await messd.send('Replay', [1000000000000]);
+    if (newest.type !== 'Ok' || newest.args.length < 2) return;
+    const last = Number(newest.args[1]);
+    if (last > 0) await messd.send('Replay', [Math.max(1, last - 19)]);
+  });
 
   // Both views share one scale: the points and the probe, with room around them.
   function bounds() {
@@ -91,6 +103,7 @@ export function setupPoints(messd) {
     points.map((p) => `${p.x.toFixed(4)} ${p.y.toFixed(4)} ${p.z.toFixed(4)}`).join('\n') + '\n');
   document.getElementById('clear-points').onclick = () => {
     points.length = 0;
+    known.clear();
     body.replaceChildren();
     count.textContent = '0';
     draw();
