@@ -249,7 +249,13 @@ nlohmann::ordered_json event_json(std::string_view line) {
   const std::string_view verb = line.substr(0, sp);
   const std::string_view args = sp == std::string_view::npos ? std::string_view{} : line.substr(sp + 1);
   Json j;
-  if (verb == "Control" && args == "none") {
+  // messd writes printable ASCII; a line with any other byte (it would be replaced in the
+  // JSON text, so no field could stand for it) is Data.
+  bool printable = true;
+  for (unsigned char c : line) printable = printable && c >= 32 && c <= 126;
+  if (!printable) {
+    j = data_event(verb, args);
+  } else if (verb == "Control" && args == "none") {
     j["type"] = "Control";
     j["name"] = nullptr;
     j["host"] = nullptr;
