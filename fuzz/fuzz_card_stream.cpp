@@ -24,9 +24,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::span<const std::uint8_t> bytes(data, size);
   hal::card::StatusFrame status;
   (void)hal::card::read_status(bytes, status);  // the whole input as one status frame
-  hal::LinkReader r(bytes);
+  hal::LinkReader knot_reader(bytes);
   hal::card::Knot knot;
-  (void)hal::card::read_knot(r, knot);
+  (void)hal::card::read_knot(knot_reader, knot);
 
   static StillClock clock;
   static sim::SimulatedCmm cmm(sim::SimulatedCmmConfig{}, clock);

@@ -1,47 +1,40 @@
-# IMESS deviation colours for FreeCAD: the JSON of `messcap inspect PLAN --points FILE --json OUT`
-# ("points": feature, xyz, deviation; characteristics with tolerances) turned into coloured
-# points - on a scale symmetric around 0, with the tolerance band when the JSON gives one.
+# IMESS deviation colours for FreeCAD: the JSON of `messcap inspect … --json OUT` turned into
+# coloured points. Each report point is placed where it was measured (its "machine" point, where
+# the panel captured it), coloured by its deviation on its feature's tolerance scale, and judged by
+# the characteristics of its feature as the report judged them.
 """Colouring measured points by their deviation from an inspection plan (testable under freecadcmd)."""
 
 import json
-import os
-import subprocess
-import tempfile
 
 import FreeCAD
 import Part
 
-from imess_capture import POINT_GROUP, CaptureError, document_group, find_messcap, xyz_text
+from imess_capture import POINT_GROUP, POINT_SIZE, CaptureError, document_group, label_point, set_feature
 
 DEVIATION_GROUP = "IMESS_Deviations"
-MATCH_MM = 1e-3  # an inspected point within this of a captured point colours that point
+MATCH_MM = 1e-3  # a report point within this of a captured point colours that point
 GREEN, YELLOW, RED = (0.0, 0.75, 0.0), (1.0, 1.0, 0.0), (1.0, 0.0, 0.0)
 CYAN, BLUE = (0.0, 1.0, 1.0), (0.0, 0.0, 1.0)
-CAPTURED_COLOUR = (0.0, 0.6, 0.0)  # imess_capture's colour of a fresh point
+CAPTURED_COLOUR = (0.0, 0.55, 0.0)  # imess_capture's colour of a fresh point
 _PROPERTY_GROUP = "IMESS deviation"
-_PROPERTIES = ("Deviation", "Feature", "ToleranceLower", "ToleranceUpper", "InTolerance", "DeviationColor")
+_PROPERTIES = ("Deviation", "Form", "Scale", "ToleranceLower", "ToleranceUpper", "InTolerance", "Characteristics",
+               "DeviationColor")
 
 
 def _mix(a, b, f):
     return tuple(x + (y - x) * f for x, y in zip(a, b))
 
 
-def deviation_colour(d, scale, band=None):
-    """(r, g, b) of deviation d. 0 is green; positive runs toward yellow and red, negative toward
-    cyan and blue, symmetrically. With a band (lower, upper): in tolerance only green to yellow
-    (cyan) at |d| = max(|lower|, |upper|); above upper red, below lower blue. Without: green ->
-    yellow at scale / 2 -> red at scale (and beyond)."""
-    warm = (YELLOW, RED) if d >= 0 else (CYAN, BLUE)
-    if band is not None:
-        lower, upper = band
-        if d > upper:
-            return RED
-        if d < lower:
-            return BLUE
-        half = max(abs(lower), abs(upper))
-        return _mix(GREEN, warm[0], min(abs(d) / half, 1.0)) if half > 0 else GREEN
-    f = min(abs(d) / scale, 1.0) if scale > 0 else 0.0
-    return _mix(GREEN, warm[0], 2 * f) if f <= 0.5 else _mix(warm[0], warm[1], 2 * f - 1)
+def deviation_colour(d, scale, out=False):
+    """(r, g, b) of deviation d on the scale +-scale: 0 green, toward yellow at +scale and cyan at
+    -scale. Beyond the scale a point that is out of tolerance (`out`) is red above, blue below;
+    one that is not stays yellow / cyan - red and blue always mean out of tolerance."""
+    warm, cold = (YELLOW, RED), (CYAN, BLUE)
+    side = warm if d >= 0 else cold
+    f = abs(d) / scale if scale > 0 else (0.0 if d == 0 else float("inf"))
+    if f > 1.0 and out:
+        return side[1]
+    return _mix(GREEN, side[0], min(f, 1.0))
 
 
 def _number(value, what):
@@ -50,8 +43,15 @@ def _number(value, what):
     return float(value)
 
 
-def band_of(entry, what):
-    """(lower, upper) from an entry's "lower"/"upper" or "tolerance" (t = +-t, [lower, upper]); None without."""
+def _vector(value, what):
+    if not isinstance(value, list) or len(value) != 3:
+        raise CaptureError("%s must be [x, y, z], not %r" % (what, value))
+    return FreeCAD.Vector(*(_number(v, what) for v in value))
+
+
+def point_band(entry, what):
+    """A point's own (lower, upper) from "lower"/"upper" or "tolerance" (t = +-t, [lower, upper]);
+    None without. messcap does not write these; a report written by hand may."""
     if "lower" in entry or "upper" in entry:
         if "lower" not in entry or "upper" not in entry:
             raise CaptureError("%s: give both \"lower\" and \"upper\" (or \"tolerance\")" % what)
@@ -70,10 +70,28 @@ def band_of(entry, what):
     return band
 
 
+def characteristic_scale(c, what):
+    """How far a point of the characteristic's feature may deviate for the characteristic to hold,
+    roughly (mm), or None (angles, no tolerance): a zone of width t (flatness, position …) t/2; a
+    size (a diameter) half its largest limit, a radius the limit; a distance its largest limit."""
+    if c.get("unit", "mm") != "mm" or "upper" not in c:
+        return None
+    upper = _number(c["upper"], what + " upper")
+    if c.get("zone"):
+        return upper / 2 if upper > 0 else None
+    lower = _number(c.get("lower", -upper), what + " lower")
+    limit = max(abs(lower), abs(upper))
+    if c.get("type") == "size" and not c.get("radius"):
+        limit /= 2
+    return limit if limit > 0 else None
+
+
 def read_report(source):
-    """The inspection JSON (a path or the parsed dict): a list of points, each
-    {"feature", "xyz", "deviation", "band"}, the band from the point itself or else from the
-    first characteristic naming its feature that carries a tolerance."""
+    """The inspection JSON (a path or the parsed dict) as {"points": [...], "features": {...},
+    "summary": …}. A point: feature, at (where it was measured: "machine", else "xyz"), deviation,
+    form, band (its own, or None). A feature: scale (the smallest of its characteristics' scales,
+    or None) and verdicts [(name, True/False/None)] of every characteristic on it (a distance or an
+    angle is on both its features; a datum is not judged by it)."""
     if isinstance(source, dict):
         report, name = source, "inspection report"
     else:
@@ -86,24 +104,43 @@ def read_report(source):
     points = report.get("points") if isinstance(report, dict) else None
     if not isinstance(points, list):
         raise CaptureError("%s has no \"points\" list; expected what messcap inspect --json writes: "
-                           "{\"points\": [{\"feature\": NAME, \"xyz\": [x, y, z], \"deviation\": d}, ...]}" % name)
-    feature_bands = {}
+                           "{\"points\": [{\"feature\": NAME, \"machine\": [x, y, z], \"deviation\": d}, ...]}" % name)
+    features = {}
     for i, c in enumerate(report.get("characteristics") or []):
-        if isinstance(c, dict) and isinstance(c.get("feature"), str) and c["feature"] not in feature_bands:
-            band = band_of(c, "%s characteristic %d" % (name, i + 1))
-            if band is not None:
-                feature_bands[c["feature"]] = band
+        if not isinstance(c, dict):
+            continue
+        what = "%s characteristic %d" % (name, i + 1)
+        scale = characteristic_scale(c, what)
+        verdict = c.get("in_tolerance") if isinstance(c.get("in_tolerance"), bool) else None
+        for key in ("feature", "other"):
+            if isinstance(c.get(key), str):
+                f = features.setdefault(c[key], {"scale": None, "verdicts": []})
+                f["verdicts"].append((str(c.get("name", "")), verdict))
+                if scale is not None and (f["scale"] is None or scale < f["scale"]):
+                    f["scale"] = scale
     out = []
     for i, p in enumerate(points):
         what = "%s point %d" % (name, i + 1)
-        xyz = p.get("xyz") if isinstance(p, dict) else None
-        if not isinstance(xyz, list) or len(xyz) != 3:
-            raise CaptureError("%s: \"xyz\" must be [x, y, z], not %r" % (what, xyz))
-        feature = str(p.get("feature", ""))
-        band = band_of(p, what) or feature_bands.get(feature)
-        out.append({"feature": feature, "xyz": FreeCAD.Vector(*(_number(v, what + " xyz") for v in xyz)),
-                    "deviation": _number(p.get("deviation"), what + " deviation"), "band": band})
-    return out
+        if not isinstance(p, dict):
+            raise CaptureError("%s must be an object, not %r" % (what, p))
+        at = _vector(p["machine"], what + " \"machine\"") if "machine" in p else _vector(p.get("xyz"), what + " \"xyz\"")
+        form = _number(p["form"], what + " form") if "form" in p else None
+        out.append({"feature": str(p.get("feature", "")), "at": at, "deviation": _number(p.get("deviation"), what + " deviation"),
+                    "form": form, "band": point_band(p, what)})
+    return {"points": out, "features": features, "summary": report.get("summary"),
+            "characteristics": [c for c in report.get("characteristics") or [] if isinstance(c, dict)]}
+
+
+def judge(point, features, fallback_scale):
+    """(scale, in_tolerance or None, characteristics text) of one report point."""
+    band = point["band"]
+    if band is not None:
+        return max(abs(band[0]), abs(band[1])), band[0] <= point["deviation"] <= band[1], ""
+    feature = features.get(point["feature"], {"scale": None, "verdicts": []})
+    verdicts = feature["verdicts"]
+    judged = [v for _, v in verdicts if v is not None]
+    text = ", ".join("%s %s" % (n, {True: "ok", False: "OUT", None: "--"}[v]) for n, v in verdicts)
+    return feature["scale"] or fallback_scale, (all(judged) if judged else None), text
 
 
 def _set(obj, ptype, name, doc_text, value):
@@ -116,16 +153,22 @@ def _clear(obj):
     for name in _PROPERTIES:
         if name in obj.PropertiesList:
             obj.removeProperty(name)
+    label_point(obj)
     if FreeCAD.GuiUp:
         obj.ViewObject.PointColor = CAPTURED_COLOUR
 
 
 def colour_points(doc, source):
-    """Colours the captured point at each inspected point's xyz (within MATCH_MM), or adds a point
-    to IMESS_Deviations when none was captured there. Colours of an earlier report are replaced.
-    Returns a summary: points, matched, added, out_of_tolerance, scale (the +- range without a band)."""
-    points = read_report(source)
-    scale = max([abs(p["deviation"]) for p in points] + [0.0])
+    """Colours the captured point at each report point's measured position (within MATCH_MM), or
+    adds a point to IMESS_Deviations there when none was captured. Colours of an earlier report are
+    replaced. Returns a summary: points, matched, added, out_of_tolerance (points whose own band or
+    whose feature's characteristics fail), report (the parsed report)."""
+    report = read_report(source)
+    points = report["points"]
+    # A feature without characteristics is shown on the tightest scale of the others (its noise is
+    # not blown up to yellow), without any on the report's largest deviation.
+    scales = [f["scale"] for f in report["features"].values() if f["scale"] is not None]
+    fallback = min(scales) if scales else max([abs(p["deviation"]) for p in points] + [0.0])
     old = doc.getObject(DEVIATION_GROUP)
     if old is not None:
         for o in list(old.Group):
@@ -135,47 +178,39 @@ def colour_points(doc, source):
     for o in candidates:
         if "Deviation" in o.PropertiesList:
             _clear(o)
-    summary = {"points": len(points), "matched": 0, "added": 0, "out_of_tolerance": 0, "scale": scale}
+    summary = {"points": len(points), "matched": 0, "added": 0, "out_of_tolerance": 0, "report": report}
     for p in points:
-        obj = min(candidates, key=lambda o: (o.Measured - p["xyz"]).Length, default=None)
-        if obj is not None and (obj.Measured - p["xyz"]).Length <= MATCH_MM and "Deviation" not in obj.PropertiesList:
+        obj = min(candidates, key=lambda o: (o.Measured - p["at"]).Length, default=None)
+        if obj is not None and (obj.Measured - p["at"]).Length <= MATCH_MM and "Deviation" not in obj.PropertiesList:
             summary["matched"] += 1
         else:
             obj = doc.addObject("Part::Feature", "Deviation")
-            obj.Shape = Part.Vertex(p["xyz"])
+            obj.Shape = Part.Vertex(p["at"])
+            obj.Label = "Deviation"
             document_group(doc, DEVIATION_GROUP, "IMESS deviations").addObject(obj)
             summary["added"] += 1
-        d, band = p["deviation"], p["band"]
-        colour = deviation_colour(d, scale, band)
+        d = p["deviation"]
+        scale, inside, verdicts = judge(p, report["features"], fallback)
+        colour = deviation_colour(d, scale, out=inside is False)
+        if p["feature"]:
+            set_feature(obj, p["feature"])
         _set(obj, "App::PropertyFloat", "Deviation", "deviation from the plan's nominal (mm)", d)
-        _set(obj, "App::PropertyString", "Feature", "the plan's feature this point belongs to", p["feature"])
-        if band is not None:
-            _set(obj, "App::PropertyFloat", "ToleranceLower", "lowest deviation in tolerance (mm)", band[0])
-            _set(obj, "App::PropertyFloat", "ToleranceUpper", "highest deviation in tolerance (mm)", band[1])
-            inside = band[0] <= d <= band[1]
-            _set(obj, "App::PropertyBool", "InTolerance", "deviation within [lower, upper]", inside)
+        if p["form"] is not None:
+            _set(obj, "App::PropertyFloat", "Form", "deviation from the fitted feature (mm)", p["form"])
+        _set(obj, "App::PropertyFloat", "Scale", "the colour scale: yellow at +Scale, cyan at -Scale (mm)", scale)
+        if p["band"] is not None:
+            _set(obj, "App::PropertyFloat", "ToleranceLower", "the point's lowest deviation in tolerance (mm)", p["band"][0])
+            _set(obj, "App::PropertyFloat", "ToleranceUpper", "the point's highest deviation in tolerance (mm)", p["band"][1])
+        if inside is not None:
+            _set(obj, "App::PropertyBool", "InTolerance",
+                 "its own band holds, else every characteristic of its feature is in tolerance", inside)
             summary["out_of_tolerance"] += 0 if inside else 1
+        if verdicts:
+            _set(obj, "App::PropertyString", "Characteristics", "the report's verdicts on its feature", verdicts)
         _set(obj, "App::PropertyColor", "DeviationColor", "the colour shown for the deviation", colour)
-        if obj.Label.startswith("Deviation"):
-            obj.Label = "%s %+.4f" % (p["feature"] or "point", d)
+        label_point(obj)
         if FreeCAD.GuiUp:
             obj.ViewObject.PointColor = colour
-            obj.ViewObject.PointSize = 8
+            obj.ViewObject.PointSize = POINT_SIZE + 2
     doc.recompute()
     return summary
-
-
-def run_inspect(plan, points, messcap=None):
-    """`messcap inspect PLAN --points FILE --json OUT` on the given points; returns OUT's path."""
-    if not os.path.isfile(plan):
-        raise CaptureError("inspection plan %s not found" % plan)
-    exe = messcap or find_messcap()
-    work = tempfile.mkdtemp(prefix="imess-inspect-")
-    points_path, out_path = os.path.join(work, "points.xyz"), os.path.join(work, "inspection.json")
-    with open(points_path, "w") as f:
-        f.write(xyz_text(points))
-    r = subprocess.run([exe, "inspect", plan, "--points", points_path, "--json", out_path],
-                       capture_output=True, text=True, timeout=60)
-    if not os.path.isfile(out_path):  # a report with characteristics out of tolerance is still a report
-        raise CaptureError(r.stderr.strip() or "messcap inspect wrote no report (exit %d)" % r.returncode)
-    return out_path

@@ -121,13 +121,33 @@ def fit_feature(doc, kind, objects, messcap=None):
     obj.FitJSON = json.dumps(fit)
     obj.addProperty("App::PropertyLinkList", "FitPoints", "IMESS fit", "the points fitted")
     obj.FitPoints = list(objects)
-    if "diameter" in fit:
-        obj.Label = "%s D%.3f" % (kind, fit["diameter"])
-    else:
-        obj.Label = kind
+    obj.addProperty("App::PropertyString", "Result", "IMESS fit", "the fit in words, lengths to 0.1 µm")
+    obj.Result = fit_text(fit)
+    obj.Label = "%s D%.4f" % (kind, fit["diameter"]) if "diameter" in fit else kind
     group.addObject(obj)
     doc.recompute()
     return obj
+
+
+def um(mm):
+    """A length in µm with 0.1 µm resolution: '1.2 µm'."""
+    return "%.1f µm" % (mm * 1000)
+
+
+def fit_text(fit):
+    """'Ø 30.0012 mm, form 1.2 µm, rms 0.4 µm, 8 points' (form: the residuals' range)."""
+    words = []
+    if "diameter" in fit:
+        words.append("Ø %.4f mm" % fit["diameter"])
+    if "apex_angle_deg" in fit:
+        words.append("apex %.4f°" % fit["apex_angle_deg"])
+    if "form_min" in fit and "form_max" in fit:
+        words.append("form %s" % um(fit["form_max"] - fit["form_min"]))
+    if "rms" in fit:
+        words.append("rms %s" % um(fit["rms"]))
+    if "n" in fit:
+        words.append("%d points" % fit["n"])
+    return ", ".join(words)
 
 
 # --- relating two fitted features -----------------------------------------------------------
@@ -185,6 +205,9 @@ def relate_features(doc, value, a, b, messcap=None):
         obj.Label = "distance %.4f %s-%s" % (rel["distance"], a.Label, b.Label)
     else:
         obj.Label = "angle %.4f deg %s-%s" % (rel["angle_deg"], a.Label, b.Label)
+    obj.addProperty("App::PropertyString", "Result", "IMESS relation", "the value asked for, in words")
+    obj.Result = ("%.4f mm (%s)" % (rel["distance"], rel["distance_rule"]) if value == "distance"
+                  else "%.4f° (%s)" % (rel["angle_deg"], rel["angle_rule"]))
     document_group(doc, RELATION_GROUP, "IMESS distances and angles").addObject(obj)
     doc.recompute()
     return obj

@@ -33,7 +33,9 @@ class JogControl:
     press(d) starts a jog the moment a direction button goes down, release(d) stops it when the
     button comes up (press and hold, as on a pendant). stop() is the Stop button, measure_here()
     sends ForcePt, tick() sends keep-alives and is called from the panel's poll timer. Every
-    method returns True when it sent something; refusals and stops by messd land in `note`.
+    method returns True when it sent something. The session's event log shows the jog while it
+    runs ("jog", replaced by "… ended" when the machine stands again), refusals ("jog",
+    "measure": cleared when control changes hands, as they no longer hold) and messd's stops.
     """
 
     def __init__(self, session):
@@ -43,7 +45,9 @@ class JogControl:
         self.moving = None     # the direction messd was asked to jog and has not stopped, as far as we know
         self.machine_state = ""
         self.watching = False  # Watch sent on this connection
-        self.note = ""
+        self.active = None     # the direction of the jog shown as running in the events
+        self.refused = set()   # event topics that hold a refusal
+        self.events = session.events
         session.observers.append(self.on_line)
 
     # --- buttons --------------------------------------------------------------------------
@@ -102,13 +106,30 @@ class JogControl:
             self.machine_state = args.strip()
             if self.machine_state != "jog" and "StartMv" not in self.session.pending:
                 self.moving = None  # stopped by a hit, a limit, another client
+            if self.active and self.machine_state not in ("jog", "stopping") and "StartMv" not in self.session.pending:
+                self.post("jog", "jog %s ended" % self.active)
+        elif verb == "Ok" and answered == "StopMv" and self.active and self.machine_state not in ("jog", "stopping") \
+                and "StartMv" not in self.session.pending:
+            self.post("jog", "jog %s ended" % self.active)  # stopped before it ever ran: no State line comes
         elif line.startswith(_STOPPED_BY_MESSD):
             self.moving = None
-            self.note = "jog stopped by messd: %s" % line
+            self.post("jog", "jog stopped by messd: %s" % line)
+        elif verb == "Control":
+            for topic in self.refused:
+                self.events.clear(topic)  # who holds control changed: the refusal no longer holds
+            self.refused.clear()
         elif verb == "Err" and answered in ("StartMv", "ForcePt", "Watch"):
             if answered == "StartMv" and "StartMv" not in self.session.pending:
                 self.moving = None
-            self.note = "%s refused: %s" % (answered, line)
+            topic = "measure" if answered == "ForcePt" else "jog"
+            self.post(topic, "%s refused: %s" % ("Measure here" if answered == "ForcePt" else answered, line))
+            self.refused.add(topic)
+
+    def post(self, topic, text):
+        if topic == "jog":
+            self.active = None
+        self.refused.discard(topic)
+        self.events.post(topic, text)
 
     # --- sending --------------------------------------------------------------------------
     def _start(self, direction):
@@ -118,7 +139,8 @@ class JogControl:
         if not self._send(start_line(direction, self.speed)):
             self.moving = None
             return False
-        self.note = "jog %s at %g %%" % (direction, self.speed)
+        self.post("jog", "jog %s at %g %%" % (direction, self.speed))
+        self.active = direction
         return True
 
     def _arm(self):
@@ -132,13 +154,13 @@ class JogControl:
 
     def _send(self, line):
         if not self.session.connected():
-            self.note = "not connected to messd: %s not sent" % (line or "keep-alive")
+            self.post("jog", "not connected to messd: %s not sent" % (line or "keep-alive"))
             self.held = self.moving = None
             return False
         try:
             self.session.send(line)
         except CaptureError as e:
-            self.note = str(e)
+            self.post("jog", str(e))
             self.held = self.moving = None
             return False
         return True

@@ -90,6 +90,7 @@ std::string inspection_json(const metrology::InspectionPlan& plan, const metrolo
     }
     j["unit"] = unit_of(c);
     j["zone"] = metrology::is_zone(c.spec.kind);
+    if (c.spec.radius) j["radius"] = true;  // a size given as a radius (the plugin's point scale needs to know)
     j["lower"] = c.spec.lower;
     j["upper"] = c.spec.upper;
     if (c.evaluated()) {

@@ -99,12 +99,15 @@ void PathFollower::fail_and_brake(FailReason why, Nanos now) noexcept {
 void PathFollower::run(Nanos now) noexcept {
   path_now_ = now;
   const double period = loop_.config.period_s;
-  // The path's time step: one period, or on a backend that bridges a late setpoint the time
-  // that really passed since the last cycle (a stalled host; at most kMaxPathStep, beyond
-  // which the card's watchdog has long stopped the machine).
-  const double dt = loop_.hw.runs_path_on_own_clock()   ? std::clamp(loop_.since_last_s, 0.0, kMaxPathStep)
-                    : loop_.hw.bridges_late_setpoints() ? std::clamp(loop_.since_last_s, period, kMaxPathStep)
-                                                        : period;
+  // The path's time step (hal::MotionBackend::PathTime): one period, or the time that really
+  // passed since the last cycle (a stalled host; at most kMaxPathStep, beyond which the card
+  // has long stopped the machine).
+  double dt = period;
+  switch (loop_.hw.path_time()) {
+    case hal::MotionBackend::PathTime::PerCycle: break;
+    case hal::MotionBackend::PathTime::Bridged: dt = std::clamp(loop_.since_last_s, period, kMaxPathStep); break;
+    case hal::MotionBackend::PathTime::OwnClock: dt = std::clamp(loop_.since_last_s, 0.0, kMaxPathStep); break;
+  }
   path_time_ += dt;
   const planner::Sample& smp = sampler_.advance(dt, [this](planner::PlannedSegment& s) { return pop_segment(s); });
   // The queue ran out at rest: the last Done waits until the machine has arrived (settle).

@@ -1,9 +1,11 @@
-# Inside freecadcmd: points coloured by deviation from a report in the shape `messcap inspect
-# --json` writes (written here, so the test does not wait for that command): the colour scale,
-# tolerance bands from characteristics or points, captured points coloured in place, the rest
-# added, a second report replacing the first; the panel's Inspect button runs messcap inspect
-# with the plan and the points (a stand-in messcap here records how it was called).
-# argv: BIN_DIR SOURCE_DIR
+# Inside freecadcmd: points coloured by deviation from an inspection report, the report read as
+# `messcap inspect --json` writes it: the colour scale, each point's scale and verdict from the
+# characteristics of its feature (a zone of width t is +-t/2 around the point's deviation, a
+# distance its limits; a point is out of tolerance only when its feature's characteristics are),
+# captured points found at the report's machine coordinates (its "xyz" is in part coordinates),
+# the rest added there, a second report replacing the first, refused reports; the Report...
+# button. The reports here are written by hand to hold the cases; messcap's own reports, live
+# and from points, are coloured in test_freecad_inspect.py. argv: BIN_DIR SOURCE_DIR
 import json
 import os
 import socket
@@ -11,7 +13,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))
-from plugin_test import Gui, check, finish, macro_namespace  # noqa: E402
+from plugin_test import check, finish, panel_module  # noqa: E402
 
 import FreeCAD  # noqa: E402
 import imess_capture  # noqa: E402
@@ -29,9 +31,16 @@ def close(a, b, tol=1e-9):
 def scale_checks():
     c = dev.deviation_colour
     check(c(0.0, 0.1) == dev.GREEN, "0 is green")
-    check(close(c(0.05, 0.1), dev.YELLOW) and close(c(0.1, 0.1), dev.RED) and close(c(0.3, 0.1), dev.RED),
-          "without a band: yellow at half the scale, red at the scale and beyond")
-    check(close(c(-0.05, 0.1), dev.CYAN) and close(c(-0.1, 0.1), dev.BLUE), "negative: cyan, then blue")
+    check(close(c(0.05, 0.1), dev._mix(dev.GREEN, dev.YELLOW, 0.5)) and close(c(0.1, 0.1), dev.YELLOW),
+          "toward yellow, yellow at the scale")
+    check(close(c(-0.05, 0.1), dev._mix(dev.GREEN, dev.CYAN, 0.5)) and close(c(-0.1, 0.1), dev.CYAN),
+          "negative: toward cyan")
+    check(close(c(0.3, 0.1), dev.YELLOW) and close(c(-0.3, 0.1), dev.CYAN), "beyond the scale, in tolerance: no red, no blue")
+    check(c(0.3, 0.1, out=True) == dev.RED and c(-0.3, 0.1, out=True) == dev.BLUE,
+          "beyond the scale and out of tolerance: red above, blue below")
+    check(close(c(0.05, 0.1, out=True), dev._mix(dev.GREEN, dev.YELLOW, 0.5)),
+          "a point within its scale is not red even when its feature is out")
+
     def from_green(rgb):
         return sum((a - g) ** 2 for a, g in zip(rgb, dev.GREEN)) ** 0.5
 
@@ -39,73 +48,110 @@ def scale_checks():
         plus, minus = c(d, 0.1), c(-d, 0.1)
         check(abs(from_green(plus) - from_green(minus)) < 1e-12 and plus[2] == 0 and minus[0] == 0 and
               from_green(plus) > 0, "symmetric around 0 at %g: %s / %s" % (d, plus, minus))
-    band = (-0.02, 0.05)
-    check(c(0.051, 1.0, band) == dev.RED and c(-0.021, 1.0, band) == dev.BLUE, "outside the band: red above, blue below")
-    check(close(c(0.05, 1.0, band), dev.YELLOW) and c(0.0, 1.0, band) == dev.GREEN, "in the band: green to yellow at upper")
-    inside = c(-0.02, 1.0, band)  # lower limit: 0.4 of the way to cyan (the scale is +-0.05)
-    check(close(inside, dev._mix(dev.GREEN, dev.CYAN, 0.4)) and inside not in (dev.RED, dev.BLUE),
-          "in the band the scale is symmetric too (+-max(|lower|, |upper|)): %s" % (inside,))
+
+    s = dev.characteristic_scale
+    check(s({"type": "flatness", "zone": True, "lower": 0, "upper": 0.01, "unit": "mm"}, "c") == 0.005,
+          "a zone of width 0.01 is +-0.005 around a point")
+    check(s({"type": "size", "zone": False, "lower": -0.02, "upper": 0.02, "unit": "mm"}, "c") == 0.01,
+          "a diameter's +-0.02 is +-0.01 on the radius a point shows")
+    check(s({"type": "size", "zone": False, "lower": -0.1, "upper": 0.1, "unit": "mm", "radius": True}, "c") == 0.1,
+          "a radius's limits as they are")
+    check(s({"type": "distance", "zone": False, "lower": -0.03, "upper": 0.05, "unit": "mm"}, "c") == 0.05,
+          "a distance: its larger limit")
+    check(s({"type": "angle", "zone": False, "lower": -0.05, "upper": 0.05, "unit": "deg"}, "c") is None,
+          "an angle says nothing about a point's millimetres")
 
 
-def captured_points(doc, xyz):
+def captured_points(doc, hits):
+    """Points captured from Hit + MeasPt lines on a socket pair, each [x, y, z]."""
     ours, daemon = socket.socketpair()
     s = imess_capture.CaptureSession(doc, sock=ours)
-    daemon.sendall("".join("MeasPt %.3f %.3f %.3f\n" % p for p in xyz).encode())
+    daemon.sendall("".join("Hit %d 0 %.4f %.4f %.4f 0.000000 0.000000 -1.000000 2.0000 1.000000\nMeasPt %.3f %.3f %.3f\n"
+                           % ((i + 1,) + tuple(p) + tuple(p)) for i, p in enumerate(hits)).encode())
     s.poll()
     return s.points
 
 
+def zone(name, feature, width, ok, kind="flatness"):
+    return {"name": name, "type": kind, "feature": feature, "unit": "mm", "zone": True, "lower": 0, "upper": width,
+            "in_tolerance": ok, "actual": 0.0, "deviation": 0.0, "nominal": 0.0}
+
+
+# As messcap writes it: "xyz" in part coordinates (the part frame at 400 300 0), "machine" where
+# the point was measured.
 REPORT = {
-    "plan": "block.plan",
+    "part": "block",
     "points": [
-        {"feature": "top", "xyz": [10.0, 10.0, 80.0004], "deviation": 0.012},
-        {"feature": "top", "xyz": [90.0, 10.0, 79.97], "deviation": -0.03},
-        {"feature": "bore", "xyz": [475.0, 350.0, 40.0], "deviation": 0.015},
-        {"feature": "bore", "xyz": [445.0, 350.0, 40.0], "deviation": 0.03, "tolerance": [-0.01, 0.04]},
-        {"feature": "slot", "xyz": [1.0, 2.0, 3.0], "deviation": -0.06},
+        {"feature": "top", "xyz": [20.0, 25.0, 80.0], "machine": [420.0, 325.0, 80.0], "deviation": -0.000001, "form": 0.0},
+        {"feature": "top", "xyz": [100.0, 20.0, 80.0], "machine": [500.0, 320.0, 80.0], "deviation": 0.004, "form": 0.004},
+        {"feature": "bore", "xyz": [75.0, 50.0, 40.0], "machine": [475.0, 350.0, 40.0], "deviation": 0.012},
+        {"feature": "bore", "xyz": [45.0, 50.0, 40.0], "machine": [445.0, 350.0, 40.0], "deviation": -0.003},
+        {"feature": "slot", "xyz": [1.0, 2.0, 3.0], "machine": [401.0, 302.0, 3.0], "deviation": -0.06},
     ],
     "characteristics": [
-        {"name": "top flat", "feature": "top", "measured": 0.042},
-        {"name": "top profile", "feature": "top", "lower": -0.02, "upper": 0.02, "ok": False},
-        {"name": "bore D", "feature": "bore", "tolerance": 0.02},
+        zone("top flatness", "top", 0.01, True),
+        {"name": "top parallelism", "type": "parallelism", "feature": "top", "datum": "bottom", "unit": "mm", "zone": True,
+         "lower": 0, "upper": 0.02, "in_tolerance": True},
+        {"name": "bore diameter", "type": "size", "feature": "bore", "unit": "mm", "zone": False, "lower": -0.02,
+         "upper": 0.02, "in_tolerance": True, "nominal": 30.0, "actual": 30.0123, "deviation": 0.0123},
+        {"name": "bore position", "type": "position", "feature": "bore", "unit": "mm", "zone": True, "lower": 0,
+         "upper": 0.05, "error": "feature 'bore' has no fit: …"},
+        zone("bore roundness", "bore", 0.01, False, "roundness"),
+        {"name": "height", "type": "distance", "feature": "bottom", "other": "top", "unit": "mm", "zone": False,
+         "lower": -0.05, "upper": 0.05, "in_tolerance": True},
     ],
+    "summary": {"characteristics": 6, "in_tolerance": 4, "out_of_tolerance": 1, "not_evaluated": 1},
 }
 
 
 def colouring_checks():
     doc = FreeCAD.newDocument("deviation")
-    pts = captured_points(doc, [(10, 10, 80), (90, 10, 79.97), (475, 350, 40), (445, 350, 40), (0, 0, 0)])
+    pts = captured_points(doc, [(420, 325, 80), (500, 320, 80), (475, 350, 40), (445, 350, 40), (430, 330, 80)])
     path = os.path.join(WORK, "inspection.json")
     with open(path, "w") as f:
         json.dump(REPORT, f)
     summary = dev.colour_points(doc, path)
-    check(summary == {"points": 5, "matched": 4, "added": 1, "out_of_tolerance": 1, "scale": 0.06},
-          "summary %s" % summary)
+    check((summary["points"], summary["matched"], summary["added"], summary["out_of_tolerance"]) == (5, 4, 1, 2),
+          "found at the machine coordinates: %s" % {k: v for k, v in summary.items() if k != "report"})
     top1, top2, bore1, bore2, untouched = pts
-    check(top1.Deviation == 0.012 and top1.Feature == "top" and (top1.ToleranceLower, top1.ToleranceUpper) == (-0.02, 0.02),
-          "a point within 0.001 mm is the captured one; the band is the first characteristic of its feature with one")
-    check(top1.InTolerance and not top2.InTolerance, "-0.03 is outside -0.02 .. 0.02")
-    check(close(top1.DeviationColor[:3], dev.deviation_colour(0.012, 0.06, (-0.02, 0.02)), 1e-6) and
-          close(top2.DeviationColor[:3], dev.BLUE, 1e-6), "colours from the band: %s %s"
-          % (top1.DeviationColor, top2.DeviationColor))
-    check((bore1.ToleranceLower, bore1.ToleranceUpper) == (-0.02, 0.02) and bore1.InTolerance,
-          "\"tolerance\": t is +-t")
-    check((bore2.ToleranceLower, bore2.ToleranceUpper) == (-0.01, 0.04) and bore2.InTolerance,
-          "a point's own tolerance wins over its feature's")
-    check("Deviation" not in untouched.PropertiesList, "a point not in the report stays as captured")
+    check(top1.InTolerance and top2.InTolerance and top1.Scale == 0.005 and close(top1.DeviationColor[:3], dev.GREEN, 1e-3),
+          "a zone is +-half its width around a point: -1 nm of a flat top is in tolerance, green (%s)" % (top1.DeviationColor,))
+    check(close(top2.DeviationColor[:3], dev._mix(dev.GREEN, dev.YELLOW, 0.8), 1e-5), "0.004 of 0.005: near yellow")
+    check(top1.Characteristics == "top flatness ok, top parallelism ok, height ok",
+          "a point lists the characteristics of its feature, a distance on both features: %r" % top1.Characteristics)
+    check(top1.Feature == "top" and top1.Label == "MeasPt001 top +0.0 µm" and top2.Label == "MeasPt002 top +4.0 µm",
+          "the feature and the deviation in µm in the label: %r %r" % (top1.Label, top2.Label))
+    check(not bore1.InTolerance and not bore2.InTolerance and bore1.Scale == 0.005,
+          "the bore's roundness is out: its points are out of tolerance; its scale the tightest, roundness +-0.005")
+    check(close(bore1.DeviationColor[:3], dev.RED, 1e-6) and
+          close(bore2.DeviationColor[:3], dev._mix(dev.GREEN, dev.CYAN, 0.6), 1e-5),
+          "red only beyond the scale (0.012), a point within it (-0.003) stays toward cyan: %s %s"
+          % (bore1.DeviationColor, bore2.DeviationColor))
+    check("Deviation" not in untouched.PropertiesList and untouched.Label == "MeasPt005", "a point not in the report stays")
     group = doc.getObject(dev.DEVIATION_GROUP)
     added = group.Group if group else []
-    check(len(added) == 1 and added[0].Shape.Vertexes[0].Point == V(1, 2, 3) and added[0].Label == "slot -0.0600"
-          and "ToleranceLower" not in added[0].PropertiesList and close(added[0].DeviationColor[:3], dev.BLUE, 1e-6),
-          "a point nobody captured is added, coloured on the +-0.06 scale without a band")
+    check(len(added) == 1 and added[0].Shape.Vertexes[0].Point == V(401, 302, 3) and added[0].Label == "Deviation slot -60.0 µm"
+          and "InTolerance" not in added[0].PropertiesList and added[0].Scale == 0.005
+          and close(added[0].DeviationColor[:3], dev.CYAN, 1e-6),
+          "a point nobody captured is added where it was measured; a feature without characteristics: the tightest "
+          "scale of the others, no verdict, so no blue")
+    alone = dev.read_report({"points": [{"feature": "a", "xyz": [0, 0, 0], "deviation": d} for d in (0.002, -0.004)]})
+    check(dev.judge(alone["points"][0], alone["features"], 0.004) == (0.004, None, ""),
+          "a report without characteristics: the largest deviation is the scale")
 
-    again = dev.colour_points(doc, {"points": [{"feature": "top", "xyz": [90.0, 10.0, 79.97], "deviation": 0.001}]})
+    again = dev.colour_points(doc, {"points": [{"feature": "top", "xyz": [100, 20, 80], "machine": [500, 320, 80],
+                                                "deviation": 0.001, "tolerance": [-0.0005, 0.0005]}]})
     check(again["matched"] == 1 and not doc.getObject(dev.DEVIATION_GROUP).Group, "a new report removes the added points")
-    check("Deviation" not in top1.PropertiesList and top2.Deviation == 0.001 and "ToleranceLower" not in top2.PropertiesList,
-          "and the earlier colours and bands: %s" % top2.PropertiesList)
+    check("Deviation" not in top1.PropertiesList and top1.Label == "MeasPt001 top" and top2.Deviation == 0.001,
+          "and the earlier colours: %s" % top1.PropertiesList)
+    check((top2.ToleranceLower, top2.ToleranceUpper) == (-0.0005, 0.0005) and not top2.InTolerance and
+          close(top2.DeviationColor[:3], dev.RED, 1e-6), "a point's own band (a report written by hand) judges it")
+    old_style = dev.colour_points(doc, {"points": [{"feature": "top", "xyz": [420, 325, 80], "deviation": 0.0}]})
+    check(old_style["matched"] == 1, "a report without \"machine\" is placed by its \"xyz\"")
 
     for bad, words in (({"characteristics": []}, "no \"points\" list"),
                        ({"points": [{"feature": "a", "xyz": [1, 2], "deviation": 0}]}, "\"xyz\" must be [x, y, z]"),
+                       ({"points": [{"feature": "a", "machine": [1, 2, "3"], "deviation": 0}]}, "\"machine\" must be a number"),
                        ({"points": [{"feature": "a", "xyz": [1, 2, 3], "deviation": "big"}]}, "deviation must be a number"),
                        ({"points": [{"feature": "a", "xyz": [1, 2, 3], "deviation": 0, "lower": 1}]}, "give both"),
                        ({"points": [{"feature": "a", "xyz": [1, 2, 3], "deviation": 0, "tolerance": [1, -1]}]},
@@ -118,59 +164,34 @@ def colouring_checks():
     FreeCAD.closeDocument(doc.Name)
 
 
-FAKE_INSPECT = '''#!/usr/bin/python3
-# messcap inspect PLAN --points FILE --json OUT, as the plugin calls it: records argv and the
-# points, writes a report giving each point the deviation z - 40.
-import json, sys
-args = sys.argv[1:]
-json.dump({"argv": args, "points": open(args[3]).read()}, open(%(record)r, "w"))
-pts = [[float(v) for v in line.split()] for line in open(args[3]) if line.strip()]
-json.dump({"points": [{"feature": "bore", "xyz": p, "deviation": p[2] - 40} for p in pts],
-           "characteristics": [{"feature": "bore", "tolerance": 0.5}]}, open(args[5], "w"))
-'''
-
-
 def panel_checks():
-    ns, warnings, _ = macro_namespace()
-    doc = FreeCAD.newDocument("inspectpanel")
-    pts = captured_points(doc, [(475, 350, 40.2), (445, 350, 39.1)])
-    record = os.path.join(WORK, "argv.json")
-    fake = os.path.join(WORK, "messcap")
-    with open(fake, "w") as f:
-        f.write(FAKE_INSPECT % {"record": record})
-    os.chmod(fake, 0o755)
-    plan = os.path.join(WORK, "block.plan")
-    open(plan, "w").write("a plan\n")
-    panel = ns["CapturePanel"]()
-    check(not panel.inspect_button.isEnabled(), "Inspect waits for a plan")
-    QtGui.QFileDialog.getOpenFileName = staticmethod(lambda *a, **k: (plan, ""))
-    panel.choose_plan()
-    check(panel.inspect_button.isEnabled() and panel.plan_label.text() == "block.plan", "a chosen plan enables Inspect")
-    Gui.selected = []
-    real = os.environ["IMESS_MESSCAP"]
-    os.environ["IMESS_MESSCAP"] = fake
-    try:
-        panel.inspect()
-    finally:
-        os.environ["IMESS_MESSCAP"] = real
-    called = json.load(open(record)) if os.path.exists(record) else {"argv": []}
-    argv = called["argv"]
-    check(len(argv) == 6 and argv[:2] == ["inspect", plan] and argv[2] == "--points" and argv[4] == "--json",
-          "messcap inspect PLAN --points FILE --json OUT: %s" % argv)
-    check(called.get("points", "").split("\n")[:2] == ["475.0 350.0 40.2", "445.0 350.0 39.1"],
-          "every captured point went to inspect: %r" % called.get("points"))
-    check(not warnings and abs(pts[0].Deviation - 0.2) < 1e-9 and pts[0].InTolerance and not pts[1].InTolerance,
-          "the report coloured the captured points (warnings: %s)" % warnings)
-    check(panel.status.text() == "2 points coloured (2 captured, 0 added), 1 out of tolerance", panel.status.text())
-
+    """Report...: a report file chosen in the panel colours the points and lists the
+    characteristics with µm; a bad one is shown."""
+    mod, warnings, _ = panel_module()
+    doc = FreeCAD.newDocument("reportpanel")
+    pts = captured_points(doc, [(475, 350, 40), (445, 350, 40)])
+    panel = mod.CapturePanel()
+    check(not panel.inspect_button.isEnabled() and not panel.measure_plan_button.isEnabled(), "Inspect waits for a plan")
     report = os.path.join(WORK, "by-hand.json")
-    json.dump({"points": [{"feature": "x", "xyz": [475, 350, 40.2], "deviation": -0.3}]}, open(report, "w"))
+    with open(report, "w") as f:
+        json.dump(REPORT, f)
     QtGui.QFileDialog.getOpenFileName = staticmethod(lambda *a, **k: (report, ""))
     panel.open_report()
-    check(pts[0].Deviation == -0.3 and "Deviation" not in pts[1].PropertiesList, "Report... colours from a file")
-    json.dump({"nothing": 1}, open(report, "w"))
+    check(pts[0].Deviation == 0.012 and pts[1].Deviation == -0.003, "Report... colours from a file")
+    check(panel.events.text("colour") == "5 points coloured (3 added: not captured here), 2 out; "
+          "characteristics: 4 ok, 1 OUT, 1 not evaluated", panel.events.text("colour"))
+    rows = dict(panel.results())
+    check(rows.get("top flatness") == "ok: 0.0000 mm, deviation +0.0 µm, tolerance ≤ 10.0 µm" and
+          rows.get("bore roundness") == "OUT: 0.0000 mm, deviation +0.0 µm, tolerance ≤ 10.0 µm" and
+          rows.get("bore diameter") == "ok: 30.0123 mm, deviation +12.3 µm, tolerance ±20.0 µm" and
+          rows.get("bore position") == "not evaluated: feature 'bore' has no fit: …" and
+          [name for name, _ in panel.results()] == [c["name"] for c in REPORT["characteristics"]],
+          "the characteristics in the panel, in the report's order: %s" % rows)
+    with open(report, "w") as f:
+        json.dump({"nothing": 1}, f)
     panel.open_report()
-    check(len(warnings) == 1 and "no \"points\" list" in warnings[0], "a bad report is shown: %s" % warnings)
+    check(len(warnings) == 1 and "no \"points\" list" in warnings[0] and "no \"points\" list" in panel.events.text("inspect"),
+          "a bad report is shown: %s" % warnings)
     FreeCAD.closeDocument(doc.Name)
 
 

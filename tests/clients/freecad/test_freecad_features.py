@@ -7,7 +7,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))
-from plugin_test import MESSCAP, Gui, check, finish, macro_namespace  # noqa: E402
+from plugin_test import MESSCAP, Gui, check, finish, panel_module  # noqa: E402
 
 import FreeCAD  # noqa: E402
 import Part  # noqa: E402
@@ -65,12 +65,14 @@ def line_and_cone(doc):
     if faces:
         radius = faces[0].Surface.Radius  # at the surface's location: the end nearest the apex
         check(abs(radius - 10 * math.tan(half)) < 1e-4, "it starts at the nearest points' radius: %.6f" % radius)
-    check(cone.Label == "cone D%.3f" % cone.Diameter, "cone label %r" % cone.Label)
+    check(cone.Label == "cone D%.4f" % cone.Diameter, "cone label %r" % cone.Label)
+    check(cone.Result.startswith("Ø %.4f mm, apex 30.0000°, form " % cone.Diameter) and cone.Result.endswith(" µm, rms 0.0 µm, 24 points"),
+          "cone result in words: %r" % cone.Result)
 
 
 def relations(doc):
-    ns, warnings, _ = macro_namespace()
-    panel = ns["CapturePanel"]()
+    mod, warnings, _ = panel_module()
+    panel = mod.CapturePanel()
     face = imess_fit.fit_feature(doc, "plane", vertices(doc, [V(0, 0, 0), V(100, 0, 0), V(0, 80, 0), V(100, 80, 0)], "F"),
                                  MESSCAP)
     bore = imess_fit.fit_feature(doc, "circle", vertices(doc, [V(60, 40, 12), V(50, 50, 12), V(40, 40, 12)], "B"), MESSCAP)
@@ -97,7 +99,10 @@ def relations(doc):
     angle = [o for o in doc.Objects if hasattr(o, "RelateJSON") and o.Label.startswith("angle")]
     check(len(angle) == 1 and abs(angle[0].Angle - 30) < 1e-6, "Angle bore axis to a 60-degree face: 30 degrees (%s)"
           % [a.Angle for a in angle])
-    check(panel.status.text() == (angle[0].Label if angle else None), "the status shows it: %r" % panel.status.text())
+    check(panel.events.text("fit") == (angle[0].Label if angle else None), "the events show it: %s" % panel.events.lines())
+    check(panel.results()[:2] == [("angle %s-%s" % (bore.Label, slope.Label), "30.0000° (axis-plane)"),
+                                  ("distance %s-%s" % (face.Label, bore.Label), "12.0000 mm (plane-point)")],
+          "both in the panel's results, newest first: %s" % panel.results())
 
     Gui.selected = [face, slope]
     panel.relate("distance")
@@ -112,7 +117,7 @@ def relations(doc):
     before = len(warnings)
     Gui.selected = [face]
     panel.relate("distance")
-    check(len(warnings) == before and "select two fitted features" in panel.status.text(), "one selected: a hint")
+    check(len(warnings) == before and "select two fitted features" in panel.events.text("fit"), "one selected: a hint")
     check(len([o for o in doc.Objects if hasattr(o, "RelateJSON")]) == 2, "failed relations add nothing")
 
 

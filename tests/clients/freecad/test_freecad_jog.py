@@ -1,7 +1,8 @@
-# Inside freecadcmd: the plugin's jog buttons against a fake messd. Pressing a direction button
-# (a real mouse press on the Qt button) sends Watch once and StartMv at the chosen speed,
-# keep-alives flow while it is held, letting go / sliding off / closing the panel / a lost
-# button grab send StopMv; refusals and messd's own stops are shown; a lost link ends cleanly.
+# Inside freecadcmd: the plugin's jog buttons against a real messd. Pressing a direction button
+# (a real mouse press on the Qt button) jogs the machine at the chosen speed for as long as it is
+# held (keep-alives keep messd's dead-man quiet; a frozen panel is stopped by it); letting go,
+# sliding off, a lost button grab or closing the panel stop it. Refusals and messd's stops are
+# shown with their time and cleared when they no longer hold; the layout never moves a button.
 # JogControl's keep-alive timing is also checked on a virtual clock. argv: BIN_DIR SOURCE_DIR
 import os
 import socket
@@ -9,13 +10,12 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))
-from fake_messd import FakeMessd  # noqa: E402
-from plugin_test import check, finish, macro_namespace  # noqa: E402
+from plugin_test import Messd, Operator, check, connect_panel, finish, mouse, panel_module, pump  # noqa: E402
 
 import FreeCAD  # noqa: E402
 import imess_capture  # noqa: E402
 import imess_jog  # noqa: E402
-from PySide import QtCore, QtGui  # noqa: E402
+from PySide import QtCore  # noqa: E402
 
 
 class Clock:
@@ -74,136 +74,128 @@ def control_checks():
             check("accepted" in str(e), "a bad %s names the accepted ones: %s" % (bad, e))
     daemon.close()
     session.poll()
-    check(not jog.press("+X") and "not connected" in jog.note, "a closed link: nothing sent, the note says why")
+    check(not jog.press("+X") and "not connected" in session.events.text("jog"), "a closed link: nothing sent, the event says why")
     FreeCAD.closeDocument(doc.Name)
 
 
-def mouse(button, kind, inside=True):
-    """A left-button mouse event on a Qt button, at its centre or well outside it."""
-    pos = QtCore.QPointF(button.rect().center()) if inside else QtCore.QPointF(-50, -50)
-    event_type = {"press": QtCore.QEvent.MouseButtonPress, "release": QtCore.QEvent.MouseButtonRelease,
-                  "move": QtCore.QEvent.MouseMove}[kind]
-    buttons = QtCore.Qt.NoButton if kind == "release" else QtCore.Qt.LeftButton
-    which = QtCore.Qt.NoButton if kind == "move" else QtCore.Qt.LeftButton
-    QtGui.QApplication.sendEvent(button, QtGui.QMouseEvent(event_type, pos, which, buttons, QtCore.Qt.NoModifier))
+def speed(session, app, seconds):
+    """mm/s the probe moved over `seconds` of CurrCor, while the panel's timer runs."""
+    pump(app, 0.25)
+    a, ta = session.position, time.monotonic()
+    pump(app, seconds)
+    return (session.position - a).Length / (time.monotonic() - ta)
 
 
 def panel_checks():
-    ns, warnings, app = macro_namespace()
-    daemon = FakeMessd()
+    mod, warnings, app = panel_module()
+    messd = Messd()
     doc = FreeCAD.newDocument("jogpanel")
-    panel = ns["CapturePanel"]()
+    panel = mod.CapturePanel()
+    panel.resize(420, 1000)
+    panel.show()
     buttons = panel.jog_buttons
-
-    def pump(seconds):
-        end = time.time() + seconds
-        while time.time() < end:
-            app.processEvents()
-            time.sleep(0.005)
-
-    def after(count, seconds=2.0):
-        """The non-blank lines sent after the first `count`, once they stop changing."""
-        end = time.time() + seconds
-        seen = -1
-        while time.time() < end:
-            pump(0.05)
-            now = len(daemon.lines())
-            if now == seen:
-                break
-            seen = now
-        return daemon.lines()[count:]
+    app.processEvents()
+    layout = {name: b.mapTo(panel, QtCore.QPoint(0, 0)) for name, b in buttons.items()}
 
     mouse(buttons["+X"], "press")
     mouse(buttons["+X"], "release")
-    check("connect to messd first" in panel.status.text(), "jog before Connect: %r" % panel.status.text())
+    check(panel.events.text("link") == "connect to messd first", "jog before Connect: %s" % panel.events.lines())
     check(sorted(buttons) == sorted(imess_jog.DIRECTIONS) and panel.checked_speed() == 20.0,
           "six direction buttons, 20 % chosen at start")
+    check(connect_panel(panel, app, messd.port), "Connect: %s" % panel.events.lines())
+    s = panel.session
+    state = lambda name: lambda: s.state == name  # noqa: E731
 
-    panel.host.setText("127.0.0.1")
-    panel.port.setValue(daemon.port)
-    panel.toggle()
-    check(after(0) == ["Hello FreeCAD"], "Connect says Hello and nothing else: %s" % daemon.lines())
-
-    n = len(daemon.lines())
+    start = s.position
     mouse(buttons["+X"], "press")
-    check(after(n) == ["Watch 500", "StartMv 20.000 0.000 0.000"], "press +X: Watch, then StartMv at 20 %%: %s"
-          % daemon.lines()[n:])
-    held_from = time.monotonic()
-    pump(0.6)
-    during = [t for t in daemon.times() if t >= held_from]
-    gaps = [b - a for a, b in zip([held_from] + during, during + [time.monotonic()])]
-    check(len(daemon.lines(blank=True)) - len(daemon.lines()) >= 3 and max(gaps) < imess_jog.WATCH_MS / 1000.0,
-          "keep-alives while held, never silent as long as the dead-man (largest gap %.3f s)" % max(gaps))
-    n = len(daemon.lines())
+    check(pump(app, 2, state("jog")) and s.holds_control(), "press +X: the machine jogs, the panel holds control")
+    v = speed(s, app, 1.5)
+    check(s.state == "jog" and 10 < v < 24 and s.events.text("jog") == "jog +X at 20 %" and
+          s.events.text("messd") is None, "held 1.75 s: +X at 20 %% of MaxSpeed 100 (%.1f mm/s), the dead-man quiet: %s"
+          % (v, panel.events.lines()))
     mouse(buttons["+X"], "release")
-    check(after(n) == ["StopMv"], "letting go of +X stops: %s" % daemon.lines()[n:])
+    check(pump(app, 2, state("idle")) and s.position.x > start.x + 30, "letting go of +X stops: %s" % s.position)
+    pump(app, 0.2)
+    check(s.events.text("jog") == "jog +X ended", "the jog's event says it ended: %s" % panel.events.lines())
 
     mouse(panel.speed_buttons[100.0], "press")
     mouse(panel.speed_buttons[100.0], "release")
-    check(panel.checked_speed() == 100.0, "the 100 % button is chosen")
-    n = len(daemon.lines())
-    mouse(buttons["-Z"], "press")
-    check(after(n) == ["StartMv 0.000 0.000 -100.000"], "-Z at 100 %%, no second Watch: %s" % daemon.lines()[n:])
-    n = len(daemon.lines())
-    mouse(buttons["-Z"], "move", inside=False)
-    check(after(n) == ["StopMv"], "sliding off the held button stops: %s" % daemon.lines()[n:])
-    mouse(buttons["-Z"], "release", inside=False)
-    check(after(n) == ["StopMv"], "and the release outside adds nothing")
+    mouse(buttons["+Y"], "press")
+    pump(app, 0.3, state("jog"))
+    v = speed(s, app, 1.0)
+    mouse(buttons["+Y"], "move", inside=False)
+    check(75 < v < 125 and pump(app, 2, state("idle")), "+Y at 100 %% (%.1f mm/s); sliding off the held button stops"
+          % v)
+    mouse(buttons["+Y"], "release", inside=False)
 
     mouse(panel.speed_buttons[2.0], "press")
     mouse(panel.speed_buttons[2.0], "release")
-    n = len(daemon.lines())
-    mouse(buttons["+Y"], "press")
-    after(n)
-    daemon.push("Warn WatchExpired silent for 500 ms: the machine was stopped")
-    pump(0.2)
-    check(panel.jog.moving is None and "jog stopped by messd" in panel.status.text(),
-          "messd's dead-man stop is shown: %r" % panel.status.text())
-    mouse(buttons["+Y"], "release")
-    check(after(n) == ["StartMv 0.000 2.000 0.000", "StopMv"], "2 %%, and a stop on release all the same: %s"
-          % daemon.lines()[n:])
-
-    n = len(daemon.lines())
-    buttons["-X"].pressed.emit()  # pressed, but the button is not down (its grab was lost)
-    check(after(n) == ["StartMv -2.000 0.000 0.000", "StopMv"], "a held button no longer down stops at the next tick: %s"
-          % daemon.lines()[n:])
-
-    daemon.refuse["StartMv"] = "Err 209 the machine is controlled by messjog at 127.0.0.1 (client 1)"
-    n = len(daemon.lines())
     mouse(buttons["+Z"], "press")
-    after(n)
-    check(panel.jog.moving is None and "StartMv refused: Err 209" in panel.status.text(),
-          "a refused jog is shown: %r" % panel.status.text())
+    pump(app, 1, state("jog"))
+    time.sleep(1.0)  # FreeCAD hangs: no keep-alive for 1 s
+    check(pump(app, 1, lambda: s.state == "idle" and panel.jog.moving is None) and
+          s.events.text("jog").startswith("jog stopped by messd: Warn WatchExpired"),
+          "a frozen panel is stopped by messd's dead-man, and it is shown: %s" % panel.events.lines())
     mouse(buttons["+Z"], "release")
-    check(after(n) == ["StartMv 0.000 0.000 2.000", "StopMv"], "the refused jog's release still stops: %s"
-          % daemon.lines()[n:])
-    del daemon.refuse["StartMv"]
 
-    n = len(daemon.lines())
+    buttons["-X"].pressed.emit()  # pressed, but the button is not down (its grab was lost)
+    check(pump(app, 2, lambda: s.events.text("jog") == "jog -X ended"), "a held button no longer down stops at the next "
+          "tick: %s" % panel.events.lines())
+
+    op = Operator(messd.port)
+    op.request("Hello operator")
+    op.request("Take force")
+    check(pump(app, 2, lambda: s.control.startswith("operator ")) and "control: operator" in panel.state.text() and
+          s.events.text("control").startswith("controlled by operator 127.0.0.1"),
+          "another client took control: %r, %s" % (panel.state.text(), panel.events.lines()))
+    mouse(buttons["+Z"], "press")
+    check(pump(app, 2, lambda: (s.events.text("jog") or "").startswith("StartMv refused: Err 209")) and panel.jog.moving is None
+          and s.state == "idle", "a refused jog is shown: %s" % panel.events.lines())
+    mouse(buttons["+Z"], "release")
+    op.request("Release")
+    check(pump(app, 2, lambda: s.control == "none") and s.events.text("jog") is None and
+          not any("Err 209" in text for _, text in panel.events.lines()),
+          "control freed: the refusal no longer holds and is gone: %s" % panel.events.lines())
+    mouse(buttons["+Z"], "press")
+    check(pump(app, 2, state("jog")) and s.events.text("jog") == "jog +Z at 2 %", "now the jog works: %s"
+          % panel.events.lines())
+    mouse(buttons["+Z"], "release")
+    check(pump(app, 2, lambda: s.events.text("jog") == "jog +Z ended"), "and ends: %s" % panel.events.lines())
+
+    before = len(s.points)
+    pump(app, 0.3)  # the servo loops settle
     mouse(panel.measure_button, "press")
     mouse(panel.measure_button, "release")
+    check(pump(app, 2, lambda: len(s.points) == before + 1) and (s.points[-1].Measured - s.position).Length < 0.01,
+          "Measure here: the standing position is a point: %s %s" % (panel.events.lines(), s.position))
+
+    op.request("Take force")
+    op.sock.sendall(b"GoTo 430 330 300\n")
+    pump(app, 2, state("move"))
     mouse(panel.stop_button, "press")
     mouse(panel.stop_button, "release")
-    check(after(n) == ["ForcePt", "StopMv"], "Measure here sends ForcePt, Stop sends StopMv: %s"
-          % daemon.lines()[n:])
+    check(pump(app, 3, state("idle")) and s.position.z < 290, "Stop stops another client's move: z %.3f" % s.position.z)
+    op.request("Release")
+    op.close()
 
-    n = len(daemon.lines())
-    mouse(buttons["+X"], "press")
-    after(n)
+    mouse(buttons["-X"], "press")
+    pump(app, 2, state("jog"))
     panel.close()
-    check(after(n) == ["StartMv 2.000 0.000 0.000", "StopMv"], "closing the panel stops the jog: %s" % daemon.lines()[n:])
-    check(panel.session.connected(), "and capture goes on")
+    check(pump(app, 2, state("idle")) and s.connected(), "closing the panel stops the jog, capture goes on")
 
-    n = len(daemon.lines())
+    check(all(b.mapTo(panel, QtCore.QPoint(0, 0)) == layout[n] for n, b in buttons.items()),
+          "after all these events no jog button moved on the panel")
+
+    panel.show()
     mouse(buttons["-Y"], "press")
-    after(n)
-    daemon.drop_client()
-    pump(0.3)
-    check(not panel.session.connected() and not panel.timer.isActive() and panel.jog.held is None,
-          "a lost link ends the jog and the polling: %r" % panel.status.text())
+    pump(app, 2, state("jog"))
+    messd.stop()
+    pump(app, 1, lambda: not s.connected())
+    check(not s.connected() and not panel.timer.isActive() and panel.jog.held is None and
+          "link ended (closed by messd)" in s.events.text("link"), "a lost link ends the jog and the polling: %s"
+          % panel.events.lines())
     mouse(buttons["-Y"], "release")
     check(not warnings, "no warnings: %s" % warnings)
-    daemon.close()
     FreeCAD.closeDocument(doc.Name)
 
 

@@ -106,16 +106,21 @@ class MotionBackend {
     (void)sp;
     return false;
   }
-  // True when the hardware, given a setpoint late (the host stalled), goes on along the path
-  // at the last setpoint's velocity until the next comes (the servo card, up to its
-  // watchdog): the core then advances the path by the time that really passed, so the next
-  // setpoint continues where the machine went. False (the default): the machine waits or
-  // brakes, and the path advances one period per cycle.
-  virtual bool bridges_late_setpoints() const noexcept { return false; }
-  // The backend runs setpoints sent ahead on its own clock (a streamed card, stamped by
-  // Setpoint::time): the path's time is then exactly the time that passed, a stalled cycle
-  // included, so the setpoints after a stall meet the card where it went on.
-  virtual bool runs_path_on_own_clock() const noexcept { return false; }
+  // How the core advances a path's time from one cycle to the next (after a late cycle: a
+  // stalled host).
+  enum class PathTime {
+    // One period a cycle (the default): given a setpoint late, the machine waits or brakes.
+    PerCycle,
+    // The time that really passed, at least a period: the hardware goes on along the path at
+    // the last setpoint's velocity until the next comes (the servo card over request/reply, up
+    // to its watchdog), so the next setpoint continues where the machine went.
+    Bridged,
+    // Exactly the time that passed: the backend runs setpoints sent ahead on its own clock
+    // (a streamed card, stamped by Setpoint::time), so the setpoints after a stall meet the
+    // card where it went on.
+    OwnClock,
+  };
+  virtual PathTime path_time() const noexcept { return PathTime::PerCycle; }
   // False while the link to the controller still carries earlier commands (a streamed serial
   // line: a flood of GoTo lines outruns 115 200 baud): the core then leaves the next command in
   // its ring for a later cycle, so the line's backlog stays short and a stop never waits

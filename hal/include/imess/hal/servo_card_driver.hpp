@@ -47,10 +47,9 @@ class ServoCardDriver final : public MotionBackend {
   // CommLost) until reset_faults(): a setpoint stream with a gap cannot be resumed.
   bool follow(const Setpoint& sp) noexcept override;
   // Request/reply: the firmware goes on at the last Follow's velocity until its watchdog.
-  bool bridges_late_setpoints() const noexcept override { return !session_; }
   // Streamed: the card runs the buffered path on its own clock through a host stall; the
   // knots are stamped by the setpoints' path time.
-  bool runs_path_on_own_clock() const noexcept override { return session_.has_value(); }
+  PathTime path_time() const noexcept override { return session_ ? PathTime::OwnClock : PathTime::Bridged; }
   bool ready_for_command() const noexcept override { return !session_ || session_->line_ready(); }
   bool stop(const AxisVec& decel) noexcept override;
   bool set_position(int axis, double value) noexcept override;
