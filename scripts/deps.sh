@@ -15,8 +15,10 @@ imess_package_packages=(dpkg-dev)
 # (ezdxf for DXF; freecadcmd for STEP, IGES, PLY, ASC and the plugin; Debian's python3 comes
 # with them; Xvfb, the X server without a screen the plugin's test in a real FreeCAD window runs
 # on), Chromium for the inspection report's layout (tests/clients/report), what scripts/bench
-# needs, which the suite's smoke test runs, and what the packaging test packs with.
-imess_test_packages=(python3-ezdxf freecad-python3 xvfb chromium "${imess_bench_packages[@]}" "${imess_package_packages[@]}")  # python3 among them
+# needs, which the suite's smoke test runs, and what the packaging test packs with; Debian's
+# chromium, its chromedriver and python3-selenium drive the web panel in a real browser (tests/web).
+imess_test_packages=(python3-ezdxf freecad-python3 xvfb chromium chromium-driver python3-selenium
+                     "${imess_bench_packages[@]}" "${imess_package_packages[@]}")  # python3 among them
 # LinuxCNC's own G-code interpreter, rs274 (tests/programs/test_rs274.cpp judges ours by it);
 # without its recommendations, which would bring a real-time kernel and a desktop.
 imess_test_packages_bare=(linuxcnc-uspace)

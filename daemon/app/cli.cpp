@@ -11,13 +11,15 @@ namespace imess::app {
 
 const char* usage_text() {
   return "usage: messd [--config FILE] [--rc FILE] [--port N] [--listen ADDR] [--journal DIR] [--programs DIR]\n"
-         "             [--frames FILE] [--ippdme-port N] [--device TTY] [--home] [--no-rt] [-dc] [-dm] [-dt] [-p] [-r]\n"
+         "             [--frames FILE] [--ippdme-port N] [--http-port N] [--device TTY] [--home] [--no-rt] [-dc] [-dm] [-dt] [-p] [-r]\n"
          "             [-v] [-h]\n"
          "  --config FILE  JSON configuration (default: the built-in simulated CMM)\n"
          "  --rc FILE      1996 messdrc (SpeedLevel, TipReversed, TipRadius); default ./messdrc if present\n"
          "  --port N       TCP port (default 1066; 0 = any free port, printed at start)\n"
          "  --ippdme-port N  I++ DME port (default 1294; 0 = off; with --port 0 and no --ippdme-port:\n"
          "                 any free port, printed at start)\n"
+         "  --http-port N  the web panel's HTTP and WebSocket port (default 8080; 0 = off; with --port 0\n"
+         "                 and no --http-port: any free port, printed at start)\n"
          "  --listen ADDR  address to listen on (default 0.0.0.0, all interfaces: others may observe and\n"
          "                 stop; only control.hosts, by default loopback, may move the machine)\n"
          "  --journal DIR  the hit journal (default: $STATE_DIRECTORY/journal under systemd, else\n"
@@ -59,12 +61,12 @@ CliOptions parse_cli(int argc, char** argv) {
       if (ec) throw std::invalid_argument("--listen takes an IPv4 or IPv6 address such as 0.0.0.0, 127.0.0.1 or ::, got '" + text + "'");
       o.listen = text;
     }
-    else if (a == "--port" || a == "--ippdme-port") {
+    else if (a == "--port" || a == "--ippdme-port" || a == "--http-port") {
       auto text = value("a port number");
       auto n = protocol::parse_number(text);
       if (!n || *n < 0 || *n > 65535 || *n != static_cast<int>(*n))
         throw std::invalid_argument(std::string(a) + " takes a whole number from 0 to 65535, got '" + text + "'");
-      (a == "--port" ? o.port : o.ippdme_port) = static_cast<int>(*n);
+      (a == "--port" ? o.port : a == "--ippdme-port" ? o.ippdme_port : o.http_port) = static_cast<int>(*n);
     } else if (a == "--home") o.home = true;
     else if (a == "--no-rt") o.no_realtime = true;
     else if (a == "-dc") o.debug_comm = true;

@@ -7,7 +7,7 @@ namespace imess::app {
 
 struct CliOptions {
   std::optional<std::string> config, rc, listen, journal, programs, frames, device;
-  std::optional<int> port, ippdme_port;
+  std::optional<int> port, ippdme_port, http_port;
   bool debug_comm = false, debug_motion = false, debug_status = false, timing = false;
   bool reboot = false, home = false, no_realtime = false, version = false, help = false;
 };

@@ -115,12 +115,22 @@ void load_json_config(const std::string& path, DaemonConfig& cfg) {
 
 namespace {
 
-void read_server_section(JsonObject& s, DaemonConfig& cfg) {
+void read_server_section(JsonObject& s, const std::string& path, DaemonConfig& cfg) {
   cfg.server.port = static_cast<std::uint16_t>(s.whole("port", cfg.server.port, 0, 65535));
   cfg.server.listen = checked_address(s, "listen", cfg.server.listen);
   const auto ipp = s.whole("ippdme_port", cfg.server.ippdme.on ? cfg.server.ippdme.port : 0, 0, 65535);
   cfg.server.ippdme.on = ipp != 0;
   cfg.server.ippdme.port = static_cast<std::uint16_t>(ipp);
+  const auto http = s.whole("http_port", cfg.server.web.on ? cfg.server.web.port : 0, 0, 65535);
+  cfg.server.web.on = http != 0;
+  cfg.server.web.port = static_cast<std::uint16_t>(http);
+  const std::string root = s.text("http_root", "");
+  if (!root.empty()) {  // relative to the configuration file, as programs.folder
+    std::filesystem::path r(root);
+    if (r.is_relative()) r = std::filesystem::absolute(std::filesystem::path(path).parent_path() / r);
+    cfg.server.web.root = r.lexically_normal().string();
+  }
+  cfg.server.web.token = s.text("http_token", cfg.server.web.token);
   read_param_keys(s, "server", cfg);  // report_hz: the ReportHz parameter
   cfg.server.max_clients = static_cast<std::size_t>(s.whole("max_clients", static_cast<long long>(cfg.server.max_clients), 1, 10000));
   cfg.server.event_backstop_ms = s.number("event_backstop_ms", cfg.server.event_backstop_ms, 1, 600000);
@@ -357,7 +367,7 @@ void load_config_text(const std::string& text, const std::string& path, DaemonCo
   const nlohmann::json j = parse_json_text(text, path);
   JsonObject top(j, path, "");
   top.text("_comment", "");  // free text for people
-  if (auto s = top.object("server")) read_server_section(*s, cfg);
+  if (auto s = top.object("server")) read_server_section(*s, path, cfg);
   if (auto c = top.object("control")) read_control(*c, path, cfg.server.control);
   if (auto m = top.object("motion")) read_motion_section(*m, cfg);
   if (auto axes = top.object("axes")) read_axes_section(*axes, cfg);

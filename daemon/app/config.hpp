@@ -14,8 +14,15 @@
 
 namespace imess::app {
 
+// messd's server: the library's defaults, and the web panel on 8080 (docs/web.md).
+inline net::ServerConfig daemon_server_config() {
+  net::ServerConfig s;
+  s.web.on = true;
+  return s;
+}
+
 struct DaemonConfig {
-  net::ServerConfig server;
+  net::ServerConfig server = daemon_server_config();
   core::CoreConfig core;
   double period_us = 1000;
   bool realtime = true;        // try SCHED_FIFO + mlockall

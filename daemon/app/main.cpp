@@ -45,6 +45,12 @@ app::DaemonConfig configure(const app::CliOptions& cli) {
   } else if (cli.port && *cli.port == 0 && cfg.server.ippdme.on) {
     cfg.server.ippdme.port = 0;  // a test's messd: any free port for both, so many can run at once
   }
+  if (cli.http_port) {
+    cfg.server.web.on = *cli.http_port != 0;
+    cfg.server.web.port = static_cast<std::uint16_t>(*cli.http_port);
+  } else if (cli.port && *cli.port == 0 && cfg.server.web.on) {
+    cfg.server.web.port = 0;  // as the I++ DME port
+  }
   if (cli.journal) cfg.journal.dir = *cli.journal;
   if (cli.programs) cfg.server.programs.folder = std::filesystem::absolute(*cli.programs).lexically_normal().string();
   if (cfg.journal.dir.empty()) cfg.journal.dir = app::default_journal_dir();
@@ -176,6 +182,11 @@ void serve_until_signal(boost::asio::io_context& io, net::Server& server, const 
     std::printf("messd: I++ DME on %s:%u\n", config.listen.c_str(), static_cast<unsigned>(server.ipp_port()));
   else
     std::printf("messd: I++ DME off\n");
+  if (server.web_port())
+    std::printf("messd: web panel on http://%s:%u/ (files from %s)\n", config.listen.c_str(),
+                static_cast<unsigned>(server.web_port()), server.web_root().c_str());
+  else
+    std::printf("messd: web panel off\n");
   std::fflush(stdout);
   io.run();
 }

@@ -109,7 +109,7 @@ TEST_CASE("chaos: SIGKILL at random moments while measuring loses no hit and dup
   auto messd = std::make_unique<DaemonProcess>(base);
   const std::string port = std::to_string(messd->port());
   auto with_port = base;
-  with_port.insert(with_port.end(), {"--port", port, "--ippdme-port", "0"});
+  with_port.insert(with_port.end(), {"--port", port, "--ippdme-port", "0", "--http-port", "0"});
   ChildProcess cap({client_binary("messcap"), "127.0.0.1:" + port, "-o", capture, "--reconnect"});
   // A new capture takes the hits journaled after it connected: let it connect first.
   for (auto until = Clock::now() + std::chrono::seconds(5); cap.err().find("connected to") == std::string::npos;) {

@@ -74,6 +74,7 @@ net::ServerConfig server_config(net::ServerConfig c) {
   c.port = 0;
   c.ippdme.on = true;
   c.ippdme.port = 0;
+  c.web.on = false;  // the transcripts speak on 1066 and 1294; the web panel is a 1066 session (tests/net)
   c.stream_position = false;  // its rate is a wall-clock timer; see tests/golden/README.md
   c.version = app::kVersion;
   return c;

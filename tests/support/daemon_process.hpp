@@ -90,6 +90,13 @@ class DaemonProcess {
       if (const auto c = ipp.rfind(':'); ipp.rfind("messd: I++ DME on", 0) == 0 && c != std::string::npos)
         ipp_port_ = std::stoi(ipp.substr(c + 1));
     }
+    // "messd: web panel on http://127.0.0.1:PORT/ (files from DIR)" or "messd: web panel off"
+    if (fgets(line, sizeof line, out_)) {
+      const std::string web(line);
+      const std::string on = "messd: web panel on http://";
+      if (web.rfind(on, 0) == 0)
+        if (const auto c = web.find(':', on.size()); c != std::string::npos) web_port_ = std::stoi(web.substr(c + 1));
+    }
   }
   ~DaemonProcess() {
     stop();
@@ -104,6 +111,7 @@ class DaemonProcess {
   int port() const { return port_; }
   pid_t pid() const { return pid_; }
   int ipp_port() const { return ipp_port_; }  // 0: the I++ DME server is off
+  int web_port() const { return web_port_; }  // 0: the web panel is off
   bool running() const { return pid_ > 0 && waitpid(pid_, nullptr, WNOHANG) == 0; }
   const std::string& journal_dir() const { return own_journal_; }  // empty when the test gave --journal
   // Stops with SIGTERM (SIGKILL: as a crash would); returns the exit status.
@@ -122,7 +130,7 @@ class DaemonProcess {
  private:
   pid_t pid_ = -1;
   FILE* out_ = nullptr;
-  int port_ = 0, ipp_port_ = 0, status_ = -1;
+  int port_ = 0, ipp_port_ = 0, web_port_ = 0, status_ = -1;
   std::string own_journal_;
 };
 

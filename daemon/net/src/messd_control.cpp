@@ -16,6 +16,7 @@ std::string held_text(const Controller& owner) {
   return "the machine is controlled by " + describe(owner) + "; StopMv is open to all, Status shows the owner";
 }
 std::string host_text(const Session& s) {
+  if (!s.info().observe_reason.empty()) return s.info().observe_reason + "; StopMv is open to all";
   return "host " + s.host() + " may observe but not control the machine (control.hosts in the daemon's configuration); StopMv is open to all";
 }
 }  // namespace

@@ -58,6 +58,10 @@ void Server::start() {
       spdlog::info("I++ DME: off, this machine has no linear X Y Z axes (axes {})", layout.names());
     }
   }
+  if (config_.web.on) {
+    web_ = std::make_unique<WebServer>(io_, config_, sessions_, log_limiter_);
+    web_->start();
+  }
   add_observers();
   running_ = true;
   if (wake_) {
@@ -94,6 +98,7 @@ void Server::add_observers() {
 void Server::stop() {
   running_ = false;
   if (ipp_) ipp_->stop();
+  if (web_) web_->stop();
   event_timer_.cancel();
   liveness_.stop();
   boost::system::error_code ec;

@@ -25,13 +25,16 @@ Session::Session(asio::ip::tcp::socket socket, std::uint32_t id, std::size_t max
       on_close_(std::move(on_close)) {
   boost::system::error_code ec;
   auto ep = socket_.remote_endpoint(ec);
-  if (!ec) {
-    address_ = ep.address();
-    if (address_.is_v6() && address_.to_v6().is_v4_mapped())  // an IPv4 client of a dual-stack "::" listener
-      address_ = asio::ip::make_address_v4(asio::ip::v4_mapped, address_.to_v6());
-  }
-  peer_ = ec ? "unknown" : address_.to_string() + ":" + std::to_string(ep.port());
+  if (!ec) set_peer(ep);
+  else peer_ = "unknown";
   socket_.set_option(asio::ip::tcp::no_delay(true), ec);
+}
+
+void Session::set_peer(const asio::ip::tcp::endpoint& ep) {
+  address_ = ep.address();
+  if (address_.is_v6() && address_.to_v6().is_v4_mapped())  // an IPv4 client of a dual-stack "::" listener
+    address_ = asio::ip::make_address_v4(asio::ip::v4_mapped, address_.to_v6());
+  peer_ = address_.to_string() + ":" + std::to_string(ep.port());
 }
 
 void Session::start() { read(); }

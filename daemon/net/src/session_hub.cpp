@@ -68,13 +68,22 @@ void SessionHub::admit(tcp::socket socket) {
   boost::system::error_code ec;
   auto remote = socket.remote_endpoint(ec);
   if (ec) return;  // already gone
+  admit(std::move(socket), remote, "", "");
+}
+
+void SessionHub::adopt(tcp::socket socket, const tcp::endpoint& peer, std::string via, std::string observe_reason) {
+  admit(std::move(socket), peer, via, std::move(observe_reason));
+}
+
+void SessionHub::admit(tcp::socket socket, const tcp::endpoint& remote, const std::string& via, std::string observe_reason) {
   const auto& rules = config_.control;
   auto address = remote.address();
   if (address.is_v6() && address.to_v6().is_v4_mapped())  // a dual-stack "::" listener: show and match as IPv4
     address = asio::ip::make_address_v4(asio::ip::v4_mapped, address.to_v6());
-  const bool may_control = rules.hosts.contains(address);
+  const bool host_may_control = rules.hosts.contains(address);
+  const bool may_control = host_may_control && observe_reason.empty();
   const std::string host = address.to_string();
-  if (!may_control && !rules.observe_hosts.contains(address)) {
+  if (!host_may_control && !rules.observe_hosts.contains(address)) {
     log_limited(log_, spdlog::level::warn, "refused-host", "refused a connection from " + host + ": not in control.hosts or control.observe_hosts");
     refuse(socket, protocol::format_err(protocol::ErrorCode::HostNotAllowed,
                                         "host " + host + " may not connect: it is in neither control.hosts nor "
@@ -97,12 +106,15 @@ void SessionHub::admit(tcp::socket socket) {
       std::move(socket), id, config_.max_queue_bytes,
       [this](Session& s, const protocol::FramedLine& l) { handlers_.line(s, l); },
       [this](Session& s) { closed(s); });
+  if (!via.empty()) session->set_peer(tcp::endpoint(address, remote.port()));
   session->info().may_control = may_control;
+  if (host_may_control) session->info().observe_reason = std::move(observe_reason);
   session->info().may_force = may_control && rules.force_hosts.contains(address);
   session->info().connected_at = Session::Clock::now();
   sessions_[id] = session;
   log_limited(log_, spdlog::level::info, "connect",
-              "client " + std::to_string(id) + " connected from " + session->peer() + (may_control ? "" : " (observer host)"));
+              "client " + std::to_string(id) + " connected from " + session->peer() + (via.empty() ? "" : " " + via) +
+                  (may_control ? "" : host_may_control ? " (observer: " + session->info().observe_reason + ")" : " (observer host)"));
   session->start();
   handlers_.admitted(*session);  // the position on connect; changes only from then on
 }

@@ -31,6 +31,7 @@
 #include "imess/net/server_config.hpp"
 #include "imess/net/session_hub.hpp"
 #include "imess/net/stats_report.hpp"
+#include "imess/net/web_server.hpp"
 
 namespace imess::net {
 
@@ -50,6 +51,9 @@ class Server {
   // no linear X Y Z) and whether its one client is connected.
   std::uint16_t ipp_port() const { return ipp_ ? ipp_->port() : 0; }
   bool ipp_connected() const { return ipp_ && ipp_->connected(); }
+  // The web panel's port (0: off) and the folder its files come from.
+  std::uint16_t web_port() const { return web_ ? web_->port() : 0; }
+  std::string web_root() const { return web_ ? web_->root() : std::string(); }
   // The I++ move reports (OnMoveReportE): the report timer calls it; the golden harness,
   // whose position stream is off, every motion cycle in virtual time.
   void move_reports();
@@ -84,6 +88,8 @@ class Server {
   // The I++ DME front end (none: turned off, or no linear X Y Z).
   std::unique_ptr<IppServer> ipp_;
   std::unique_ptr<IppEvents> ipp_events_;  // it as an observer
+  // The web panel (none: turned off): MESSD sessions over WebSockets, so no observer of its own.
+  std::unique_ptr<WebServer> web_;
   PeriodicTimer event_timer_, log_timer_;
   bool running_ = false;
   std::uint64_t woken_ = 0, backstop_found_ = 0;  // drains by wake-up / events only the backstop found

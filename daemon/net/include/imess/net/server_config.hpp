@@ -11,6 +11,7 @@
 #include "imess/net/host_list.hpp"
 #include "imess/net/ipp_config.hpp"
 #include "imess/net/program_run.hpp"
+#include "imess/net/web_config.hpp"
 
 namespace imess::net {
 
@@ -53,6 +54,7 @@ struct ServerConfig {
   std::string backend = "unknown";  // the backend type (Get Backend): one word
   ProgramConfig programs;           // the programs folder and how program words map to this machine
   IppConfig ippdme;                 // the I++ DME server (TCP 1294) and its tools
+  WebConfig web;                    // the web panel (HTTP and WebSocket on 8080)
   std::string frames_file;          // the part frames' store (JSON); empty: kept for this run only
   std::array<double, 3> probe_offset{};  // ProbeOffX/Y/Z: added to every measured point (mm)
 };

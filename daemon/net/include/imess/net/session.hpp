@@ -30,6 +30,7 @@ struct ClientInfo {
   double stream_hz = 0;          // Stream: this client's position rate; 0 = the shared ReportHz
   std::chrono::steady_clock::time_point stream_due{};  // its next position report at that rate
   std::string sent_curr_cor, sent_ax_pos;  // the position lines it last got
+  std::string observe_reason;    // why it may only observe when its host is not the reason (a web page without the token)
 };
 
 class Session : public std::enable_shared_from_this<Session> {
@@ -42,6 +43,9 @@ class Session : public std::enable_shared_from_this<Session> {
           CloseHandler on_close);
 
   void start();
+  // The client's address when the socket's own peer is not it (the web panel's sessions run
+  // over a socket pair: the browser's address).
+  void set_peer(const boost::asio::ip::tcp::endpoint& peer);
   void send(std::string line);  // one complete line with its "\n" (events: sent at once)
   // A line formatted once for many clients (broadcasts): every queue holds the same buffer.
   void send(std::shared_ptr<const std::string> line);

@@ -28,6 +28,12 @@ class SessionHub {
   SessionHub(boost::asio::io_context& io, const ServerConfig& config, LogLimiter& log);
   void set_handlers(Handlers h) { handlers_ = std::move(h); }
   void start();  // binds and accepts; throws std::runtime_error naming the address
+  // A client that reached messd another way (the web panel: a WebSocket bridged to `socket`,
+  // one end of a socket pair) from `peer`: admitted by the same rules as a TCP client of
+  // 1066 (hosts, slots), and served by the same session code. A non-empty `observe_reason`
+  // makes it an observer whatever its host, saying why (the panel's token was not given).
+  void adopt(boost::asio::ip::tcp::socket socket, const boost::asio::ip::tcp::endpoint& peer, std::string via,
+             std::string observe_reason);
   void stop();
   std::uint16_t port() const { return port_; }
   std::size_t size() const { return sessions_.size(); }
@@ -42,6 +48,8 @@ class SessionHub {
  private:
   void accept();
   void admit(boost::asio::ip::tcp::socket socket);
+  void admit(boost::asio::ip::tcp::socket socket, const boost::asio::ip::tcp::endpoint& remote, const std::string& via,
+             std::string observe_reason);
   void refuse(boost::asio::ip::tcp::socket& socket, std::string line);
   void closed(Session& s);
 

@@ -1,0 +1,37 @@
+// What the web front end's connections share (web_server.cpp, web_http.cpp, web_bridge.cpp).
+#pragma once
+#include <boost/asio.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "imess/net/web_server.hpp"
+
+namespace imess::net {
+
+struct WebServer::Shared {
+  const ServerConfig& config;
+  SessionHub& sessions;
+  LogLimiter& log;
+  std::string root;           // the panel's files, an absolute path
+  std::size_t connections = 0;  // HTTP connections open (not the WebSocket sessions)
+  bool running = true;
+};
+
+// Beast's string_view (Boost's in 1.74) as the standard one.
+inline std::string_view std_view(boost::beast::string_view s) { return {s.data(), s.size()}; }
+
+using WebRequest = boost::beast::http::request<boost::beast::http::string_body>;
+
+// One HTTP connection: requests for files until it closes or asks for the WebSocket.
+void serve_http(boost::asio::ip::tcp::socket socket, std::shared_ptr<WebServer::Shared> shared);
+// The WebSocket upgrade of `request` on `stream`: checked (Origin, token), accepted, bridged.
+void start_web_session(boost::beast::tcp_stream stream, WebRequest request, std::shared_ptr<WebServer::Shared> shared);
+// The response for a file request (GET/HEAD) below `root`.
+boost::beast::http::response<boost::beast::http::string_body> file_response(const WebRequest& request, const std::string& root);
+
+}  // namespace imess::net

@@ -1,0 +1,295 @@
+#!/usr/bin/env python3
+"""The web panel in a real browser (Debian's chromium, chromedriver, python3-selenium) against
+a real messd: the page loads and shows the position, Load/Run of a shipped program shows its
+progress to ProgEnd, press-and-hold -Z touches the cube and the hit appears in the list and the
+views, 40 ForcePt points reach the page's list (the delay after the line protocol's push is
+printed as figures), a reloaded page lists the journal's newest hits, releasing a jog button stops, closing the tab mid-jog stops the machine, and a browser
+from a host that may not control watches but cannot move. Screenshots of each state go to
+OUT_DIR (docs/web/ holds one set). Usage: test_web_panel.py BIN_DIR SOURCE_DIR OUT_DIR"""
+import os
+import re
+import shutil
+import socket
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+try:
+    from selenium import webdriver
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.chrome.service import Service
+except ImportError:
+    sys.exit("test_web_panel: python3-selenium is missing (apt-get install python3-selenium chromium chromium-driver)")
+
+BIN, SRC, OUT = sys.argv[1:4]
+os.makedirs(OUT, exist_ok=True)
+failures = []
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what, flush=True)
+    if not ok:
+        failures.append(what)
+    return ok
+
+
+class Messd:
+    """build/bin/messd on free loopback ports, with its own journal."""
+
+    def __init__(self, extra=()):
+        self.dir = tempfile.mkdtemp(prefix="imess-web-test-")
+        args = [os.path.join(BIN, "messd"), "--port", "0", "--listen", "127.0.0.1", "--no-rt",
+                "--journal", os.path.join(self.dir, "journal"), "--frames", os.path.join(self.dir, "frames.json"),
+                "--programs", os.path.join(SRC, "examples", "programs")] + list(extra)
+        self.proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        lines = [self.proc.stdout.readline() for _ in range(3)]
+        self.port = int(re.search(r":(\d+)$", lines[0].strip()).group(1))
+        web = re.search(r"web panel on (http://[\d.]+:\d+/)", lines[2])
+        if not web:
+            raise SystemExit("messd printed no web panel line: %r" % lines)
+        self.url = web.group(1)
+
+    def stop(self):
+        self.proc.terminate()
+        self.proc.wait(10)
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+
+class Line:
+    """A telnet-like client on 1066 that watches what every client sees; a thread reads it and
+    stamps each line with its arrival (time.monotonic())."""
+
+    def __init__(self, port):
+        self.sock = socket.create_connection(("127.0.0.1", port), timeout=5)
+        self.sock.settimeout(None)
+        self.lines = []  # (arrival, text)
+        self.cursor = 0
+        self.cond = threading.Condition()
+        threading.Thread(target=self._read, daemon=True).start()
+
+    def _read(self):
+        buf = b""
+        while True:
+            try:
+                data = self.sock.recv(65536)
+            except OSError:
+                data = b""
+            now = time.monotonic()
+            with self.cond:
+                if not data:
+                    self.lines.append((now, None))
+                    self.cond.notify_all()
+                    return
+                buf += data
+                while b"\n" in buf:
+                    line, buf = buf.split(b"\n", 1)
+                    self.lines.append((now, line.decode(errors="replace")))
+                self.cond.notify_all()
+
+    def until(self, prefix, timeout):
+        deadline = time.time() + timeout
+        with self.cond:
+            while True:
+                while self.cursor < len(self.lines):
+                    _, text = self.lines[self.cursor]
+                    self.cursor += 1
+                    if text is None:
+                        return None
+                    if text.startswith(prefix):
+                        return text
+                left = deadline - time.time()
+                if left <= 0:
+                    return None
+                self.cond.wait(left)
+
+    def find(self, prefix):
+        """The first line with prefix seen so far, read or not: (arrival, text)."""
+        with self.cond:
+            for at, text in self.lines:
+                if text and text.startswith(prefix):
+                    return at, text
+        return None
+
+    def request(self, line):
+        self.sock.sendall((line + "\n").encode())
+        verb = line.split()[0]
+        return self.until("Ok " + verb, 5) or self.until("Err", 1)
+
+
+def percentile(values, p):
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, int(round(p / 100.0 * (len(ordered) - 1))))]
+
+
+def browser():
+    options = webdriver.ChromeOptions()
+    options.binary_location = "/usr/bin/chromium"
+    for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1024,768",
+              "--disable-dev-shm-usage", "--user-data-dir=" + tempfile.mkdtemp(prefix="imess-chromium-")):
+        options.add_argument(a)
+    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
+
+
+def wait_for(fn, timeout, step=0.05):
+    deadline = time.time() + timeout
+    while time.time() < deadline:
+        try:
+            value = fn()
+            if value:
+                return value
+        except Exception:  # the element not there yet
+            pass
+        time.sleep(step)
+    return None
+
+
+def text(driver, element_id):
+    return driver.find_element(By.ID, element_id).text
+
+
+def shot(driver, name):
+    driver.save_screenshot(os.path.join(OUT, name + ".png"))
+
+
+def position(driver):
+    return " ".join(text(driver, "pos-" + a) for a in "XYZ")
+
+
+def main():
+    messd = Messd(["--config", os.path.join(SRC, "tests", "e2e", "fast-cmm.json")])
+    watcher = Line(messd.port)
+    driver = browser()
+    try:
+        driver.get(messd.url)
+        check(wait_for(lambda: position(driver) == "430.000 330.000 100.000", 10), "the page shows the position 430.000 330.000 100.000")
+        check(wait_for(lambda: text(driver, "link") == "online", 5), "the page is connected")
+        status = watcher.request("Status")
+        state = re.search(r" State (\w+) ", status).group(1)
+        check(wait_for(lambda: text(driver, "state") == state, 5), "the page shows the state Status says (%s)" % state)
+        check(wait_for(lambda: text(driver, "control") == "none", 5), "the page shows nobody in control")
+        shot(driver, "panel-connected")
+
+        # A shipped program: Load shows the check's summary, Run its blocks up to ProgEnd.
+        check(wait_for(lambda: "bore-inspection.ngc" in text(driver, "program-list"), 5), "the programs folder is listed")
+        driver.find_element(By.CSS_SELECTOR, "#program-list option[value='bore-inspection.ngc']").click()
+        driver.find_element(By.ID, "program-load").click()
+        check(wait_for(lambda: text(driver, "program-check").startswith("Ok Load bore-inspection.ngc"), 10),
+              "Load shows the check's summary: " + text(driver, "program-check"))
+        driver.find_element(By.ID, "program-run").click()
+        check(wait_for(lambda: "block" in text(driver, "program-block"), 10), "Run shows the current block")
+        shot(driver, "panel-program-running")
+        end = wait_for(lambda: "ProgEnd" in text(driver, "program-block") and text(driver, "program-block"), 120)
+        check(end and "ProgEnd bore-inspection.ngc ok" in end, "the program runs to ProgEnd ok: %s" % end)
+        progress = driver.find_element(By.ID, "program-progress")
+        check(progress.get_attribute("value") == progress.get_attribute("max"), "the progress bar is full at ProgEnd")
+        hits_of_program = len(driver.find_elements(By.CSS_SELECTOR, "#points tbody tr"))
+        check(hits_of_program == 8, "the program's 8 touches are in the points list (%d)" % hits_of_program)
+        shot(driver, "panel-program-ended")
+        driver.find_element(By.ID, "clear-points").click()
+        watcher.request("Release")  # nobody holds control now; the page's jog takes it
+        driver.find_element(By.ID, "console-line").send_keys("GoTo 430 330 100\n")
+        check(wait_for(lambda: position(driver) == "430.000 330.000 100.000", 20), "back above the cube")
+
+        # Press and hold -Z: the probe touches the top face, the hit is in the list and the views.
+        jog = ActionChains(driver)
+        jog.click_and_hold(driver.find_element(By.ID, "jog-Z-")).perform()
+        row = wait_for(lambda: driver.find_elements(By.CSS_SELECTOR, "#points tbody tr"), 15)
+        ActionChains(driver).release().perform()
+        cells = [c.text for c in row[0].find_elements(By.TAG_NAME, "td")] if row else []
+        check(cells[1:4] == ["430.000", "330.000", "80.000"], "holding -Z touches the top: the hit in the list %s" % cells)
+        painted = driver.execute_script(
+            "const c = document.getElementById('view-top'); const d = c.getContext('2d')"
+            ".getImageData(0, 0, c.width, c.height).data; let n = 0; for (let i = 3; i < d.length; i += 4) n += d[i] > 0;"
+            " return n;")
+        check(painted > 50, "the hit is drawn in the view (%d pixels)" % painted)
+        shot(driver, "panel-hit")
+
+        # The browser path against the line protocol's push, in the same run: for each
+        # ForcePt's Hit, its line's arrival on 1066 here and its row's appearance in the page's
+        # list (the page stamps it with its wall clock, brought to time.monotonic() here).
+        offset = time.time() - time.monotonic()
+        first = len(driver.find_elements(By.CSS_SELECTOR, "#points tbody tr"))
+        for _ in range(40):
+            driver.execute_script("window.imess.send('ForcePt')")
+            time.sleep(0.05)
+        wait_for(lambda: len(driver.find_elements(By.CSS_SELECTOR, "#points tbody tr")) >= first + 40, 10)
+        rows = driver.execute_script(
+            "return [...document.querySelectorAll('#points tbody tr')].map(r => [Number(r.dataset.seq), Number(r.dataset.shownAt)]);")
+        later_ms = []
+        for seq, shown_at in rows[: len(rows) - first]:
+            found = watcher.find("Hit %d " % seq)
+            if found:
+                later_ms.append((shown_at / 1000 - offset - found[0]) * 1000)
+        if check(len(later_ms) >= 30, "the browser path measured for %d points" % len(later_ms)):
+            print("figures: a hit's row in the page after its line on 1066: p50 %.2f ms p99 %.2f ms (%d points)"
+                  % (percentile(later_ms, 50), percentile(later_ms, 99), len(later_ms)), flush=True)
+            check(percentile(later_ms, 50) < 250, "a point reaches the page's list within 250 ms of the line protocol's push (p50)")
+
+        # A reloaded page starts with the journal's newest 20 hits (Replay), the newest on top.
+        newest = max(seq for seq, _ in rows)
+        driver.refresh()
+        listed = wait_for(lambda: len(driver.find_elements(By.CSS_SELECTOR, "#points tbody tr")) == 20 and driver.execute_script(
+            "return [...document.querySelectorAll('#points tbody tr')].map(r => Number(r.dataset.seq));"), 10)
+        check(listed == list(range(newest, newest - 20, -1)), "a reloaded page lists the journal's newest 20 hits: %s" % listed)
+        wait_for(lambda: position(driver) != "– – –" and text(driver, "link") == "online", 5)
+
+        # Releasing a held button stops the machine.
+        wait_for(lambda: text(driver, "state") == "idle", 5)
+        hold = ActionChains(driver)
+        hold.click_and_hold(driver.find_element(By.ID, "jog-X+")).perform()
+        check(watcher.until("State jog", 5) is not None, "holding X+ jogs")
+        time.sleep(0.4)
+        shot(driver, "panel-jogging")
+        released = time.time()
+        ActionChains(driver).release().perform()
+        stopping = watcher.until("State idle", 5)
+        check(stopping is not None and time.time() - released < 2.0,
+              "releasing the button stops the machine (idle %.2f s after)" % (time.time() - released))
+
+        # Closing the tab mid-jog stops the machine (the WebSocket closes: control is lost).
+        ActionChains(driver).click_and_hold(driver.find_element(By.ID, "jog-Y+")).perform()
+        check(watcher.until("State jog", 5) is not None, "holding Y+ jogs")
+        closed = time.time()
+        driver.quit()
+        driver = None
+        stopped = watcher.until("State stopping", 3)
+        check(stopped is not None and time.time() - closed < 1.5,
+              "closing the tab mid-jog stops the machine within the dead-man time (%.2f s)" % (time.time() - closed))
+    finally:
+        if driver:
+            driver.quit()
+        messd.stop()
+
+    # A browser on a host that may not control: it watches, its jog is refused, nothing moves.
+    config = os.path.join(tempfile.mkdtemp(prefix="imess-web-config-"), "observe.json")
+    with open(config, "w") as f:
+        f.write('{ "motion": { "max_speed": 100, "max_accel": 4000, "max_velocity": 400 }, "sim": { "time": "loop" },'
+                ' "control": { "hosts": ["10.0.0.0/8"], "observe_hosts": ["0.0.0.0/0"] } }')
+    messd = Messd(["--config", config])
+    driver = browser()
+    try:
+        driver.get(messd.url)
+        check(wait_for(lambda: position(driver) == "430.000 330.000 100.000", 10), "an observer's page shows the position")
+        ActionChains(driver).click_and_hold(driver.find_element(By.ID, "jog-Z-")).perform()
+        refused = wait_for(lambda: "Err 210" in text(driver, "log") and text(driver, "log"), 5)
+        ActionChains(driver).release().perform()
+        check(refused and "may observe but not control" in refused, "an observer's jog is refused with Err 210")
+        time.sleep(0.5)
+        check(position(driver) == "430.000 330.000 100.000", "nothing moved")
+        shot(driver, "panel-observer")
+    finally:
+        driver.quit()
+        messd.stop()
+
+    if failures:
+        print("test_web_panel: %d failed" % len(failures))
+        return 1
+    print("test_web_panel: all passed; screenshots in " + OUT)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
