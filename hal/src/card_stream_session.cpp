@@ -78,8 +78,9 @@ void CardStreamSession::take(std::span<const std::uint8_t> frame) noexcept {
   if (stream_status_ && s.clock - newest_.clock != status_ticks_ && !damaged_since_) ++errors_;
   damaged_since_ = false;
   if (stream_status_ && s.starvations != newest_.starvations) {
-    // Frames sent again did not reach the card within the lead: the line, not the host.
-    if (resend_tries_ > 0 && card::seq_after(resend_first_, s.ack)) {
+    // Frames the card asked for again did not reach it within the lead: the line, not the host
+    // (a frame only overdue may be the host's own stall, late status frames: HostStall).
+    if (resend_tries_ > 0 && resend_asked_ && card::seq_after(resend_first_, s.ack)) {
       newest_ = s;
       return broken();
     }
@@ -106,17 +107,23 @@ std::uint8_t CardStreamSession::first_unacked() const noexcept {
 bool CardStreamSession::resend_due() const noexcept {
   if (link_broken_ || comm_lost_ || !card::seq_after(seq_, newest_.ack)) return false;
   if (static_cast<std::int32_t>(cycle_ - resend_hold_) < 0) return false;  // the last resend is on its way
-  const bool asked = !reset_.on && (newest_.flags & card::flag::kResendWanted) != 0;
-  // Overdue: the card talked on for an answer's time after the frame crossed the line.
+  // Overdue: the card talked on for three answers' time after the frame crossed the line (a
+  // frame lost without a trace; the card asks at once for one it saw damaged or skipped). Three:
+  // on a loaded host status frames come in late bursts, each read long after it was sampled.
   const bool overdue = static_cast<std::int32_t>(status_cycle_ - sent_at_[first_unacked()]) >
-                       static_cast<std::int32_t>(answer_cycles_ + 2);
-  return asked || overdue;
+                       static_cast<std::int32_t>(3 * answer_cycles_);
+  return card_asks() || overdue;
 }
 
 // Selective: the first frame the card has not acknowledged again, and those after it that the
 // card does not hold.
+bool CardStreamSession::card_asks() const noexcept {
+  return !reset_.on && (newest_.flags & card::flag::kResendWanted) != 0;
+}
+
 void CardStreamSession::resend() noexcept {
   const std::uint8_t first = first_unacked();
+  resend_asked_ = card_asks();
   resend_tries_ = first == resend_first_ && resend_tries_ > 0 ? resend_tries_ + 1 : 1;
   resend_first_ = first;
   ++errors_;  // the card saw a host frame damaged or missing (or its ack was)

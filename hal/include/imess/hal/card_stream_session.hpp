@@ -92,6 +92,7 @@ class CardStreamSession {
   bool send(std::span<const std::uint8_t> op_frame) noexcept;
   void queue_on_line(std::size_t payload_bytes) noexcept;  // sent_at_[seq_] and line_free_ for a frame queued now
   bool resend_due() const noexcept;  // the card asked for frames again, or one is overdue
+  bool card_asks() const noexcept;   // the newest status frame wants a frame again
   void resend() noexcept;            // the frames from the first not acknowledged on, again
   std::uint8_t first_unacked() const noexcept;
   void take(std::span<const std::uint8_t> frame) noexcept;
@@ -113,6 +114,7 @@ class CardStreamSession {
   std::array<std::uint16_t, kResendWindow> kept_len_{};
   std::uint8_t resend_first_ = 0;   // the first frame of the last resend
   int resend_tries_ = 0;            // resends from resend_first_ so far (0: none under way)
+  bool resend_asked_ = false;       // the card asked for them (else they were only overdue)
   std::uint32_t resend_hold_ = 0;   // no resend before this cycle: the last one's frames are on their way
   std::uint32_t answer_cycles_ = 0; // periods from a frame crossing the line to its ack at the host
   std::uint32_t status_line_cycles_ = 0;  // periods from a status frame's sample to its reading here
