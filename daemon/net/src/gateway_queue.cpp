@@ -270,8 +270,8 @@ void MotionGateway::fail_deferred() {
   deferred_.clear();
   deferred_until_.clear();
   MotionObserver* o = observers_.fallback();
-  for (const auto& [id, why] : fails)
-    if (o) o->guarded("Failed", [&] { o->unsent_failed(id, why); });
+  for (const auto& f : fails)  // not a structured binding: clang 14 (the fuzz build) cannot capture one
+    if (o) o->guarded("Failed", [&] { o->unsent_failed(f.first, f.second); });
 }
 
 void MotionGateway::drop_planned(core::FailReason why) {
