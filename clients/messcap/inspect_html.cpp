@@ -14,19 +14,6 @@
 namespace imess::messcap {
 namespace {
 
-std::string esc(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
-    }
-  }
-  return o;
-}
 
 std::string num(double v, const char* fmt = "%.4f") {
   char buf[48];
@@ -97,13 +84,13 @@ std::string inspection_html(const metrology::InspectionPlan& plan, const metrolo
                             const ReportSource& source) {
   const std::size_t n = result.characteristics.size(), bad = result.out_of_tolerance(), none = result.not_evaluated();
   std::ostringstream s;
-  s << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Inspection of " << esc(plan.part)
+  s << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Inspection of " << html_escaped(plan.part)
     << "</title>\n<style>body{font-family:sans-serif;margin:1.5em;color:#222}table{border-collapse:collapse;margin:.5em 0}"
        "td,th{border-bottom:1px solid #ddd;padding:3px 8px;text-align:left;vertical-align:middle}"
        "td.n{text-align:right;font-family:monospace}.ok{color:#2e8b2e;font-weight:bold}.out{color:#d02020;font-weight:bold}"
        ".none{color:#888}figure{display:inline-block;margin:0 1em 1em 0}figcaption{text-align:center;font-size:90%}"
        ".summary{font-size:115%}</style></head><body>\n";
-  s << "<h1>Inspection of " << esc(plan.part) << "</h1>\n<p>Plan <code>" << esc(source.plan) << "</code>; " << esc(source.measured)
+  s << "<h1>Inspection of " << html_escaped(plan.part) << "</h1>\n<p>Plan <code>" << html_escaped(source.plan) << "</code>; " << html_escaped(source.measured)
     << "; " << result.points.size() << " points.</p>\n<p class=\"summary\">" << n << " characteristics: <span class=\"ok\">"
     << n - bad - none << " in tolerance</span>, <span class=\"" << (bad ? "out" : "ok") << "\">" << bad
     << " out of tolerance</span>" << (none ? ", <span class=\"none\">" + std::to_string(none) + " not evaluated</span>" : "")
@@ -113,15 +100,15 @@ std::string inspection_html(const metrology::InspectionPlan& plan, const metrolo
        "<th>deviation</th><th>tolerance</th><th>deviation in its tolerance</th><th></th></tr>\n";
   for (const auto& c : result.characteristics) {
     const std::string cls = !c.evaluated() ? "none" : c.in_tolerance ? "ok" : "out";
-    s << "<tr><td>" << esc(c.spec.name) << "</td><td>" << metrology::to_string(c.spec.kind) << "</td><td>" << esc(c.spec.feature)
-      << (c.spec.other.empty() ? "" : (metrology::is_zone(c.spec.kind) ? " to " : " – ") + esc(c.spec.other)) << "</td>";
+    s << "<tr><td>" << html_escaped(c.spec.name) << "</td><td>" << metrology::to_string(c.spec.kind) << "</td><td>" << html_escaped(c.spec.feature)
+      << (c.spec.other.empty() ? "" : (metrology::is_zone(c.spec.kind) ? " to " : " – ") + html_escaped(c.spec.other)) << "</td>";
     const int d = decimals_for(c);  // enough to see the verdict in the figures
     const std::string plain = "%." + std::to_string(d) + "f", sign = "%+." + std::to_string(d) + "f";
     if (c.evaluated())
       s << "<td class=\"n\">" << num(c.nominal, plain.c_str()) << "</td><td class=\"n\">" << num(c.actual, plain.c_str())
         << "</td><td class=\"n\">" << num(c.deviation, sign.c_str()) << "</td>";
     else
-      s << "<td colspan=\"3\" class=\"none\">not evaluated: " << esc(c.error) << "</td>";
+      s << "<td colspan=\"3\" class=\"none\">not evaluated: " << html_escaped(c.error) << "</td>";
     s << "<td class=\"n\">" << tolerance_text(c) << " " << unit_of(c) << "</td><td>" << deviation_bar(c) << "</td><td class=\""
       << cls << "\">" << verdict_text(c) << "</td></tr>\n";
   }
@@ -141,8 +128,8 @@ std::string inspection_html(const metrology::InspectionPlan& plan, const metrolo
   const auto& a = result.alignment;
   auto v = [](const Eigen::Vector3d& p, const char* f) { return num(p.x(), f) + " " + num(p.y(), f) + " " + num(p.z(), f); };
   s << "<h2>Part frame</h2>\n<p>"
-    << (a.measured ? "3-2-1 alignment from " + esc(plan.alignment->primary) + ", " + esc(plan.alignment->secondary) + ", " +
-                         esc(plan.alignment->tertiary)
+    << (a.measured ? "3-2-1 alignment from " + html_escaped(plan.alignment->primary) + ", " + html_escaped(plan.alignment->secondary) + ", " +
+                         html_escaped(plan.alignment->tertiary)
                    : std::string("The plan's nominal placement (no alignment)."))
     << "</p>\n<table><tr><td>origin (machine)</td><td class=\"n\">" << v(a.part_to_machine.translation(), "%.4f")
     << "</td></tr><tr><td>X axis</td><td class=\"n\">" << v(a.part_to_machine.rotation().col(0), "%.7f")
@@ -156,13 +143,13 @@ std::string inspection_html(const metrology::InspectionPlan& plan, const metrolo
        "coordinates)</th></tr>\n";
   for (std::size_t i = 0; i < result.features.size(); ++i) {
     const auto& f = result.features[i];
-    s << "<tr><td>" << esc(f.name) << "</td><td>" << metrology::to_string(plan.features[i].nominal.kind) << "</td><td class=\"n\">"
+    s << "<tr><td>" << html_escaped(f.name) << "</td><td>" << metrology::to_string(plan.features[i].nominal.kind) << "</td><td class=\"n\">"
       << f.point_count << "</td>";
     if (f.actual)
       s << "<td>" << (f.compensated ? "probe compensated" : "points as given") << "</td><td class=\"n\">" << num(f.stats.form())
         << "</td><td>" << geometry_text(*f.actual) << "</td></tr>\n";
     else
-      s << "<td colspan=\"3\" class=\"out\">" << esc(f.error) << "</td></tr>\n";
+      s << "<td colspan=\"3\" class=\"out\">" << html_escaped(f.error) << "</td></tr>\n";
   }
   s << "</table>\n<p>Definitions: docs/metrology.md (least-squares fits; form = the fit's residual range, not minimum "
        "zone).</p>\n</body></html>\n";

@@ -30,19 +30,6 @@ std::string fmt(double v, const char* f = "%.1f") {
   return buf;
 }
 
-std::string escaped(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
-    }
-  }
-  return o;
-}
 
 struct Box3 {
   Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
@@ -373,7 +360,7 @@ std::string inspection_view(const metrology::InspectionPlan& plan, const metrolo
           << " " << fmt(y - 4) << " L" << fmt(x) << " " << fmt(y + 4) << "\" " << style << "/>";
         continue;
       }
-      s << "<path class=\"" << sh.css << "\" d=\"" << path(line, sh.closed) << "\" " << style << "><title>" << escaped(sh.feature)
+      s << "<path class=\"" << sh.css << "\" d=\"" << path(line, sh.closed) << "\" " << style << "><title>" << html_escaped(sh.feature)
         << " (nominal)</title></path>";
     }
   }
@@ -386,7 +373,7 @@ std::string inspection_view(const metrology::InspectionPlan& plan, const metrolo
     const double px = X(p.part[view.u]), py = Y(p.part[view.v]);
     obstacles.push_back({px - 3.5, py - 3.5, 7, 7});
     s << "<circle cx=\"" << fmt(px) << "\" cy=\"" << fmt(py) << "\" r=\"3.5\" fill=\"" << deviation_colour(p.deviation / scale)
-      << "\" stroke=\"#333\" stroke-width=\"0.4\"><title>" << escaped(p.feature) << ": " << fmt(p.part.x(), "%.3f") << " "
+      << "\" stroke=\"#333\" stroke-width=\"0.4\"><title>" << html_escaped(p.feature) << ": " << fmt(p.part.x(), "%.3f") << " "
       << fmt(p.part.y(), "%.3f") << " " << fmt(p.part.z(), "%.3f") << ", deviation " << fmt(p.deviation, "%.4f")
       << "</title></circle>";
   }
@@ -420,10 +407,24 @@ std::string inspection_view(const metrology::InspectionPlan& plan, const metrolo
       s << "<line x1=\"" << fmt(l.anchor_x) << "\" y1=\"" << fmt(l.anchor_y) << "\" x2=\"" << fmt(lx) << "\" y2=\"" << fmt(ly)
         << "\" stroke=\"#999\" stroke-width=\"0.6\"/>";
     }
-    s << "<text class=\"label\" x=\"" << fmt(l.baseline_x) << "\" y=\"" << fmt(l.baseline_y) << "\">" << escaped(l.text) << "</text>";
+    s << "<text class=\"label\" x=\"" << fmt(l.baseline_x) << "\" y=\"" << fmt(l.baseline_y) << "\">" << html_escaped(l.text) << "</text>";
   }
   s << "</g></svg><figcaption>" << view.title << "</figcaption></figure>";
   return s.str();
+}
+
+std::string html_escaped(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    switch (c) {
+      case '&': o += "&amp;"; break;
+      case '<': o += "&lt;"; break;
+      case '>': o += "&gt;"; break;
+      case '"': o += "&quot;"; break;
+      default: o += c;
+    }
+  }
+  return o;
 }
 
 }  // namespace imess::messcap

@@ -23,5 +23,7 @@ std::string inspection_view(const metrology::InspectionPlan& plan, const metrolo
                             const ViewAxes& view, double scale);
 // Blue (-1) through green (0) to red (+1), as "#rrggbb".
 std::string deviation_colour(double t);
+// Text for HTML and SVG: & < > " as entities.
+std::string html_escaped(const std::string& s);
 
 }  // namespace imess::messcap
