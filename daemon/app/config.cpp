@@ -345,6 +345,7 @@ void read_sim_section(JsonObject& s, DaemonConfig& cfg) {
   cfg.sim.card.firmware = s.text("firmware", cfg.sim.card.firmware);
   cfg.sim.card.follow_watchdog = s.number("watchdog_ms", cfg.sim.card.follow_watchdog * 1e3, 1, 1000) / 1e3;
   cfg.sim_loop_time = s.text("time", "real", {"real", "loop"}) == "loop";
+  cfg.sim_speed = static_cast<int>(s.whole("speed", cfg.sim_speed, 1, 20));
   if (auto pr = s.object("probe")) {
     m.probe.ball_radius = pr->number("ball_radius", m.probe.ball_radius, 0, 50);
     m.probe.pretravel = pr->number("pretravel", m.probe.pretravel, 0, 5);
@@ -389,6 +390,9 @@ void load_config_text(const std::string& text, const std::string& path, DaemonCo
   if (cfg.sim_loop_time && cfg.backend != "sim-servo-card")
     throw ConfigError(path + ": sim.time \"loop\" is for the sim-servo-card backend, whose simulated card runs in the "
                              "motion loop; backend '" + cfg.backend + "' keeps \"real\"");
+  if (cfg.sim_speed != 1 && !cfg.sim_loop_time)
+    throw ConfigError(path + ": sim.speed " + std::to_string(cfg.sim_speed) +
+                      " needs sim.time \"loop\": only a machine on loop time can run faster than the wall clock");
   cfg.notes.push_back("configuration read from " + path);
 }
 

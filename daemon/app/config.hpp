@@ -41,6 +41,7 @@ struct DaemonConfig {
   journal::JournalConfig journal;  // dir empty: default_journal_dir()
   bool sim_probe_nc_set = false;  // sim.probe.normally_closed given explicitly
   bool sim_loop_time = false;     // sim.time "loop": the machine's clock moves one period per cycle
+  int sim_speed = 1;              // sim.speed: in loop time, cycles this many times a period of wall time
   bool outputs_given = false;     // an "outputs" section was read (else the backend's default)
   std::vector<std::string> notes;  // what was read from where, for the start-up log
 };

@@ -228,8 +228,9 @@ int run(int argc, char** argv) {
   core.start(machine_clock.now());
   core::LoopRunner runner(core, clock, std::chrono::nanoseconds(static_cast<long>(cfg.period_us * 1000)));
   if (cfg.sim_loop_time) {
-    runner.use_loop_time(&loop_clock);
-    spdlog::info("sim.time loop: the simulated machine's clock moves one period per motion cycle (host stalls pause it)");
+    runner.use_loop_time(&loop_clock, cfg.sim_speed);
+    spdlog::info("sim.time loop: the simulated machine's clock moves one period per motion cycle (host stalls pause it){}",
+                 cfg.sim_speed > 1 ? fmt::format(", {} times as fast as the wall clock (sim.speed)", cfg.sim_speed) : "");
   }
   log_realtime(runner.start(cfg.realtime));
 

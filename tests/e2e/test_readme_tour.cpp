@@ -8,7 +8,8 @@
 // parts run on config/sim-servo-card-loop-time.json, the README's own choice for a host that
 // stalls (the suite runs other tests beside them): the same machine, its clock paused with the
 // host instead of the emulated card faulting (on the real-time one a loaded host fails queued
-// moves with HostStall, as the README says).
+// moves with HostStall, as the README says) — here at sim.speed 4 (tests/e2e/tour-loop-time.json),
+// the machine's clock four times as fast as the wall clock, the wall-clock rules as they are.
 #include <catch2/catch.hpp>
 
 #include <fcntl.h>
@@ -45,9 +46,9 @@ std::vector<std::string> as_scripts_run(std::vector<std::string> more = {}) {
 }
 
 // The same in loop time: a loaded host pauses the simulated machine, so it needs no real-time
-// scheduling (and takes none from the suite's timing tests).
+// scheduling (and takes none from the suite's timing tests); four times as fast.
 std::vector<std::string> as_scripts_run_in_loop_time() {
-  return as_scripts_run({"--config", kSource + "/config/sim-servo-card-loop-time.json"});
+  return as_scripts_run({"--config", kSource + "/tests/e2e/tour-loop-time.json"});
 }
 
 std::string at(const DaemonProcess& messd) { return "127.0.0.1:" + std::to_string(messd.port()); }

@@ -63,7 +63,7 @@ void LoopRunner::stop() {
 }
 
 void LoopRunner::run() noexcept {
-  Nanos deadline = clock_.now() + period_;
+  Nanos deadline = clock_.now() + wall_period_;
   Nanos last_summary = deadline;
   std::uint64_t cycles = 0;
   while (running_.load(std::memory_order_relaxed)) {
@@ -76,11 +76,11 @@ void LoopRunner::run() noexcept {
     Nanos done = clock_.now();
     cycle_time_.add(std::chrono::duration<double, std::micro>(done - woke).count());
     ++cycles;
-    deadline += period_;
+    deadline += wall_period_;
     const bool overrun = done > deadline;
     if (overrun) {  // missed the next deadline: count it and do not try to catch up
       ++overruns_;
-      deadline = done + period_;
+      deadline = done + wall_period_;
     }
     interval_.record(late_us, overrun);
     if (done - last_summary >= std::chrono::seconds(1)) {

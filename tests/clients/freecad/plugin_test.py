@@ -2,6 +2,7 @@
 # the plugin on sys.path, check(), a real messd on a free loopback port, a scripted operator on
 # its own connection, the panel module with stand-ins for what freecadcmd lacks (FreeCADGui's
 # selection, modal dialogs), real Qt mouse events, and the exit status.
+import json
 import os
 import socket
 import subprocess
@@ -29,11 +30,20 @@ def check(condition, text):
 
 class Messd:
     """A real messd (the simulated CMM with brisk speeds, tests/e2e/fast-cmm.json) on a free
-    loopback port, its journal and frames in a directory of its own."""
+    loopback port, its journal and frames in a directory of its own. Its clock runs at that
+    file's sim.speed (4: measuring in a quarter of the time); a test that reads speeds off the
+    wall clock (a jog's mm/s) gives real_speed=True for the same machine at 1."""
 
-    def __init__(self):
+    def __init__(self, real_speed=False):
         self.dir = tempfile.mkdtemp(prefix="imess-freecad-messd-")
         config = os.path.join(SOURCE_DIR, "tests", "e2e", "fast-cmm.json")
+        if real_speed:
+            with open(config) as f:
+                settings = json.load(f)
+            settings["sim"]["speed"] = 1
+            config = os.path.join(self.dir, "fast-cmm-wall-speed.json")
+            with open(config, "w") as f:
+                json.dump(settings, f)
         self.proc = subprocess.Popen([os.path.join(BIN_DIR, "messd"), "--port", "0", "--listen", "127.0.0.1", "--no-rt",
                                       "--config", config, "--journal", self.dir], cwd=self.dir,
                                      stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)

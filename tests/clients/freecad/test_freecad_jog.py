@@ -88,7 +88,7 @@ def speed(session, app, seconds):
 
 def panel_checks():
     mod, warnings, app = panel_module()
-    messd = Messd()
+    messd = Messd(real_speed=True)
     doc = FreeCAD.newDocument("jogpanel")
     panel = mod.CapturePanel()
     panel.resize(420, 1000)

@@ -104,10 +104,10 @@ def window_checks():
 
     before = s.position
     mouse(panel.jog_buttons["+X"], "press")
-    pump(APP, 1.0)
-    moving = s.state
+    # held until the machine reports the jog and has gone 5 mm (a loaded host answers late)
+    moving = pump(APP, 10, lambda: s.state == "jog" and s.position.x > before.x + 5)
     mouse(panel.jog_buttons["+X"], "release")
-    check(moving == "jog" and pump(APP, 2, lambda: s.state == "idle") and s.position.x > before.x + 5,
+    check(moving and pump(APP, 5, lambda: s.state == "idle") and s.position.x > before.x + 5,
           "a held +X jogged the machine in the real window: %s -> %s" % (before, s.position))
     check(all(b.mapToGlobal(QtCore.QPoint(0, 0)) == layout[n] for n, b in panel.jog_buttons.items()),
           "no event moved a jog button")

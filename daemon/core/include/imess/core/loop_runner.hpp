@@ -53,8 +53,13 @@ class LoopRunner {
 
   // Locks memory and starts the thread; returns what real-time support was granted, in words.
   std::string start(bool want_realtime);
-  // Before start(): each cycle runs at loop time (LoopClock) instead of its wake-up time.
-  void use_loop_time(LoopClock* clock) noexcept { loop_time_ = clock; }
+  // Before start(): each cycle runs at loop time (LoopClock) instead of its wake-up time, and
+  // the cycles come `speed` times a period of wall time (sim.speed: the simulated machine's
+  // clock runs that many times faster than the wall's; 1 is real speed).
+  void use_loop_time(LoopClock* clock, int speed = 1) noexcept {
+    loop_time_ = clock;
+    wall_period_ = period_ / (speed < 1 ? 1 : speed);
+  }
   void stop();
   // Since the start, summarised once a second (Stats).
   const LoopStats& stats() noexcept { return stats_.read(); }
@@ -72,6 +77,7 @@ class LoopRunner {
   const MonotonicClock& clock_;
   LoopClock* loop_time_ = nullptr;
   Nanos period_;
+  Nanos wall_period_ = period_;  // the wall time between cycles: the period, shorter in loop time at sim.speed > 1
   std::atomic<bool> running_{false};
   std::thread thread_;
   std::atomic<bool> realtime_{false};
