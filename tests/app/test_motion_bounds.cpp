@@ -294,14 +294,14 @@ void run_property(const std::string& name, std::uint64_t seed) {
 
 }  // namespace
 
-TEST_CASE("bounded motion on sim-servo-card.json") { run_property("sim-servo-card.json", 1); }
-TEST_CASE("bounded motion on sim-parport-shd.json") { run_property("sim-parport-shd.json", 2); }
-TEST_CASE("bounded motion on sim-parport-3dstep.json") { run_property("sim-parport-3dstep.json", 3); }
-TEST_CASE("bounded motion on sim-portio-drive.json") { run_property("sim-portio-drive.json", 4); }
-TEST_CASE("bounded motion on sim-portio-drive-map-a.json") { run_property("sim-portio-drive-map-a.json", 5); }
-TEST_CASE("bounded motion on sim-servo-card-request-reply.json") { run_property("sim-servo-card-request-reply.json", 6); }
-TEST_CASE("bounded motion on sim-mrm-arm.json") { run_property("sim-mrm-arm.json", 7); }
-TEST_CASE("bounded motion on sim-servo-card-loop-time.json") { run_property("sim-servo-card-loop-time.json", 8); }
+TEST_CASE("bounded motion on sim-servo-card.json", "[long]") { run_property("sim-servo-card.json", 1); }
+TEST_CASE("bounded motion on sim-parport-shd.json", "[long]") { run_property("sim-parport-shd.json", 2); }
+TEST_CASE("bounded motion on sim-parport-3dstep.json", "[long]") { run_property("sim-parport-3dstep.json", 3); }
+TEST_CASE("bounded motion on sim-portio-drive.json", "[long]") { run_property("sim-portio-drive.json", 4); }
+TEST_CASE("bounded motion on sim-portio-drive-map-a.json", "[long]") { run_property("sim-portio-drive-map-a.json", 5); }
+TEST_CASE("bounded motion on sim-servo-card-request-reply.json", "[long]") { run_property("sim-servo-card-request-reply.json", 6); }
+TEST_CASE("bounded motion on sim-mrm-arm.json", "[long]") { run_property("sim-mrm-arm.json", 7); }
+TEST_CASE("bounded motion on sim-servo-card-loop-time.json", "[long]") { run_property("sim-servo-card-loop-time.json", 8); }
 
 TEST_CASE("every shipped configuration is covered by the bounded-motion property") {
   std::vector<std::string> shipped;

@@ -59,13 +59,13 @@ void measure_the_part(const std::string& config) {
 
 }  // namespace
 
-TEST_CASE("one behaviour: the servo card measures the part within 5 um") { measure_the_part("backend-servo-card.json"); }
-TEST_CASE("one behaviour: the SHD-adapter stepper measures the part within 5 um") {
+TEST_CASE("one behaviour: the servo card measures the part within 5 um", "[long]") { measure_the_part("backend-servo-card.json"); }
+TEST_CASE("one behaviour: the SHD-adapter stepper measures the part within 5 um", "[long]") {
   measure_the_part("backend-parport-shd.json");
 }
-TEST_CASE("one behaviour: the 3D-Step stepper measures the part within 5 um") {
+TEST_CASE("one behaviour: the 3D-Step stepper measures the part within 5 um", "[long]") {
   measure_the_part("backend-parport-3dstep.json");
 }
-TEST_CASE("one behaviour: the port-I/O drive kit measures the part within 5 um") {
+TEST_CASE("one behaviour: the port-I/O drive kit measures the part within 5 um", "[long]") {
   measure_the_part("backend-portio-drive.json");
 }

@@ -80,7 +80,7 @@ Vector3d vec(const nlohmann::json& j) { return {j[0].get<double>(), j[1].get<dou
 
 }  // namespace
 
-TEST_CASE("messcap captures slantwise touches into .hits from live messd and messcap fit finds the scene's sphere and top") {
+TEST_CASE("messcap captures slantwise touches into .hits from live messd and messcap fit finds the scene's sphere and top", "[long]") {
   DaemonProcess messd({"--config", capture_config()});
   TempDir dir;
   const int port = messd.port();

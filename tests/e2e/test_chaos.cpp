@@ -98,7 +98,7 @@ std::uint64_t last_seq_in(const std::string& path) {
 
 }  // namespace
 
-TEST_CASE("chaos: SIGKILL at random moments while measuring loses no hit and duplicates none") {
+TEST_CASE("chaos: SIGKILL at random moments while measuring loses no hit and duplicates none", "[long]") {
   const auto started = Clock::now();
   std::mt19937 rng(kSeed);
   std::uniform_real_distribution<double> run_for(0.3, 1.5);

@@ -11,7 +11,7 @@
 
 using namespace imess::test;
 
-TEST_CASE("examples/cube: the probing script measures the cube within 1 um") {
+TEST_CASE("examples/cube: the probing script measures the cube within 1 um", "[long]") {
   // 25 probing cycles at 300 mm/s on the default servo card. Its firmware goes on along the
   // last setpoint while one is late and brakes with CommLost when none came for 5 ms; on a
   // two-core virtual test machine even the SCHED_FIFO loop was seen to wake up to 15 ms

@@ -10,7 +10,7 @@
 
 using namespace imess::test;
 
-TEST_CASE("host stalls: 30 ms stops once a second beside two CPU hogs: probe cycles and a program without a fault") {
+TEST_CASE("host stalls: 30 ms stops once a second beside two CPU hogs: probe cycles and a program without a fault", "[long]") {
   DaemonProcess messd({"--config", std::string(IMESS_SOURCE_DIR) + "/tests/e2e/wall-cmm.json"},
                       DaemonProcess::Scheduling::RealtimeIfPermitted);
   busy_host::run_through_stalls(messd.port(), messd.pid(), "host stalls (in-process card)", false);

@@ -29,7 +29,7 @@ const json& characteristic(const json& report, const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("messcap inspect: the worked-example cube measured live matches the simulated part") {
+TEST_CASE("messcap inspect: the worked-example cube measured live matches the simulated part", "[long]") {
   // As test_cube_example.cpp: brisk speeds, the simulated machine in loop time (a stalled
   // loop on a loaded test machine pauses the simulation instead of faulting the card link).
   DaemonProcess messd({"--config", std::string(IMESS_SOURCE_DIR) + "/tests/e2e/fast-cmm.json"},

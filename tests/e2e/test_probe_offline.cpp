@@ -75,6 +75,6 @@ static void offline_sequence(const std::string& config) {
   c.send("Quit");
 }
 
-TEST_CASE("DirectCMM offline sequence on the simulated 3D-Step machine: hit, miss (PartNotFound), unexpected hit") {
+TEST_CASE("DirectCMM offline sequence on the simulated 3D-Step machine: hit, miss (PartNotFound), unexpected hit", "[long]") {
   offline_sequence("backend-parport-3dstep.json");
 }

@@ -52,7 +52,7 @@ double after(const std::string& line, const std::string& word, int skip = 0) {
 
 }  // namespace
 
-TEST_CASE("messcap qualify measures the simulated ball on the reference sphere and messd takes it over") {
+TEST_CASE("messcap qualify measures the simulated ball on the reference sphere and messd takes it over", "[long]") {
   DaemonProcess messd({"--config", config()}, DaemonProcess::Scheduling::RealtimeIfPermitted);
   TempDir dir;
   const auto sphere = imess::sim::reference_sphere();

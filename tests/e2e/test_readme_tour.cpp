@@ -137,7 +137,7 @@ class PtyProcess {
 
 }  // namespace
 
-TEST_CASE("README tour steps 1-6 and 8: telnet, messjog, messcap, messmon, the queue, the outputs") {
+TEST_CASE("README tour steps 1-6 and 8: telnet, messjog, messcap, messmon, the queue, the outputs", "[long]") {
   DaemonProcess messd(as_scripts_run_in_loop_time());  // step 1
   // Step 2: telnet. Help, a touch of the top, Replay, Status, Get, GoTo, Stats.
   LineClient telnet(messd.port());
@@ -230,7 +230,7 @@ TEST_CASE("README tour steps 1-6 and 8: telnet, messjog, messcap, messmon, the q
   CHECK(telnet.until_prefix("Done 2", 5.0));
 }
 
-TEST_CASE("README tour step 7: measure_cube.py and Align by hand, with telnet open") {
+TEST_CASE("README tour step 7: measure_cube.py and Align by hand, with telnet open", "[long]") {
   DaemonProcess messd(as_scripts_run_in_loop_time());
   LineClient telnet(messd.port());
   telnet_touches_the_top(telnet);
@@ -272,7 +272,7 @@ TEST_CASE("README tour step 7: measure_cube.py and Align by hand, with telnet op
   CHECK(std::regex_search(*align, std::regex(R"(^Ok Align cube Origin 400\.26\d\d 299\.68\d\d 80\.0000 .* Hits \d+-\d+ \d+,\d+ \d+$)")));
 }
 
-TEST_CASE("README tour step 7: messcap inspect, with telnet open") {
+TEST_CASE("README tour step 7: messcap inspect, with telnet open", "[long]") {
   DaemonProcess messd(as_scripts_run_in_loop_time());
   LineClient telnet(messd.port());
   telnet_touches_the_top(telnet);
@@ -287,7 +287,7 @@ TEST_CASE("README tour step 7: messcap inspect, with telnet open") {
   CHECK(telnet.request("Frames") == std::optional<std::string>("Ok Frames Active cube-1996 Names machine cube-1996"));
 }
 
-TEST_CASE("README tour step 7: messcap qualify, with telnet open") {
+TEST_CASE("README tour step 7: messcap qualify, with telnet open", "[long]") {
   DaemonProcess messd(as_scripts_run_in_loop_time());
   LineClient telnet(messd.port());
   telnet_touches_the_top(telnet);
@@ -301,7 +301,7 @@ TEST_CASE("README tour step 7: messcap qualify, with telnet open") {
   CHECK(telnet.until_prefix("Qualified TipRadius", 5.0));
 }
 
-TEST_CASE("README tour steps 9-10: a program in telnet, messprog run, an I++ DME session, with telnet open") {
+TEST_CASE("README tour steps 9-10: a program in telnet, messprog run, an I++ DME session, with telnet open", "[long]") {
   {
     DaemonProcess messd(as_scripts_run_in_loop_time());
     LineClient telnet(messd.port());

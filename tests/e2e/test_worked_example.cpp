@@ -17,7 +17,7 @@ using namespace imess::test;
 using Eigen::Vector3d;
 
 
-TEST_CASE("the 1996 worked example: cube and bore reconstructed within 5 um") {
+TEST_CASE("the 1996 worked example: cube and bore reconstructed within 5 um", "[long]") {
   DaemonProcess messd({"--config", std::string(IMESS_SOURCE_DIR) + "/tests/e2e/fast-cmm.json"});
   LineClient c(messd.port());
   MeasuringOperator op(c);

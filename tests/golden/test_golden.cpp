@@ -32,7 +32,7 @@ std::string replayed(const std::string& text, const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("every golden transcript replays byte for byte") {
+TEST_CASE("every golden transcript replays byte for byte", "[long]") {
   const char* regenerate = std::getenv("IMESS_GOLDEN_REGENERATE");
   const char* only = std::getenv("IMESS_GOLDEN_ONLY");
   const auto files = golden_files();

@@ -67,7 +67,7 @@ namespace {
 constexpr int kActions = 80;
 }  // namespace
 
-TEST_CASE("I++ DME properties: random sessions on every configuration with an I++ server") {
+TEST_CASE("I++ DME properties: random sessions on every configuration with an I++ server", "[long]") {
   const auto configs = ipp_configs();
   REQUIRE(configs.size() >= 6);  // the six X Y Z machines shipped today; a new one joins by itself
   Counts total;
@@ -152,7 +152,7 @@ std::optional<std::vector<Entry>> mutated(const std::vector<Entry>& out, const M
 
 }  // namespace
 
-TEST_CASE("I++ DME properties: the rules catch what they are about (a lost or doubled %, a wrong severity, a missing CR, ...)") {
+TEST_CASE("I++ DME properties: the rules catch what they are about (a lost or doubled %, a wrong severity, a missing CR, ...)", "[long]") {
   const std::string config = "config/sim-servo-card.json";
   const Machine m = machine_of(config);
   auto is_ack = [](const std::string& t) { return t.size() == 7 && t.substr(5) == " %"; };

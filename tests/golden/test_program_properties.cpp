@@ -1108,7 +1108,7 @@ constexpr int kActions = 70;
 
 }  // namespace
 
-TEST_CASE("program runner properties: random sessions on every configuration that runs programs") {
+TEST_CASE("program runner properties: random sessions on every configuration that runs programs", "[long]") {
   const auto configs = program_configs();
   // The six shipped today; a new one with a "programs" section joins by itself.
   REQUIRE(configs.size() >= 6);

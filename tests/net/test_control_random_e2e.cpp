@@ -66,7 +66,7 @@ TEST_CASE("random commands from three sessions: only the owner moves the machine
   }
 }
 
-TEST_CASE("random commands with a short handover: only an idle owner hands over, a busy one never") {
+TEST_CASE("random commands with a short handover: only an idle owner hands over, a busy one never", "[long]") {
   using Clock = std::chrono::steady_clock;
   constexpr double kHandover = 0.3, kLate = 0.15;  // s; beyond handover + late the daemon has surely seen the silence
   TempConfig config(R"({ "control": { "handover_s": 0.3 } })");

@@ -50,7 +50,7 @@ TEST_CASE("an owner idle for handover_s hands control to the next client that as
   CHECK(starts_with(panel.request("StartMv 20 0 0"), "Err 209 "));
 }
 
-TEST_CASE("queued moves, running or paused, keep control with their owner however long it is silent") {
+TEST_CASE("queued moves, running or paused, keep control with their owner however long it is silent", "[long]") {
   TempConfig config(kHandover);
   DaemonProcess messd({"--config", config.path()});
   LineClient script(messd.port()), other(messd.port());
