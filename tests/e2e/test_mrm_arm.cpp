@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "daemon_process.hpp"
+#include "private_config.hpp"
 
 using namespace imess::test;
 
@@ -26,7 +27,9 @@ std::map<char, double> ax_pos(const std::string& line) {
 }  // namespace
 
 TEST_CASE("the MRM arm over TCP: one MoveTo moves X Y C U V together — AxPos shows all five") {
-  DaemonProcess messd({"--config", std::string(IMESS_SOURCE_DIR) + "/config/sim-mrm-arm.json"});
+  // a port space of its own: another test may run messd on the shipped file at the same time
+  const std::string config = private_port_config(std::string(IMESS_SOURCE_DIR) + "/config/sim-mrm-arm.json");
+  DaemonProcess messd({"--config", config});
   LineClient c(messd.port());
   REQUIRE(c.until_prefix("CurrCor ") == std::string("CurrCor 200.000 150.000 0.000"));  // no Z: 0
   auto first = c.until_prefix("AxPos ");
@@ -85,4 +88,5 @@ TEST_CASE("the MRM arm over TCP: one MoveTo moves X Y C U V together — AxPos s
   CHECK(turning);
   CHECK(c.request("JogAx C0") == std::string("Ok JogAx"));
   c.send("Quit");
+  std::filesystem::remove(config);
 }

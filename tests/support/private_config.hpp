@@ -14,13 +14,19 @@
 
 namespace imess::test {
 
-inline std::string private_port_config(const std::string& shipped_path) {
-  std::ifstream in(shipped_path);
+// The port_io key's value, not the same path in the file's _comment.
+inline const std::string kPortFileKey = "\"file\": \"/tmp/imess-ports-";
+
+inline std::string config_file_text(const std::string& path) {
+  std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
-  std::string json = text.str();
-  // The port_io key's value, not the same path in the file's _comment.
-  const std::string key = "\"file\": \"/tmp/imess-ports-";
+  return text.str();
+}
+
+inline std::string private_port_config(const std::string& shipped_path) {
+  std::string json = config_file_text(shipped_path);
+  const std::string& key = kPortFileKey;
   const auto at = json.find(key);
   REQUIRE(at != std::string::npos);
   const auto end = json.find('"', at + key.size());
@@ -31,6 +37,11 @@ inline std::string private_port_config(const std::string& shipped_path) {
   const std::string path = dir + "/imess-test-config-" + tag + ".json";
   std::ofstream(path) << json;
   return path;
+}
+
+// The shipped file itself when it has no simulated port space, else a private copy.
+inline std::string private_config_if_ports(const std::string& shipped_path) {
+  return config_file_text(shipped_path).find(kPortFileKey) == std::string::npos ? shipped_path : private_port_config(shipped_path);
 }
 
 }  // namespace imess::test
