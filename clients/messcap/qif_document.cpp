@@ -31,7 +31,7 @@ void check_same_plan(const QifRunSource& first, const QifRunSource& run) {
     const auto& y = b.characteristics[i];
     if (x.name != y.name || x.type != y.type || x.feature != y.feature || x.other != y.other || x.radius != y.radius ||
         x.lower != y.lower || x.upper != y.upper)
-      differ("characteristic '" + y.name + "' differs from '" + x.name + "' (name, type, features or tolerance)");
+      differ("characteristic " + std::to_string(i + 1) + " ('" + y.name + "') differs in name, type, features or tolerance");
   }
   if (a.datums != b.datums) differ("another alignment");
 }
