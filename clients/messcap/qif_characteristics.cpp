@@ -9,7 +9,7 @@ namespace imess::messcap {
 namespace {
 
 // QIF's name of a characteristic kind ("Diameter", "DistanceBetween", …).
-std::string qif_kind(const SavedCharacteristic& c) {
+std::string characteristic_tag(const SavedCharacteristic& c) {
   if (c.type == "size") return c.radius ? "Radius" : "Diameter";
   if (c.type == "position") return "Position";
   if (c.type == "distance") return "DistanceBetween";
@@ -124,7 +124,7 @@ void write_characteristics(XmlWriter& w, const SavedInspection& plan, const QifI
   w.open("CharacteristicDefinitions", {{"n", n}});
   for (std::size_t i = 0; i < cs.size(); ++i) {
     const auto& c = cs[i];
-    const std::string tag = qif_kind(c) + "CharacteristicDefinition";
+    const std::string tag = characteristic_tag(c) + "CharacteristicDefinition";
     w.open(tag, {{"id", std::to_string(ids.characteristics[i].definition)}});
     if (!c.zone) {  // size, distance, angle: limits of the deviation
       w.open("Tolerance");
@@ -152,7 +152,7 @@ void write_characteristics(XmlWriter& w, const SavedInspection& plan, const QifI
   w.open("CharacteristicNominals", {{"n", n}});
   for (std::size_t i = 0; i < cs.size(); ++i) {
     const auto& c = cs[i];
-    const std::string tag = qif_kind(c) + "CharacteristicNominal";
+    const std::string tag = characteristic_tag(c) + "CharacteristicNominal";
     w.open(tag, {{"id", std::to_string(ids.characteristics[i].nominal)}});
     w.leaf("CharacteristicDefinitionId", std::to_string(ids.characteristics[i].definition));
     if (!c.zone && c.nominal) w.leaf("TargetValue", qif_number(*c.nominal, 9));
@@ -163,7 +163,7 @@ void write_characteristics(XmlWriter& w, const SavedInspection& plan, const QifI
   w.open("CharacteristicItems", {{"n", n}});
   for (std::size_t i = 0; i < cs.size(); ++i) {
     const auto& c = cs[i];
-    const std::string tag = qif_kind(c) + "CharacteristicItem";
+    const std::string tag = characteristic_tag(c) + "CharacteristicItem";
     w.open(tag, {{"id", std::to_string(ids.characteristics[i].item)}});
     w.leaf("Name", c.name);
     std::vector<unsigned> items{ids.features.at(c.feature).item};
@@ -183,7 +183,7 @@ void write_measured_characteristics(XmlWriter& w, const SavedInspection& run, co
   w.open("CharacteristicMeasurements", {{"n", std::to_string(run.characteristics.size())}});
   for (std::size_t i = 0; i < run.characteristics.size(); ++i) {
     const auto& c = run.characteristics[i];
-    const std::string tag = qif_kind(c) + "CharacteristicMeasurement";
+    const std::string tag = characteristic_tag(c) + "CharacteristicMeasurement";
     w.open(tag, {{"id", std::to_string(run_ids.characteristic_measurements[i])}});
     if (c.deviation) {
       w.open("Attributes", {{"n", "1"}});

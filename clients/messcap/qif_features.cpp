@@ -10,17 +10,17 @@ namespace imess::messcap {
 namespace {
 
 // "Plane", "Circle", … as QIF spells its feature kinds.
-std::string qif_kind(const std::string& type) {
+std::string feature_tag(const std::string& type) {
   std::string k = type;
   if (!k.empty()) k[0] = static_cast<char>(k[0] - 'a' + 'A');
   return k;
 }
 
-bool has_size(const std::string& type) { return type == "circle" || type == "sphere" || type == "cylinder" || type == "cone"; }
+bool has_diameter(const std::string& type) { return type == "circle" || type == "sphere" || type == "cylinder" || type == "cone"; }
 
 // Location / Normal / Axis …, in the order both the nominal and the measurement types take them
 // (the measurement's Diameter and Form are written by the caller).
-void geometry(XmlWriter& w, const SavedGeometry& g) {
+void write_geometry(XmlWriter& w, const SavedGeometry& g) {
   if (g.type == "point" || g.type == "plane" || g.type == "circle") {
     w.leaf("Location", qif_vector(g.point));
     w.leaf("Normal", qif_vector(g.direction, 9));
@@ -59,9 +59,9 @@ void write_features(XmlWriter& w, const SavedInspection& plan, const QifIds& ids
   w.open("Features");
   w.open("FeatureDefinitions", {{"n", n}});
   for (const auto& f : plan.features) {
-    const std::string tag = qif_kind(f.nominal.type) + "FeatureDefinition";
+    const std::string tag = feature_tag(f.nominal.type) + "FeatureDefinition";
     const std::string id = std::to_string(ids.features.at(f.name).definition);
-    if (!has_size(f.nominal.type)) {
+    if (!has_diameter(f.nominal.type)) {
       w.empty(tag, {{"id", id}});
       continue;
     }
@@ -74,17 +74,17 @@ void write_features(XmlWriter& w, const SavedInspection& plan, const QifIds& ids
   w.close("FeatureDefinitions");
   w.open("FeatureNominals", {{"n", n}});
   for (const auto& f : plan.features) {
-    const std::string tag = qif_kind(f.nominal.type) + "FeatureNominal";
+    const std::string tag = feature_tag(f.nominal.type) + "FeatureNominal";
     const auto& d = ids.features.at(f.name);
     w.open(tag, {{"id", std::to_string(d.nominal)}});
     w.leaf("FeatureDefinitionId", std::to_string(d.definition));
-    geometry(w, f.nominal);
+    write_geometry(w, f.nominal);
     w.close(tag);
   }
   w.close("FeatureNominals");
   w.open("FeatureItems", {{"n", n}});
   for (const auto& f : plan.features) {
-    const std::string tag = qif_kind(f.nominal.type) + "FeatureItem";
+    const std::string tag = feature_tag(f.nominal.type) + "FeatureItem";
     const auto& d = ids.features.at(f.name);
     w.open(tag, {{"id", std::to_string(d.item)}});
     w.leaf("FeatureNominalId", std::to_string(d.nominal));
@@ -106,7 +106,7 @@ void write_measured_features(XmlWriter& w, const SavedInspection& run, const Qif
                              unsigned device) {
   w.open("MeasuredFeatures", {{"n", std::to_string(run.features.size())}});
   for (const auto& f : run.features) {
-    const std::string tag = qif_kind(f.nominal.type) + "FeatureMeasurement";
+    const std::string tag = feature_tag(f.nominal.type) + "FeatureMeasurement";
     w.open(tag, {{"id", std::to_string(run_ids.feature_measurements.at(f.name))}});
     w.leaf("FeatureItemId", std::to_string(ids.features.at(f.name).item));
     if (!run.time.empty()) w.leaf("TimeStamp", run.time);
@@ -119,15 +119,15 @@ void write_measured_features(XmlWriter& w, const SavedInspection& run, const Qif
     if (f.actual) {
       const SavedGeometry& g = *f.actual;
       if (g.type == "cone") {
-        geometry(w, g);
+        write_geometry(w, g);
         w.leaf("Diameter", qif_number(g.diameter));
         w.leaf("FullAngle", qif_number(g.apex_angle_deg, 9));
         w.leaf("Form", qif_number(f.form));
       } else if (g.type == "point") {
-        geometry(w, g);  // a point has no form
+        write_geometry(w, g);  // a point has no form
       } else {
-        geometry(w, g);
-        if (has_size(g.type)) w.leaf("Diameter", qif_number(g.diameter));
+        write_geometry(w, g);
+        if (has_diameter(g.type)) w.leaf("Diameter", qif_number(g.diameter));
         w.leaf("Form", qif_number(f.form));
       }
     }

@@ -63,7 +63,7 @@ class ReportReader {
   std::string source_;
 };
 
-SavedGeometry geometry(const ReportReader& r, const json& j, const std::string& path) {
+SavedGeometry read_geometry(const ReportReader& r, const json& j, const std::string& path) {
   SavedGeometry g;
   g.type = r.text(r.member(j, path, "type"), ReportReader::join(path, "type"));
   auto at = [&](const char* key) { return ReportReader::join(path, key); };
@@ -94,7 +94,7 @@ SavedGeometry geometry(const ReportReader& r, const json& j, const std::string& 
 const char* const kCharacteristicTypes[] = {"size",     "position",  "distance",         "angle",      "flatness",
                                             "roundness", "cylindricity", "perpendicularity", "parallelism"};
 
-SavedCharacteristic characteristic(const ReportReader& r, const json& j, const std::string& path) {
+SavedCharacteristic read_characteristic(const ReportReader& r, const json& j, const std::string& path) {
   SavedCharacteristic c;
   auto at = [&](const char* key) { return ReportReader::join(path, key); };
   c.name = r.text(r.member(j, path, "name"), at("name"));
@@ -166,9 +166,9 @@ SavedInspection parse_saved_inspection(std::string_view json_text, std::string_v
     const double n = r.number(r.member(j, path, "points"), path + ".points");
     if (n < 0 || n != std::floor(n) || n > 1e9) r.fail(path + ".points", "expected a count of points");
     f.points = static_cast<std::size_t>(n);
-    f.nominal = geometry(r, r.member(j, path, "nominal"), path + ".nominal");
+    f.nominal = read_geometry(r, r.member(j, path, "nominal"), path + ".nominal");
     if (const json* a = r.optional_member(j, "actual")) {
-      f.actual = geometry(r, *a, path + ".actual");
+      f.actual = read_geometry(r, *a, path + ".actual");
       if (f.actual->type != f.nominal.type) r.fail(path + ".actual.type", "expected '" + f.nominal.type + "' as the nominal");
       f.compensated = r.boolean(r.member(j, path, "compensated"), path + ".compensated");
       f.form = r.number(r.member(j, path, "form"), path + ".form");
@@ -183,7 +183,7 @@ SavedInspection parse_saved_inspection(std::string_view json_text, std::string_v
   const json& chars = r.array(doc, "", "characteristics");
   for (std::size_t i = 0; i < chars.size(); ++i) {
     const std::string path = ReportReader::index("characteristics", i);
-    auto c = characteristic(r, chars[i], path);
+    auto c = read_characteristic(r, chars[i], path);
     if (!char_names.insert(c.name).second) r.fail(path + ".name", "'" + c.name + "' named twice");
     if (!names.count(c.feature)) r.fail(path + ".feature", "no feature '" + c.feature + "' in \"features\"");
     if (!c.other.empty() && !names.count(c.other)) r.fail(path, "no feature '" + c.other + "' in \"features\"");

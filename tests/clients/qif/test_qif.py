@@ -40,6 +40,85 @@ def cube_points(plan, path, shift_right):
                 f.write(f"{feature['name']} {p[0] + 400 + shift} {p[1] + 300} {p[2]}\n")
 
 
+def every_kind_report():
+    """A report as messcap inspect --json writes it, with every feature kind (and a feature whose fit
+    failed) and every characteristic kind (and one not evaluated): the writer's every branch."""
+    def feature(name, nominal, actual=None, n=3):
+        f = {"name": name, "points": n, "nominal": nominal}
+        if actual:
+            f.update(actual=actual, compensated=True, form=0.0012, rms=0.0004)
+        else:
+            f["error"] = "circle fit needs 3 points, got 2"
+        return f
+    pl = lambda z: {"type": "plane", "point": [0, 0, z], "normal": [0, 0, 1]}  # noqa: E731
+    features = [
+        feature("p", {"type": "point", "point": [10, 0, 5], "normal": [1, 0, 0]},
+                {"type": "point", "point": [10.002, 0, 5], "normal": [1, 0, 0]}, 1),
+        feature("l", {"type": "line", "point": [0, 0, 5], "direction": [1, 0, 0]},
+                {"type": "line", "point": [0, 0.001, 5], "direction": [1, 0, 0]}),
+        feature("base", pl(0), pl(0.001), 4),
+        feature("top", pl(20), pl(20.003), 4),
+        feature("c", {"type": "circle", "center": [30, 30, 20], "normal": [0, 0, 1], "diameter": 10, "inner": True},
+                {"type": "circle", "center": [30.001, 30, 20], "normal": [0, 0, 1], "diameter": 10.004, "inner": True}),
+        feature("s", {"type": "sphere", "center": [50, 50, 30], "diameter": 25, "inner": False},
+                {"type": "sphere", "center": [50, 50.002, 30], "diameter": 24.998, "inner": False}, 5),
+        feature("cy", {"type": "cylinder", "point": [30, 30, 0], "axis": [0, 0, 1], "diameter": 10, "inner": True},
+                {"type": "cylinder", "point": [30, 30, 0], "axis": [0, 0, 1], "diameter": 10.003, "inner": True}, 6),
+        feature("co", {"type": "cone", "point": [70, 0, 0], "axis": [0, 0, 1], "diameter": 20, "apex_angle_deg": 60,
+                       "inner": False},
+                {"type": "cone", "point": [70, 0, 0], "axis": [0, 0, 1], "diameter": 20.01, "apex_angle_deg": 60.02,
+                 "inner": False}, 6),
+        feature("broken", {"type": "circle", "center": [0, 50, 20], "normal": [0, 0, 1], "diameter": 8, "inner": True},
+                None, 2),
+    ]
+
+    def char(name, kind, feature, lower, upper, actual, other=None, unit="mm", **extra):
+        zone = kind not in ("size", "distance", "angle")
+        c = {"name": name, "type": kind, "feature": feature, "unit": unit, "zone": zone, "lower": lower, "upper": upper}
+        if other:
+            c["datum" if kind in ("perpendicularity", "parallelism") else "other"] = other
+        c.update(extra)
+        if actual is None:
+            c["error"] = "feature 'broken' has no fit"
+        else:
+            nominal = extra.pop("nominal_value", 0.0)
+            c.pop("nominal_value", None)
+            dev = actual if zone else actual - nominal
+            c.update(nominal=nominal, actual=actual, deviation=round(dev, 9), in_tolerance=lower <= dev <= upper)
+        return c
+    chars = [
+        char("s dia", "size", "s", -0.01, 0.01, 24.998, nominal_value=25),
+        char("c radius", "size", "c", -0.01, 0.01, 5.002, nominal_value=5, radius=True),
+        char("co dia", "size", "co", -0.005, 0.005, 20.01, nominal_value=20),
+        char("p pos", "position", "p", 0, 0.01, 0.004),
+        char("l pos", "position", "l", 0, 0.01, 0.002),
+        char("s pos", "position", "s", 0, 0.01, 0.004),
+        char("cy pos", "position", "cy", 0, 0.01, 0.0),
+        char("p-base", "distance", "p", -0.05, 0.05, 5.001, other="base", nominal_value=5),
+        char("l-base angle", "angle", "l", -0.1, 0.1, 0.02, other="base", unit="deg", nominal_value=0),
+        char("base flat", "flatness", "base", 0, 0.01, 0.0012),
+        char("c round", "roundness", "c", 0, 0.01, 0.0012),
+        char("cy cyl", "cylindricity", "cy", 0, 0.01, 0.0012),
+        char("cy perp", "perpendicularity", "cy", 0, 0.01, 0.003, other="base"),
+        char("l perp", "perpendicularity", "l", 0, 0.01, 0.003, other="cy"),
+        char("top par", "parallelism", "top", 0, 0.01, 0.002, other="base"),
+        char("co par", "parallelism", "co", 0, 0.01, 0.002, other="cy"),
+        char("broken dia", "size", "broken", -0.01, 0.01, None),
+    ]
+    points = []
+    for f in features:
+        for k in range(f["points"]):
+            points.append({"feature": f["name"], "xyz": [k, 2 * k, 3.5], "deviation": 0.001 * k,
+                           "machine": [k + 400, 2 * k + 300, 3.5], "approach": [0, 0, -1], "radius": 1.5})
+    out = sum(1 for c in chars if "actual" in c and not c["in_tolerance"])
+    return {"part": "every-kind", "plan": "every-kind.plan.json", "measured": "points from every-kind.txt",
+            "time": "2026-11-29T10:00:00Z", "units": {"length": "mm", "angle": "deg"},
+            "alignment": {"from": "alignment", "datums": ["base", "l", "p"]},
+            "characteristics": chars, "features": features, "points": points,
+            "summary": {"characteristics": len(chars), "in_tolerance": len(chars) - out - 1,
+                        "out_of_tolerance": out, "not_evaluated": 1}}
+
+
 def main(messcap, source):
     t0 = time.monotonic()
     tmp = tempfile.TemporaryDirectory(prefix="imess-qif-")
@@ -71,14 +150,20 @@ def main(messcap, source):
     r = run(messcap, "convert", f("off.json"), f("good.json"), f("two.qif"))
     check(r.returncode == 0 and "2 inspection runs written" in r.stderr, f"convert of two reports ({r.stderr.strip()})")
 
-    written = [f("off.qif"), f("good.qif"), f("stdout.qif"), f("converted.qif"), f("two.qif")]
+    # Every feature and characteristic kind, a failed fit, a characteristic not evaluated.
+    with open(f("every.json"), "w") as fp:
+        json.dump(every_kind_report(), fp, indent=1)
+    r = run(messcap, "convert", f("every.json"), f("every.qif"))
+    check(r.returncode == 0, f"convert of a report with every feature and characteristic kind ({r.stderr.strip()})")
+
+    written = [f("off.qif"), f("good.qif"), f("stdout.qif"), f("converted.qif"), f("two.qif"), f("every.qif")]
     t1 = time.monotonic()
     verdict = qif_check.validate(source, written)
     t_validate = time.monotonic() - t1
     for p in written:
         check(verdict[p] is None, f"{os.path.basename(p)} validates against the QIF 3.0 schemas {verdict[p] or ''}")
     pairs = [(f("off.qif"), [f("off.json")]), (f("good.qif"), [f("good.json")]), (f("converted.qif"), [f("off.json")]),
-             (f("two.qif"), [f("off.json"), f("good.json")])]
+             (f("two.qif"), [f("off.json"), f("good.json")]), (f("every.qif"), [f("every.json")])]
     for qif, reports in pairs:
         try:
             qif_check.compare(qif, reports)
