@@ -137,7 +137,7 @@ SavedInspection parse_saved_inspection(std::string_view json_text, std::string_v
   json doc;
   try {
     doc = json::parse(json_text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number beyond a double
     r.fail("(document)", std::string("not JSON: ") + e.what());
   }
   if (!doc.is_object()) r.fail("(document)", "expected the JSON object messcap inspect --json writes");
