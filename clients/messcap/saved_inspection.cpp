@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "imess/jsontext/strict_json.hpp"
+
 namespace imess::messcap {
 namespace {
 
@@ -136,9 +138,9 @@ SavedInspection parse_saved_inspection(std::string_view json_text, std::string_v
   const ReportReader r(source);
   json doc;
   try {
-    doc = json::parse(json_text);
-  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number beyond a double
-    r.fail("(document)", std::string("not JSON: ") + e.what());
+    doc = jsontext::parse_strict(json_text, source);
+  } catch (const jsontext::JsonTextError& e) {  // a syntax error, a duplicate key, a number beyond a double
+    throw SavedInspectionError(std::string(e.what()) + " (expected a report of messcap inspect --json)");
   }
   if (!doc.is_object()) r.fail("(document)", "expected the JSON object messcap inspect --json writes");
   SavedInspection s;

@@ -69,7 +69,11 @@ TEST_CASE("a saved inspection report is read whole, and a bad one named by key")
   CHECK(s.points.size() == 5);
 
   CHECK(error_of("[1, 2]") == "r.json: (document): expected the JSON object messcap inspect --json writes");
-  CHECK(error_of("{\"part\": ").rfind("r.json: (document): not JSON: ", 0) == 0);
+  const std::string syntax = error_of("{\"part\": ");
+  CHECK(syntax.rfind("r.json:", 0) == 0);
+  CHECK(syntax.find("(expected a report of messcap inspect --json)") != std::string::npos);
+  CHECK(error_of(report("\"part\": \"plate\",", "\"part\": \"plate\", \"part\": \"lid\",")).find("part") !=
+        std::string::npos);  // a duplicate key
   CHECK(error_of(report("\"part\": \"plate\",", "")) == "r.json: part: missing");
   CHECK(error_of(report("\"actual\": 0.002", "\"actual\": \"0.002\"")) ==
         "r.json: characteristics[0].actual: expected a number");
