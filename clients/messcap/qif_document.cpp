@@ -2,6 +2,7 @@
 // part, and the results of every run; the ids are all given out before anything is written.
 #include "qif_document.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <random>
@@ -21,17 +22,26 @@ void check_same_plan(const QifRunSource& first, const QifRunSource& run) {
   const SavedInspection& b = run.run;
   if (a.part != b.part) differ("part '" + b.part + "', not '" + a.part + "'");
   if (a.features.size() != b.features.size()) differ("another number of features");
-  for (std::size_t i = 0; i < a.features.size(); ++i)
-    if (a.features[i].name != b.features[i].name || a.features[i].nominal.type != b.features[i].nominal.type)
-      differ("feature " + std::to_string(i + 1) + " is the " + b.features[i].nominal.type + " '" + b.features[i].name +
-             "', not the " + a.features[i].nominal.type + " '" + a.features[i].name + "'");
+  for (std::size_t i = 0; i < a.features.size(); ++i) {
+    const SavedGeometry& x = a.features[i].nominal;
+    const SavedGeometry& y = b.features[i].nominal;
+    if (a.features[i].name != b.features[i].name || x.type != y.type)
+      differ("feature " + std::to_string(i + 1) + " is the " + y.type + " '" + b.features[i].name + "', not the " +
+             x.type + " '" + a.features[i].name + "'");
+    const double nm = 1e-6;  // the reports' resolution
+    if ((x.point - y.point).norm() > nm || (x.direction - y.direction).norm() > 1e-9 ||
+        std::abs(x.diameter - y.diameter) > nm || std::abs(x.apex_angle_deg - y.apex_angle_deg) > 1e-9 ||
+        x.inner != y.inner)
+      differ("feature '" + b.features[i].name + "' has another nominal geometry");
+  }
   if (a.characteristics.size() != b.characteristics.size()) differ("another number of characteristics");
   for (std::size_t i = 0; i < a.characteristics.size(); ++i) {
     const auto& x = a.characteristics[i];
     const auto& y = b.characteristics[i];
     if (x.name != y.name || x.type != y.type || x.feature != y.feature || x.other != y.other || x.radius != y.radius ||
-        x.lower != y.lower || x.upper != y.upper)
-      differ("characteristic " + std::to_string(i + 1) + " ('" + y.name + "') differs in name, type, features or tolerance");
+        x.lower != y.lower || x.upper != y.upper || (x.nominal && y.nominal && std::abs(*x.nominal - *y.nominal) > 1e-6))
+      differ("characteristic " + std::to_string(i + 1) + " ('" + y.name +
+             "') differs in name, type, features, nominal or tolerance");
   }
   if (a.datums != b.datums) differ("another alignment");
 }

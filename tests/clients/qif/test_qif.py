@@ -204,6 +204,15 @@ def main(messcap, source):
     r = run(messcap, "convert", f("bad.json"), f("bad.qif"))
     check(r.returncode == 1 and "bad.json: characteristics[3].actual: expected a number" in r.stderr
           and not os.path.exists(f("bad.qif")), f"a bad report named by key ({r.stderr.strip()})")
+    with open(f("moved.json"), "w") as fp:
+        moved = json.load(open(f("good.json")))
+        moved["features"][4]["nominal"]["point"][0] += 1.0
+        json.dump(moved, fp)
+    r = run(messcap, "convert", f("good.json"), f("moved.json"), f("mixed.qif"))
+    check(r.returncode == 1 and f"feature '{moved['features'][4]['name']}' has another nominal geometry" in r.stderr,
+          f"a report whose plan moved a feature refused ({r.stderr.strip()})")
+    r = run(messcap, "inspect", plan_path, "--points", f("good.txt"), "--json", "-", "--qif", "-")
+    check(r.returncode == 2 and "both want stdout" in r.stderr, "--json - and --qif - together refused")
     r = run(messcap, "convert", f("off.json"), f("off.qif"))
     check(r.returncode == 1 and "exists; add --force" in r.stderr, "an existing QIF is not replaced without --force")
     r = run(messcap, "convert", f("off.json"), f("off.qif"), "--force")
