@@ -1,5 +1,5 @@
 // messcap inspect: the plan, the points (from a file or measured live), the evaluation, the
-// table on the terminal and the JSON / HTML reports.
+// table on the terminal and the JSON / HTML reports, and the QIF document written from the JSON.
 #include "inspect_command.hpp"
 
 #include <charconv>
@@ -10,8 +10,8 @@
 #include "imess/metrology/inspection_points.hpp"
 #include "inspect_report.hpp"
 #include "inspect_session.hpp"
-#include "qif_document.hpp"
 #include "option_value.hpp"
+#include "qif_document.hpp"
 #include "text_file.hpp"
 
 namespace imess::messcap {
