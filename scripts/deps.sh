@@ -19,6 +19,7 @@ imess_package_packages=(dpkg-dev)
 # chromium, its chromedriver and python3-selenium drive the web panel in a real browser (tests/web).
 imess_test_packages=(python3-ezdxf freecad-python3 xvfb chromium chromium-driver python3-selenium
                      "${imess_bench_packages[@]}" "${imess_package_packages[@]}")  # python3 among them
+imess_test_packages+=(libxml2-utils)  # xmllint: messcap's QIF documents validated against the QIF 3.0 schemas (tests/data/qif)
 # LinuxCNC's own G-code interpreter, rs274 (tests/programs/test_rs274.cpp judges ours by it);
 # without its recommendations, which would bring a real-time kernel and a desktop.
 imess_test_packages_bare=(linuxcnc-uspace)

@@ -15,6 +15,7 @@
 #include "imess/exchange/export_format.hpp"
 #include "option_value.hpp"
 #include "point_input.hpp"
+#include "qif_convert.hpp"
 
 namespace imess::messcap {
 namespace {
@@ -67,6 +68,7 @@ ConvertOptions parse_convert_options(int argc, const char* const argv[]) {
 }  // namespace
 
 int run_convert_command(int argc, const char* const argv[]) {
+  if (converts_to_qif(argc, argv)) return run_qif_convert(argc, argv);
   ConvertOptions o;
   try {
     for (int i = 2; i < argc; ++i) {

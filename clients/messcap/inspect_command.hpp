@@ -1,4 +1,5 @@
-// `messcap inspect PLAN [--points FILE | HOST[:PORT]] [--json OUT] [--html OUT] [--feed MM_S]`:
+// `messcap inspect PLAN [--points FILE | HOST[:PORT]] [--json OUT] [--html OUT] [--qif OUT]
+// [--operator NAME] [--feed MM_S]`:
 // nominal-versus-actual inspection of a part by an inspection plan (docs/clients.md).
 #pragma once
 

@@ -63,6 +63,9 @@ std::string inspection_json(const metrology::InspectionPlan& plan, const metrolo
   doc["part"] = plan.part;
   doc["plan"] = source.plan;
   doc["measured"] = source.measured;
+  if (!source.time.empty()) doc["time"] = source.time;
+  if (!source.machine.empty()) doc["machine"] = source.machine;
+  if (!source.operator_name.empty()) doc["operator"] = source.operator_name;
   doc["units"] = {{"length", "mm"}, {"angle", "deg"}};
   const auto& a = result.alignment;
   json al;

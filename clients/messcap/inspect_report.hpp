@@ -12,7 +12,10 @@ namespace imess::messcap {
 
 struct ReportSource {
   std::string plan;      // the plan file
-  std::string measured;  // "messd at HOST:PORT" or "points from FILE"
+  std::string measured;  // "measured on messd at HOST:PORT" or "points from FILE"
+  std::string time;      // when measured (live) or evaluated (--points), ISO 8601 UTC
+  std::string machine;   // "messd at HOST:PORT" when measured live, else empty
+  std::string operator_name;  // --operator, may be empty
 };
 
 // One line per characteristic: nominal, actual, deviation, tolerance, ok / OUT / --.

@@ -3,7 +3,9 @@
 // every characteristic must come out as the simulated part is made — the 120/100/80 sizes, the
 // 30 mm bore at the centre, the 10 mm fillet, perfect form and orientation; the 0.3 degree turn
 // shows in the part frame, not as a deviation; tip-radius compensation puts every point on its
-// nominal surface. The JSON report, read back with --points, gives the same figures.
+// nominal surface. The JSON report, read back with --points, gives the same figures. The QIF
+// document of the same run (--qif) is valid by the QIF 3.0 schemas and holds the report's figures
+// (tests/clients/qif/qif_check.py).
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -37,7 +39,8 @@ TEST_CASE("messcap inspect: the worked-example cube measured live matches the si
   TempDir dir;
   const std::string plan = std::string(IMESS_SOURCE_DIR) + "/examples/cube-1996.plan.json";
   const auto run = run_program({client_binary("messcap"), "inspect", plan, "127.0.0.1:" + std::to_string(messd.port()),
-                                "--feed", "300", "--json", dir.file("cube.json"), "--html", dir.file("cube.html")},
+                                "--feed", "300", "--json", dir.file("cube.json"), "--html", dir.file("cube.html"),
+                                "--qif", dir.file("cube.qif"), "--operator", "tester"},
                                240s);
   INFO("stdout:\n" << run.out << "\nstderr:\n" << run.err);
   REQUIRE(run.status == 0);
@@ -98,6 +101,19 @@ TEST_CASE("messcap inspect: the worked-example cube measured live matches the si
   CHECK(html.find("src=") == std::string::npos);
   CHECK(html.find("href=") == std::string::npos);
   CHECK(html.find("13 in tolerance") != std::string::npos);
+
+  // The run as QIF 3.0: valid, every characteristic's value, deviation and status, every fitted
+  // feature and point the JSON report's; the machine and the operator recorded.
+  CHECK(report["machine"] == "messd at 127.0.0.1:" + std::to_string(messd.port()));
+  CHECK(report["operator"] == "tester");
+  const auto qif = run_program({"/usr/bin/python3", std::string(IMESS_SOURCE_DIR) + "/tests/clients/qif/qif_check.py",
+                                IMESS_SOURCE_DIR, dir.file("cube.qif"), dir.file("cube.json")},
+                               30s);
+  INFO("qif_check:\n" << qif.out << qif.err);
+  CHECK(qif.status == 0);
+  const std::string qif_text = read_file(dir.file("cube.qif"));
+  CHECK(qif_text.find("<Name>messd at 127.0.0.1:" + std::to_string(messd.port()) + "</Name>") != std::string::npos);
+  CHECK(qif_text.find("<ProbeRadius>2</ProbeRadius>") != std::string::npos);
 
   // The same points, read back from the report, give the same figures.
   const auto again = run_program({client_binary("messcap"), "inspect", plan, "--points", dir.file("cube.json"), "--json",
