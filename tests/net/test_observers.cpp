@@ -13,8 +13,8 @@ using net::MotionObserver;
 
 namespace {
 struct Recorder : MotionObserver {
-  Recorder(std::string n, std::vector<std::string>& log, std::uint32_t from = 0, std::uint32_t to = 0)
-      : name(std::move(n)), log(log), from(from), to(to) {}
+  Recorder(std::string n, std::vector<std::string>& into, std::uint32_t first = 0, std::uint32_t end = 0)
+      : name(std::move(n)), log(into), from(first), to(end) {}
   bool owns_segment(std::uint32_t id) const override { return id >= from && id < to; }
   void homed() override { log.push_back(name + " homed"); }
   void key(const std::string& k) override {
