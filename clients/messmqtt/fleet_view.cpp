@@ -10,10 +10,39 @@ namespace imess::mqtt {
 
 namespace {
 
+// What a terminal may be sent of a text from the broker: no control characters (an escape
+// sequence would rewrite the screen), at most 40 characters.
+std::string shown(std::string s) {
+  if (s.size() > 40) s = s.substr(0, 37) + "...";
+  for (auto& c : s)
+    if (static_cast<unsigned char>(c) < 32 || c == 127) c = '?';
+  return s;
+}
+
 std::string cell(const nlohmann::json& j) {
   if (j.is_null()) return "-";
-  if (j.is_string()) return j.get<std::string>();
-  return j.dump();
+  if (j.is_string()) return shown(j.get<std::string>());
+  return shown(j.dump(-1, ' ', true, nlohmann::json::error_handler_t::replace));
+}
+
+// Fields read without trusting their type: anyone can publish anything on a broker.
+const nlohmann::json& field(const nlohmann::json& j, const char* key) {
+  static const nlohmann::json none;
+  if (!j.is_object()) return none;
+  const auto it = j.find(key);
+  return it == j.end() ? none : *it;
+}
+bool flag(const nlohmann::json& j, const char* key) {
+  const auto& v = field(j, key);
+  return v.is_boolean() && v.get<bool>();
+}
+std::uint64_t seq_of(const nlohmann::json& j) {
+  const auto& v = field(j, "seq");
+  return v.is_number_unsigned() ? v.get<std::uint64_t>() : 0;
+}
+std::string text(const nlohmann::json& j, const char* key, const std::string& def = "") {
+  const auto& v = field(j, key);
+  return v.is_string() ? v.get<std::string>() : def;
 }
 
 std::string fixed3(const nlohmann::json& v) {
@@ -42,16 +71,15 @@ bool FleetView::fold(std::string_view topic, std::string_view payload) {
   auto& m = machines_[machine];
   if (what == "state") {
     m.state = j;
-    if (j.contains("last_hit") && j["last_hit"].is_object() &&
-        (!m.last_hit.is_object() || j["last_hit"].value("seq", 0ULL) >= m.last_hit.value("seq", 0ULL)))
-      m.last_hit = j["last_hit"];
+    const auto& hit = field(j, "last_hit");
+    if (hit.is_object() && (!m.last_hit.is_object() || seq_of(hit) >= seq_of(m.last_hit))) m.last_hit = hit;
   } else if (what == "online") {
     m.online = j;
   } else if (what == "hit") {
-    if (!m.last_hit.is_object() || j.value("seq", 0ULL) >= m.last_hit.value("seq", 0ULL)) m.last_hit = j;
+    if (!m.last_hit.is_object() || seq_of(j) >= seq_of(m.last_hit)) m.last_hit = j;
   } else if (what == "event") {
     m.last_event = j;
-    if (j.value("type", "") == "inspection") m.last_inspection = j;
+    if (text(j, "type") == "inspection") m.last_inspection = j;
   } else {
     return false;  // replay answers, commands: not the view's
   }
@@ -62,8 +90,8 @@ nlohmann::json FleetView::to_json() const {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& [name, m] : machines_)
     list.push_back({{"machine", name},
-                    {"online", m.online.is_object() ? m.online.value("online", false) : false},
-                    {"messd", m.online.is_object() ? m.online.value("messd", false) : false},
+                    {"online", flag(m.online, "online")},
+                    {"messd", flag(m.online, "messd")},
                     {"state", m.state},
                     {"last_hit", m.last_hit},
                     {"last_inspection", m.last_inspection},
@@ -80,26 +108,25 @@ std::string FleetView::table() const {
   for (const auto& [name, m] : machines_) {
     std::string online = "?";
     if (m.online.is_object())
-      online = !m.online.value("online", false) ? "offline" : m.online.value("messd", false) ? "yes" : "no messd";
+      online = !flag(m.online, "online") ? "offline" : flag(m.online, "messd") ? "yes" : "no messd";
     std::string state = "-", control = "-", position = "-", program = "-";
     if (m.state.is_object()) {
-      state = cell(m.state.value("state", nlohmann::json(nullptr)));
-      control = cell(m.state.value("control", nlohmann::json(nullptr)));
-      const auto& p = m.state.value("position", nlohmann::json(nullptr));
+      state = cell(field(m.state, "state"));
+      control = cell(field(m.state, "control"));
+      const auto& p = field(m.state, "position");
       if (p.is_array() && p.size() == 3) position = fixed3(p[0]) + " " + fixed3(p[1]) + " " + fixed3(p[2]);
-      const auto& pr = m.state.value("program", nlohmann::json(nullptr));
-      if (pr.is_object() && pr.value("name", "none") != "none")
-        program = pr.value("name", "") + " " + pr.value("state", "") + " " + pr.value("block", "");
+      const auto& pr = field(m.state, "program");
+      if (pr.is_object() && text(pr, "name", "none") != "none")
+        program = shown(text(pr, "name") + " " + text(pr, "state") + " " + text(pr, "block"));
     }
     std::string hit = "-";
     if (m.last_hit.is_object())
-      hit = "#" + std::to_string(m.last_hit.value("seq", 0ULL)) + " " + fixed3(m.last_hit.value("x", nlohmann::json(nullptr))) +
-            " " + fixed3(m.last_hit.value("y", nlohmann::json(nullptr))) + " " + fixed3(m.last_hit.value("z", nlohmann::json(nullptr)));
+      hit = "#" + std::to_string(seq_of(m.last_hit)) + " " + fixed3(field(m.last_hit, "x")) + " " +
+            fixed3(field(m.last_hit, "y")) + " " + fixed3(field(m.last_hit, "z"));
     std::string insp = "-";
     if (m.last_inspection.is_object())
-      insp = cell(m.last_inspection.value("plan", nlohmann::json(nullptr))) + " " +
-             cell(m.last_inspection.value("result", nlohmann::json(nullptr)));
-    std::snprintf(line, sizeof line, "%-12s %-8s %-9s %-24s %-26s %-22s %-20s %s\n", name.c_str(), online.c_str(),
+      insp = cell(field(m.last_inspection, "plan")) + " " + cell(field(m.last_inspection, "result"));
+    std::snprintf(line, sizeof line, "%-12s %-8s %-9s %-24s %-26s %-22s %-20s %s\n", shown(name).c_str(), online.c_str(),
                   state.c_str(), control.c_str(), position.c_str(), program.c_str(), hit.c_str(), insp.c_str());
     out += line;
   }
