@@ -333,7 +333,8 @@ int Bridge::run() {
     broker_.service(false, false, now);
     pump(now);
     pollfd fds[2] = {{messd_.fd(), POLLIN, 0}, {broker_.fd(), static_cast<short>(POLLIN | (broker_.wants_write() ? POLLOUT : 0)), 0}};
-    auto wait = std::min({std::chrono::milliseconds{100}, broker_.until_due(now), std::max(messd_.until_due(), std::chrono::milliseconds{0})});
+    auto wait = std::min(std::chrono::milliseconds{100}, broker_.until_due(now));
+    if (!messd_.connected()) wait = std::min(wait, messd_.until_due());  // zero while connected: not a deadline
     if (state_dirty_) wait = std::min(wait, std::chrono::milliseconds{50});
     if (::poll(fds, 2, static_cast<int>(std::max<long>(wait.count(), 1))) < 0) continue;  // EINTR: check the flag
     const auto after = Clock::now();

@@ -107,10 +107,11 @@ class Subscriber {
   explicit Subscriber(int port) {
     mosquitto_lib_init();
     m_ = mosquitto_new("test-subscriber", true, this);
-    mosquitto_connect_callback_set(m_, [](mosquitto* m, void*, int rc) {
+    mosquitto_connect_callback_set(m_, [](mosquitto* m, void* self, int rc) {
       if (rc != 0) return;
       for (const char* t : {"imess/+/hit", "imess/+/event", "imess/+/state", "imess/+/online", "imess/+/replay/sub1"})
         mosquitto_subscribe(m, nullptr, t, 1);
+      ++static_cast<Subscriber*>(self)->connects_;
     });
     mosquitto_message_callback_set(m_, [](mosquitto*, void* self, const mosquitto_message* msg) {
       static_cast<Subscriber*>(self)->message(msg->topic, std::string(static_cast<const char*>(msg->payload), msg->payloadlen));
@@ -123,7 +124,7 @@ class Subscriber {
       while (!quit_) {
         if (mosquitto_loop(m_, 20, 1) != MOSQ_ERR_SUCCESS && !quit_) {
           std::this_thread::sleep_for(std::chrono::milliseconds{20});
-          if (mosquitto_reconnect(m_) == MOSQ_ERR_SUCCESS) ++reconnects_;
+          mosquitto_reconnect(m_);
         }
       }
     });
@@ -134,9 +135,9 @@ class Subscriber {
     mosquitto_disconnect(m_);
     mosquitto_destroy(m_);
   }
-  int reconnects() const { return reconnects_; }
-  void publish(const std::string& topic, const std::string& payload) {
-    mosquitto_publish(m_, nullptr, topic.c_str(), static_cast<int>(payload.size()), payload.data(), 1, false);
+  int connects() const { return connects_; }
+  void publish(const std::string& topic, const std::string& payload, bool retain = false) {
+    mosquitto_publish(m_, nullptr, topic.c_str(), static_cast<int>(payload.size()), payload.data(), 1, retain);
   }
   struct Machine {
     std::vector<std::uint64_t> live;  // seqs on imess/<m>/hit in arrival order
@@ -144,6 +145,7 @@ class Subscriber {
     int duplicates = 0, by_replay = 0;
     std::vector<nlohmann::json> events, replay_answers;
     nlohmann::json state, online;
+    std::vector<Clock::time_point> state_times;  // when each state message arrived
   };
   template <class F>
   auto with(F f) {
@@ -172,6 +174,7 @@ class Subscriber {
       m.events.push_back(j);
     } else if (parts[2] == "state") {
       m.state = j;
+      m.state_times.push_back(Clock::now());
     } else if (parts[2] == "online") {
       m.online = j;
     }
@@ -189,7 +192,7 @@ class Subscriber {
   mosquitto* m_;
   std::thread thread_;
   std::atomic<bool> quit_{false};
-  std::atomic<int> reconnects_{0};
+  std::atomic<int> connects_{0};
   std::mutex mu_;
   std::map<std::string, Machine> machines_;
 };
@@ -271,6 +274,9 @@ TEST_CASE("messmqtt: three machines on a real mosquitto, every hit exactly once 
   broker.kill_now(SIGKILL);       // the broker dies mid-measurement, with what it had not delivered
   take_hits(30);
   broker.start();
+  // m3's new bridge once the subscriber is back (the others retry every 0.5 s, it every 20 ms):
+  // what the bridges publish again from the journal then reaches it live.
+  REQUIRE(wait_until([&] { return sub.connects() >= 2; }, std::chrono::seconds{3}));
   cells[2].start_bridge();
   take_hits(30);
   constexpr std::uint64_t kPerMachine = 100;
@@ -412,22 +418,61 @@ TEST_CASE("messmqtt: three machines on a real mosquitto, every hit exactly once 
       if (e.value("type", "") == "stop" && e.value("by", "") == "line PLC") return true;
     return false;
   }));
+  // While m2 jogs its position changes every report, and its state goes out at most twice a second.
+  const auto jog_from = Clock::now();
+  auto states_since = [&](Clock::time_point from) {
+    return sub.with([&](auto& ms) {
+      std::vector<Clock::time_point> t;
+      for (auto at : ms["m2"].state_times)
+        if (at >= from) t.push_back(at);
+      return t;
+    });
+  };
+  REQUIRE(wait_until([&] { return states_since(jog_from).size() >= 4; }, std::chrono::seconds{4}));
+  const auto times = states_since(jog_from);
+  for (std::size_t i = 1; i < times.size(); ++i)
+    CHECK(times[i] - times[i - 1] >= std::chrono::milliseconds{400});  // 500 ms apart, less the delivery's jitter
   const auto status = cells[1].client->request("Status");
   REQUIRE(status);
   CHECK(status->find("State jog") != std::string::npos);  // m2 still jogs: the broker may not stop it
   CHECK_THAT(cells[1].bridge->err(), Catch::Contains("ignored: this bridge may not stop the machine (mqtt.allow_stop is false)"));
   CHECK(cells[1].client->request("StopMv") == std::optional<std::string>("Ok StopMv"));
   CHECK(cells[0].client->until([](const std::string& l) { return l == "State idle"; }, 5));
+
+  // A stop the broker kept (retained) is no order when a bridge connects later.
+  sub.publish("imess/m1/cmd/stop", R"({"reason": "last week's", "by": "someone"})", true);
+  cells[0].kill_bridge(SIGTERM);
+  REQUIRE(cells[0].client->request("StartMv 0 0 5") == std::optional<std::string>("Ok StartMv"));
+  cells[0].start_bridge();
+  REQUIRE(wait_until([&] { return cells[0].bridge->err().find("ignored a retained message on imess/m1/cmd/stop") != std::string::npos; },
+                     std::chrono::seconds{5}));
+  const auto m1_status = cells[0].client->request("Status");
+  REQUIRE(m1_status);
+  CHECK(m1_status->find("State jog") != std::string::npos);
+  CHECK(cells[0].client->request("StopMv") == std::optional<std::string>("Ok StopMv"));
   for (auto& c : cells) c.kill_bridge(SIGTERM);
 }
 
-TEST_CASE("messmqtt: a wrong mqtt section stops it at start naming the key, messd refuses an mqtt that is no object") {
+TEST_CASE("messmqtt: a wrong mqtt section stops it at start naming the key, the password is never logged, messd refuses an mqtt that is no object") {
   TempDir dir;
   const auto bad = dir.file("bad.json");
   std::ofstream(bad) << R"({"mqtt": {"machine": "m1", "brokr": "localhost"}})";
   auto r = run_program({client_binary("messmqtt"), "--config", bad});
   CHECK(r.status == 2);
   CHECK_THAT(r.err, Catch::Contains("unknown key 'mqtt.brokr'; accepted here: broker, machine"));
+  // The broker password never reaches the log, whatever goes wrong.
+  const auto pw = dir.file("pw");
+  std::ofstream(pw) << "s3cret-Pw\n";
+  {
+    ChildProcess bridge({client_binary("messmqtt"), "--machine", "m9", "--broker", "127.0.0.1:" + std::to_string(free_loopback_port()),
+                         "--user", "imess", "--password-file", pw, "--state-file", dir.file("m9.json"),
+                         "127.0.0.1:" + std::to_string(free_loopback_port())});
+    REQUIRE(wait_until([&] { return bridge.err().find("trying again") != std::string::npos; }, std::chrono::seconds{3}));
+    bridge.signal(SIGTERM);
+    CHECK(bridge.wait() == 0);
+    CHECK_THAT(bridge.err(), Catch::Contains("broker 127.0.0.1:"));
+    CHECK(bridge.err().find("s3cret") == std::string::npos);
+  }
   const auto wrong = dir.file("wrong.json");
   std::ofstream(wrong) << R"({"mqtt": "localhost"})";
   auto d = run_messd_to_exit({"--config", wrong});
