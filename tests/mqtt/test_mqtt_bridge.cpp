@@ -15,7 +15,9 @@
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -478,4 +480,51 @@ TEST_CASE("messmqtt: a wrong mqtt section stops it at start naming the key, the 
   auto d = run_messd_to_exit({"--config", wrong});
   CHECK(d.status == 2);
   CHECK_THAT(d.err + d.out, Catch::Contains("mqtt"));
+}
+
+TEST_CASE("messmqtt: a hit damaged in messd's journal is passed with a hits_lost event, every other one is published") {
+  TempDir dir;
+  const std::string journal = dir.file("journal");
+  std::filesystem::create_directory(journal);
+  {
+    DaemonProcess messd({"--journal", journal, "--config", fast_cmm()});
+    LineClient c(messd.port());
+    for (int i = 0; i < 10; ++i) REQUIRE(c.request("ForcePt") == std::optional<std::string>("Ok ForcePt"));
+  }
+  {  // one byte of hit 5's record changed on disk: its checksum fails
+    const std::string path = journal + "/hits-000000000001.jnl";
+    std::ifstream in(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto at = text.find("Hit 5 ");
+    REQUIRE(at != std::string::npos);
+    const auto digit = text.find(" 430.", at) + 2;
+    text[digit] = text[digit] == '3' ? '4' : '3';
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
+  }
+  DaemonProcess messd({"--journal", journal, "--config", fast_cmm()});
+  Broker broker(dir);
+  Subscriber sub(broker.port());
+  // No state file yet: the bridge starts at the journal's oldest hit.
+  ChildProcess bridge({client_binary("messmqtt"), "--machine", "m7", "--broker", "127.0.0.1:" + std::to_string(broker.port()),
+                       "--state-file", dir.file("m7.json"), "127.0.0.1:" + std::to_string(messd.port())});
+  REQUIRE(wait_until([&] { return sub.with([](auto& ms) { return ms["m7"].have.size() == 9; }); }, std::chrono::seconds{5}));
+  REQUIRE(wait_until([&] { return sub.with([](auto& ms) {
+    for (const auto& e : ms["m7"].events)
+      if (e.value("type", "") == "hits_lost") return e.value("first", 0) == 5 && e.value("last", 0) == 5;
+    return false;
+  }); }, std::chrono::seconds{3}));
+  sub.with([](auto& ms) {
+    CHECK(ms["m7"].have == std::set<std::uint64_t>{1, 2, 3, 4, 6, 7, 8, 9, 10});
+    CHECK(ms["m7"].live == std::vector<std::uint64_t>{1, 2, 3, 4, 6, 7, 8, 9, 10});
+    return 0;
+  });
+  // The watermark passes the lost hit: a restarted bridge does not ask for it again.
+  REQUIRE(wait_until([&] {
+    std::ifstream in(dir.file("m7.json"));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return text.find("\"acked\":10") != std::string::npos;
+  }, std::chrono::seconds{3}));
+  CHECK_THAT(bridge.err(), Catch::Contains("hits 5 to 5 are damaged or missing in messd's journal"));
+  bridge.signal(SIGTERM);
+  CHECK(bridge.wait() == 0);
 }
