@@ -3,6 +3,7 @@
 # (telnet: the README's tour talks to messd with it.)
 imess_packages=(cmake ninja-build g++ pkg-config libboost-dev libeigen3-dev libspdlog-dev
                 nlohmann-json3-dev catch2 libncurses-dev ccache telnet)
+imess_packages+=(libmosquitto-dev)  # messmqtt and messfleet talk MQTT through libmosquitto (docs/mqtt.md)
 # Only for scripts/bench: cyclictest (rt-tests), the floor bench_rt measures messd against,
 # and matplotlib for the plots.
 imess_bench_packages=(rt-tests python3 python3-matplotlib)
@@ -23,6 +24,9 @@ imess_test_packages+=(libxml2-utils)  # xmllint: messcap's QIF documents validat
 # LinuxCNC's own G-code interpreter, rs274 (tests/programs/test_rs274.cpp judges ours by it);
 # without its recommendations, which would bring a real-time kernel and a desktop.
 imess_test_packages_bare=(linuxcnc-uspace)
+# The MQTT broker tests/mqtt starts on a free loopback port (its own configuration, no root);
+# without recommendations, and Debian's own mosquitto service stays unused.
+imess_test_packages_bare+=(mosquitto)
 
 imess_install_deps() {   # imess_install_deps [test|bench]: the build packages, plus the test or bench ones
   local wanted=("${imess_packages[@]}")

@@ -368,6 +368,10 @@ void load_config_text(const std::string& text, const std::string& path, DaemonCo
   const nlohmann::json j = parse_json_text(text, path);
   JsonObject top(j, path, "");
   top.text("_comment", "");  // free text for people
+  // "mqtt" is messmqtt's, the bridge beside messd that reads this same file and checks every key
+  // of it (docs/mqtt.md); messd only makes sure it is an object.
+  if (top.has("mqtt") && !top.is_object("mqtt")) top.fail("mqtt", "an object { ... } of messmqtt's keys (docs/mqtt.md)");
+  top.accept("mqtt");
   if (auto s = top.object("server")) read_server_section(*s, path, cfg);
   if (auto c = top.object("control")) read_control(*c, path, cfg.server.control);
   if (auto m = top.object("motion")) read_motion_section(*m, cfg);

@@ -98,6 +98,8 @@ rule=$root/lib/udev/rules.d/99-imess-card.rules
 grep -q '^ExecStart=/usr/bin/messd --config /etc/imess/messd.json ' "$unit" || fail "the unit does not start /usr/bin/messd on /etc/imess/messd.json"
 grep -q '^SupplementaryGroups=.*dialout' "$unit" || fail "the unit's user is not in dialout, the group of the card's port"
 [ -f "$rule" ] || fail "lib/udev/rules.d/99-imess-card.rules missing"
+grep -q '^ExecStart=/usr/bin/messmqtt --config /etc/imess/messd.json$' "$root/lib/systemd/system/messmqtt.service" \
+  || fail "lib/systemd/system/messmqtt.service missing, or it does not start /usr/bin/messmqtt on /etc/imess/messd.json"
 grep -q '^SUBSYSTEM=="tty".*SYMLINK+="ttyIMESS0".*GROUP="dialout".*MODE="0660"' "$rule" || fail "the udev rule does not make ttyIMESS0 for dialout, 0660"
 if command -v udevadm >/dev/null && udevadm verify --help >/dev/null 2>&1; then
   udevadm verify "$rule" || fail "udevadm verify $rule"
