@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "imess/protocol/messages.hpp"
+#include "imess/protocol/words.hpp"
 
 namespace imess::mqtt {
 
@@ -14,13 +15,7 @@ namespace {
 
 std::vector<std::string> words_of(std::string_view line) {
   std::vector<std::string> w;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && line[i] == ' ') ++i;
-    const auto start = i;
-    while (i < line.size() && line[i] != ' ') ++i;
-    if (i > start) w.emplace_back(line.substr(start, i - start));
-  }
+  for (const auto word : protocol::split_words(line)) w.emplace_back(word);
   return w;
 }
 

@@ -4,21 +4,10 @@
 #include <charconv>
 
 #include "imess/protocol/numbers.hpp"
+#include "imess/protocol/words.hpp"
 
 namespace imess::protocol {
 namespace {
-
-std::vector<std::string_view> words(std::string_view line) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && line[i] == ' ') ++i;
-    std::size_t s = i;
-    while (i < line.size() && line[i] != ' ') ++i;
-    if (i > s) out.push_back(line.substr(s, i - s));
-  }
-  return out;
-}
 
 // The text after the first n words.
 std::string rest_after(std::string_view line, std::size_t n) {
@@ -105,7 +94,7 @@ std::string format_event(std::string_view verb, std::string_view text) {
 
 Message parse_message(std::string_view line) {
   while (!line.empty() && (line.back() == '\r' || line.back() == '\n')) line.remove_suffix(1);
-  auto w = words(line);
+  auto w = split_words(line);
   if (w.empty()) return OtherMsg{std::string(line)};
   auto verb = w[0];
   Xyz p;
@@ -139,7 +128,7 @@ std::string format_replay_lost(std::uint64_t first, std::uint64_t last) {
 }
 
 std::optional<LostHits> parse_replay_lost(std::string_view data) {
-  auto w = words(data);
+  auto w = split_words(data);
   if (w.size() < 3 || w[0] != "Lost") return std::nullopt;
   auto first = parse_sequence_number(w[1]), last = parse_sequence_number(w[2]);
   if (!first || !last || *last < *first) return std::nullopt;

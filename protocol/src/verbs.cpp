@@ -14,18 +14,6 @@
 namespace imess::protocol {
 namespace {
 
-std::vector<std::string_view> split(std::string_view line) {
-  std::vector<std::string_view> tokens;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-    if (i > start) tokens.push_back(line.substr(start, i - start));
-  }
-  return tokens;
-}
-
 // A range bound as people write it: whole values without a fraction, others as %g.
 std::string bound(double v) {
   if (v == std::floor(v) && std::fabs(v) < 1e15) return std::to_string(static_cast<long long>(v));
@@ -135,7 +123,7 @@ ParseResult parse_args(const VerbSpec& v, std::span<const std::string_view> toke
       case ArgKind::Choice: {
         value.choice = 0;
         bool found = false;
-        for (auto w : split(a.words)) {
+        for (auto w : split_words(a.words, " \t")) {
           if (iequals(w, tokens[i])) { found = true; break; }
           ++value.choice;
         }
@@ -170,7 +158,7 @@ ParseResult parse_command(std::string_view line, std::span<const VerbSpec> table
                         "the line holds a control or non-ASCII byte (code " + std::to_string(u) +
                             "); commands are plain ASCII words and numbers"};
   }
-  auto tokens = split(line);
+  auto tokens = split_words(line, " \t");
   if (tokens.empty()) return ParseError{ErrorCode::UnknownCommand, "empty command; Help lists the commands"};
   for (const auto& v : table)
     if (iequals(tokens[0], v.name)) return parse_args(v, std::span(tokens).subspan(1));
@@ -179,7 +167,7 @@ ParseResult parse_command(std::string_view line, std::span<const VerbSpec> table
 }
 
 ParseResult parse_with(const VerbSpec& verb, std::string_view line) {
-  auto tokens = split(line);
+  auto tokens = split_words(line, " \t");
   if (tokens.empty()) return ParseError{ErrorCode::UnknownCommand, "empty command; Help lists the commands"};
   return parse_args(verb, std::span(tokens).subspan(1));
 }
