@@ -1,4 +1,4 @@
-// Form from scans: an inspection plan's roundness, flatness and cylindricity evaluated on dense
+// Form from scans: an inspection plan's roundness, flatness, cylindricity and sphericity on dense
 // scanned point sets (thousands of plain surface points, as a scanning probe reports them after
 // compensation along its measured normal). The form put on the surfaces is known — a bore with
 // 3-lobe lobing, a face with a waviness, a bore axis scanned as a helix with lobing — and each
@@ -11,6 +11,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "imess/metrology/fit.hpp"
 #include "imess/metrology/inspection.hpp"
 #include "imess/metrology/inspection_plan.hpp"
 
@@ -24,21 +25,24 @@ constexpr const char* kScanPlan = R"({
   "features": [
     {"name": "top", "type": "plane", "point": [0, 0, 80], "normal": [0, 0, 1]},
     {"name": "bore", "type": "circle", "center": [60, 50, 40], "normal": [0, 0, 1], "diameter": 30, "inner": true},
-    {"name": "bore_axis", "type": "cylinder", "point": [60, 50, 40], "axis": [0, 0, 1], "diameter": 30, "inner": true}
+    {"name": "bore_axis", "type": "cylinder", "point": [60, 50, 40], "axis": [0, 0, 1], "diameter": 30, "inner": true},
+    {"name": "ball", "type": "sphere", "center": [350, 350, 60], "diameter": 25}
   ],
   "characteristics": [
     {"name": "top flatness", "type": "flatness", "feature": "top", "tolerance": 0.01},
     {"name": "bore roundness", "type": "roundness", "feature": "bore", "tolerance": 0.01},
-    {"name": "bore cylindricity", "type": "cylindricity", "feature": "bore_axis", "tolerance": 0.01}
+    {"name": "bore cylindricity", "type": "cylindricity", "feature": "bore_axis", "tolerance": 0.01},
+    {"name": "ball sphericity", "type": "sphericity", "feature": "ball", "tolerance": 0.01}
   ]
 })";
 
 constexpr double kLobe = 0.002;   // mm: the bore's 3-lobe amplitude (roundness 2 x)
 constexpr double kWave = 0.0015;  // mm: the top's waviness amplitude (flatness 2 x)
+constexpr double kZone = 0.0015;  // mm: the sphere's upper zone stands out this much
 
 }  // namespace
 
-TEST_CASE("inspection: roundness, flatness and cylindricity from scans of thousands of points", "[inspection][scan]") {
+TEST_CASE("inspection: roundness, flatness, cylindricity and sphericity from scans of thousands of points", "[inspection][scan]") {
   const InspectionPlan plan = parse_inspection_plan(kScanPlan, "scan.plan.json");
   const Eigen::Vector3d origin(400, 300, 0);
   std::vector<MeasuredPoint> pts;
@@ -61,8 +65,22 @@ TEST_CASE("inspection: roundness, flatness and cylindricity from scans of thousa
     pts.push_back({"bore_axis", origin + Eigen::Vector3d(60 + r * std::cos(t), 50 + r * std::sin(t), 10 + 60.0 * i / 3600),
                    std::nullopt, 0});
   }
+  // The reference sphere: 10 rings of 300 points from the equator to 60° up, its radius larger by
+  // kZone on the rings above 30°: a zonal form whose least-squares range is known only from the
+  // points, so the sphericity must be what a sphere fit of the same points gives as its form.
+  std::vector<Eigen::Vector3d> ball;
+  for (int i = 0; i < 3000; ++i) {
+    const double lat = std::numbers::pi / 3 * (i % 10) / 9.0, lon = 2 * std::numbers::pi * (i / 10) / 300.0;
+    const double r = 12.5 + (lat > std::numbers::pi / 6 ? kZone : 0.0);
+    const Eigen::Vector3d p = Eigen::Vector3d(350, 350, 60) +
+                              r * Eigen::Vector3d(std::cos(lat) * std::cos(lon), std::cos(lat) * std::sin(lon), std::sin(lat));
+    ball.push_back(p);
+    pts.push_back({"ball", origin + p, std::nullopt, 0});
+  }
+  const auto ball_fit = fit_sphere(ball);
+  REQUIRE(ball_fit.ok());
   const InspectionResult res = evaluate_inspection(plan, pts);
-  REQUIRE(res.characteristics.size() == 3);
+  REQUIRE(res.characteristics.size() == 4);
   for (const auto& c : res.characteristics) REQUIRE(c.evaluated());
   const auto& flat = res.characteristics[0];
   const auto& round = res.characteristics[1];
@@ -75,6 +93,11 @@ TEST_CASE("inspection: roundness, flatness and cylindricity from scans of thousa
   CHECK(flat.actual == Approx(zmax - zmin).margin(1e-5));
   CHECK(round.actual == Approx(2 * kLobe).margin(1e-8));
   CHECK(cyl.actual == Approx(2 * kLobe).margin(1e-4));
+  const auto& sph = res.characteristics[3];
+  CHECK(sph.actual == Approx(ball_fit->stats.form()).margin(1e-9));
+  // Of the 1.5 µm step the least-squares sphere (moved up and grown between the zones) leaves 1.27 µm.
+  CHECK(sph.actual > 0.5 * kZone);
+  CHECK(sph.actual < kZone);
   CHECK(res.features[1].stats.point_count == 3600);
   CHECK(res.features[1].stats.form() == Approx(round.actual).margin(1e-12));
   CHECK(res.out_of_tolerance() == 0);
