@@ -17,6 +17,7 @@ std::string characteristic_tag(const SavedCharacteristic& c) {
   if (c.type == "flatness") return "Flatness";
   if (c.type == "roundness") return "Circularity";
   if (c.type == "cylindricity") return "Cylindricity";
+  if (c.type == "sphericity") return "Sphericity";
   if (c.type == "perpendicularity") return "Perpendicularity";
   return "Parallelism";
 }

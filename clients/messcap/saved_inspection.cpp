@@ -93,8 +93,9 @@ SavedGeometry read_geometry(const ReportReader& r, const json& j, const std::str
   return g;
 }
 
-const char* const kCharacteristicTypes[] = {"size",     "position",  "distance",         "angle",      "flatness",
-                                            "roundness", "cylindricity", "perpendicularity", "parallelism"};
+const char* const kCharacteristicTypes[] = {"size",        "position",         "distance",    "angle",
+                                            "flatness",    "roundness",        "cylindricity", "sphericity",
+                                            "perpendicularity", "parallelism"};
 
 SavedCharacteristic read_characteristic(const ReportReader& r, const json& j, const std::string& path) {
   SavedCharacteristic c;
@@ -106,7 +107,7 @@ SavedCharacteristic read_characteristic(const ReportReader& r, const json& j, co
   for (const char* t : kCharacteristicTypes) known = known || c.type == t;
   if (!known)
     r.fail(at("type"), "'" + c.type + "': expected size, position, distance, angle, flatness, roundness, "
-                                      "cylindricity, perpendicularity or parallelism");
+                                      "cylindricity, sphericity, perpendicularity or parallelism");
   c.feature = r.text(r.member(j, path, "feature"), at("feature"));
   if (const json* o = r.optional_member(j, "other")) c.other = r.text(*o, at("other"));
   if (const json* d = r.optional_member(j, "datum")) c.other = r.text(*d, at("datum"));

@@ -338,6 +338,26 @@ void read_programs_section(JsonObject& p, const std::string& path, DaemonConfig&
   p.finish();
 }
 
+// sim.probe.type: "trigger" (the switch only) or "analog" (a measuring probe: its deflection
+// vector every step, sim/analog_probe.hpp), with the analog probe's range, noise, spring rate and
+// noise seed — refused on a trigger probe, where they would silently do nothing.
+void read_probe_type(JsonObject& pr, sim::SimProbeConfig& probe) {
+  const bool analog = pr.text("type", "trigger", {"trigger", "analog"}) == "analog";
+  probe.type = analog ? sim::ProbeType::Analog : sim::ProbeType::Trigger;
+  for (const char* key : {"range", "noise", "spring_rate", "seed"})
+    if (!analog && pr.has(key)) pr.fail(key, "left out: it is a setting of an analog probe (\"type\": \"analog\") and this probe is a trigger probe");
+  auto& a = probe.analog;
+  a.range = pr.number("range", a.range, 0.01, 10);
+  a.noise = pr.number("noise", a.noise, 0, 0.1);
+  if (a.noise * 10 > a.range) {
+    std::ostringstream os;
+    os << "at most a tenth of the range (" << a.range << " mm)";
+    pr.fail("noise", os.str());
+  }
+  a.spring_rate = pr.number("spring_rate", a.spring_rate, 0.01, 100);
+  a.seed = static_cast<std::uint64_t>(pr.whole("seed", static_cast<long long>(a.seed), 0, 2147483647));
+}
+
 void read_sim_section(JsonObject& s, DaemonConfig& cfg) {
   auto& m = cfg.sim.mechanics;
   m.start = s.axis_values("start", m.start, cfg.core.layout, 1e5);
@@ -352,6 +372,7 @@ void read_sim_section(JsonObject& s, DaemonConfig& cfg) {
     m.probe.overtravel = pr->number("overtravel", m.probe.overtravel, 0.1, 50);
     if (pr->has("normally_closed")) cfg.sim_probe_nc_set = true;
     m.probe.normally_closed = pr->boolean("normally_closed", m.probe.normally_closed);
+    read_probe_type(*pr, m.probe);
     pr->finish();
   }
   if (auto scene = s.objects("scene")) {

@@ -140,7 +140,8 @@ CharacteristicResult evaluate_characteristic(const Characteristic& c, const Insp
     }
     case C::Flatness:
     case C::Roundness:
-    case C::Cylindricity: out.actual = fr.stats.form(); break;
+    case C::Cylindricity:
+    case C::Sphericity: out.actual = fr.stats.form(); break;
     case C::Perpendicularity:
     case C::Parallelism: out.actual = orientation_zone(c.kind, fr, *orr->actual); break;
   }

@@ -103,7 +103,8 @@ constexpr CharKeys kCharKinds[] = {
     {CharacteristicKind::Roundness, "roundness"},
     {CharacteristicKind::Cylindricity, "cylindricity"},
     {CharacteristicKind::Perpendicularity, "perpendicularity"},
-    {CharacteristicKind::Parallelism, "parallelism"}};
+    {CharacteristicKind::Parallelism, "parallelism"},
+    {CharacteristicKind::Sphericity, "sphericity"}};
 
 std::string kind_list() {
   std::string s;
@@ -222,6 +223,7 @@ bool applies(CharacteristicKind c, FeatureKind f) {
     case C::Flatness: return f == F::Plane;
     case C::Roundness: return f == F::Circle;
     case C::Cylindricity: return f == F::Cylinder;
+    case C::Sphericity: return f == F::Sphere;
     case C::Perpendicularity:
     case C::Parallelism: return f == F::Plane || f == F::Line || f == F::Cylinder || f == F::Cone;
   }
@@ -237,6 +239,7 @@ const char* applies_text(CharacteristicKind c) {
     case C::Flatness: return "a plane";
     case C::Roundness: return "a circle";
     case C::Cylindricity: return "a cylinder";
+    case C::Sphericity: return "a sphere";
     case C::Perpendicularity:
     case C::Parallelism: return "a plane, line, cylinder or cone";
   }

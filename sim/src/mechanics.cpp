@@ -8,8 +8,12 @@
 namespace imess::sim {
 
 Mechanics::Mechanics(MechanicsConfig config, Scene scene)
-    : config_(std::move(config)), scene_(std::move(scene)), pos_(config_.start) {
+    : config_(std::move(config)),
+      scene_(std::move(scene)),
+      pos_(config_.start),
+      analog_(config_.probe.analog, config_.probe.ball_radius) {
   contact_ = deflection() > config_.probe.pretravel;
+  if (config_.probe.type == ProbeType::Analog) reading_ = analog_.read(scene_, ball_centre());
 }
 
 double Mechanics::deflection_at(const hal::AxisVec& p) const noexcept {
@@ -75,6 +79,7 @@ void Mechanics::step(double dt) noexcept {
     }
   }
   edge_.valid = false;
+  if (config_.probe.type == ProbeType::Analog) reading_ = analog_.read(scene_, ball_centre());
   double defl = deflection();
   const auto& pr = config_.probe;
   if (!contact_ && defl > pr.pretravel)

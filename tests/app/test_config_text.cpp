@@ -174,3 +174,23 @@ TEST_CASE("config: programs.gcode mist and flood name outputs, tool_change_pause
   CHECK(DaemonConfig{}.server.programs.tool_change_pause);
   CHECK(contains(json_error(R"({"programs": {"gcode": {"mist": "nozzle"}}})"), "programs.gcode.mist"));
 }
+
+TEST_CASE("sim.probe.type: a trigger probe by default, an analog probe with its range, noise, spring rate and seed") {
+  DaemonConfig plain;
+  load_config_text(R"({"sim":{"probe":{"ball_radius":2}}})", "t.json", plain);
+  CHECK(plain.sim.mechanics.probe.type == imess::sim::ProbeType::Trigger);
+  DaemonConfig cfg;
+  load_config_text(R"({"sim":{"probe":{"type":"analog","range":0.8,"noise":0.0005,"spring_rate":0.3,"seed":42}}})",
+                   "t.json", cfg);
+  const auto& p = cfg.sim.mechanics.probe;
+  CHECK(p.type == imess::sim::ProbeType::Analog);
+  CHECK(p.analog.range == 0.8);
+  CHECK(p.analog.noise == 0.0005);
+  CHECK(p.analog.spring_rate == 0.3);
+  CHECK(p.analog.seed == 42);
+  CHECK(json_error(R"({"sim":{"probe":{"type":"analog","seed":-1}}})") ==
+        "t.json: key 'sim.probe.seed' must be a whole number from 0 to 2147483647, got -1");
+  CHECK(json_error(R"({"sim":{"probe":{"noise":0.001}}})") ==
+        "t.json: key 'sim.probe.noise' must be left out: it is a setting of an analog probe (\"type\": \"analog\") and "
+        "this probe is a trigger probe, got 0.001");
+}

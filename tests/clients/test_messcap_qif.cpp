@@ -79,7 +79,7 @@ TEST_CASE("a saved inspection report is read whole, and a bad one named by key")
         "r.json: characteristics[0].actual: expected a number");
   CHECK(error_of(report("\"type\": \"flatness\"", "\"type\": \"wobble\"")) ==
         "r.json: characteristics[0].type: 'wobble': expected size, position, distance, angle, flatness, roundness, "
-        "cylindricity, perpendicularity or parallelism");
+        "cylindricity, sphericity, perpendicularity or parallelism");
   CHECK(error_of(report("\"feature\": \"top\", \"unit\"", "\"feature\": \"bottom\", \"unit\"")) ==
         "r.json: characteristics[0].feature: no feature 'bottom' in \"features\"");
   CHECK(error_of(report("\"name\": \"hole\"", "\"name\": \"top\"")) == "r.json: features[1].name: 'top' named twice");

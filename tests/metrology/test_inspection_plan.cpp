@@ -77,6 +77,8 @@ TEST_CASE("inspection plan: bad plans name the key and what was expected", "[ins
   CHECK(error_of(plan_with(kPlane + "," + kPlane, "")) == "t.json: features[1].name: 'a' is used twice");
   CHECK(error_of(plan_with(kPlane, R"({"name": "s", "type": "size", "feature": "a", "tolerance": 0.1})")) ==
         "t.json: characteristics[0].feature: size applies to a circle, sphere, cylinder or cone, and 'a' is a plane");
+  CHECK(error_of(plan_with(kCircle, R"({"name": "s", "type": "sphericity", "feature": "c", "tolerance": 0.1})")) ==
+        "t.json: characteristics[0].feature: sphericity applies to a sphere, and 'c' is a circle");
   CHECK(error_of(plan_with(kPlane, R"({"name": "s", "type": "flatness", "feature": "b", "tolerance": 0.1})")) ==
         "t.json: characteristics[0].feature: no feature named 'b' in the plan");
   CHECK(error_of(plan_with(kPlane, R"({"name": "s", "type": "flatness", "feature": "a", "tolerance": [0, 1]})")) ==

@@ -1,11 +1,13 @@
 // Real-time discipline of the servo card's path following: follow(), the read_state() that
 // returns its reply, a stop and switching the probe power (set_output) allocate nothing — on the request/reply link and on the
-// stream over the byte-timed line — counted by replacing the global allocator.
+// stream over the byte-timed line — and the simulated analog probe's reading every step, counted by
+// replacing the global allocator.
 #include <catch2/catch.hpp>
 
 #include "card_follow_rig.hpp"
 
 #include "allocation_counter.hpp"
+#include "imess/sim/mechanics.hpp"
 
 using namespace imess;
 using namespace imess::test;
@@ -75,4 +77,24 @@ TEST_CASE("card stream: the driver's real-time calls on the stream and the byte-
   CHECK(drv.stream()->frames_sent() > 250);
   CHECK(drv.stream()->status_frames() > 500);
   CHECK(latches >= 7);  // one per probe power edge (initialise()'s and the first set_output's may be one)
+}
+
+TEST_CASE("analog probe: the mechanics' step with its deflection reading allocates nothing") {
+  sim::MechanicsConfig mc;
+  mc.probe.type = sim::ProbeType::Analog;
+  mc.probe.analog.noise = 0.0005;
+  mc.start.head<3>() = sim::Vec3(430, 330, 82.5);
+  sim::Mechanics m(mc, sim::default_scene());
+  for (int a = 0; a < 3; ++a) m.set_position_driven(a, true);
+  int contacts = 0;
+  g_allocations = 0;
+  g_counting = true;
+  for (int i = 1; i <= 5000; ++i) {  // 0.5 s at the card's sub-tick, down 1.25 mm onto the top
+    m.command_position(2, 82.5 - 0.00025 * i);
+    m.step(1e-4);
+    contacts += m.analog_reading().contact;
+  }
+  g_counting = false;
+  CHECK(g_allocations.load() == 0);
+  CHECK(contacts > 1000);
 }

@@ -99,6 +99,7 @@ def every_kind_report():
         char("base flat", "flatness", "base", 0, 0.01, 0.0012),
         char("c round", "roundness", "c", 0, 0.01, 0.0012),
         char("cy cyl", "cylindricity", "cy", 0, 0.01, 0.0012),
+        char("s sph", "sphericity", "s", 0, 0.01, 0.0009),
         char("cy perp", "perpendicularity", "cy", 0, 0.01, 0.003, other="base"),
         char("l perp", "perpendicularity", "l", 0, 0.01, 0.003, other="cy"),
         char("top par", "parallelism", "top", 0, 0.01, 0.002, other="base"),

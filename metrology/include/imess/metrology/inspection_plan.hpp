@@ -56,7 +56,7 @@ struct PlanFeature {
 };
 
 enum class CharacteristicKind {
-  Size, Position, Distance, Angle, Flatness, Roundness, Cylindricity, Perpendicularity, Parallelism
+  Size, Position, Distance, Angle, Flatness, Roundness, Cylindricity, Perpendicularity, Parallelism, Sphericity
 };
 std::string_view to_string(CharacteristicKind kind) noexcept;  // "size", "position", ...
 // Zone characteristics (position, form, orientation) have nominal 0 and one limit: the zone

@@ -4,6 +4,7 @@
 // the probe is at the machine's X Y Z (AxisLayout::cartesian) in the scene's world.
 #pragma once
 #include "imess/hal/motion_backend.hpp"
+#include "imess/sim/analog_probe.hpp"
 #include "imess/sim/scene.hpp"
 
 namespace imess::sim {
@@ -24,6 +25,10 @@ struct SimProbeConfig {
   double overtravel = 8.0;       // deflection the stylus survives
   double hysteresis = 0.0005;    // re-seat this much below the trigger point
   bool normally_closed = false;  // switch opens on contact
+  // Trigger: the switch only (above). Analog: the switch as well, and a measured deflection
+  // vector every step (analog_reading(); analog_probe.hpp).
+  ProbeType type = ProbeType::Trigger;
+  AnalogProbeConfig analog{};
 };
 
 struct MechanicsConfig {
@@ -65,6 +70,9 @@ class Mechanics final : public hal::SimHooks {
   bool tip_contact() const noexcept { return contact_; }
   bool tip_signal() const noexcept { return contact_ != config_.probe.normally_closed; }  // raw switch
   double deflection() const noexcept;
+  // The analog probe's reading after the last step (at construction: at the start position);
+  // always the default (no contact) with a trigger probe.
+  const AnalogReading& analog_reading() const noexcept { return reading_; }
   bool probe_overtravel() const noexcept { return deflection() > config_.probe.overtravel; }
   bool limit_neg(int a) const noexcept;
   bool limit_pos(int a) const noexcept;
@@ -91,6 +99,8 @@ class Mechanics final : public hal::SimHooks {
   hal::AxisArray<double> commanded_{};
   bool contact_ = false;
   ProbeEdge edge_;
+  AnalogProbe analog_;
+  AnalogReading reading_{};
   hal::AxisVec hand_target_ = hal::AxisVec::Zero();
   double hand_speed_ = 0;
   bool hand_active_ = false;
