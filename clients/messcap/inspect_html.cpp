@@ -10,16 +10,13 @@
 
 #include "inspect_report.hpp"
 #include "inspect_views.hpp"
+#include "number_text.hpp"
 
 namespace imess::messcap {
 namespace {
 
 
-std::string num(double v, const char* fmt = "%.4f") {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
-}
+std::string num(double v, const char* fmt = "%.4f") { return number_text(v, fmt); }
 
 // The deviation against its tolerance: the band in green, a bar from the nominal to the deviation.
 std::string deviation_bar(const metrology::CharacteristicResult& c) {

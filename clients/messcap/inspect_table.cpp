@@ -3,15 +3,12 @@
 #include <string>
 
 #include "inspect_report.hpp"
+#include "number_text.hpp"
 
 namespace imess::messcap {
 namespace {
 
-std::string fixed(double v, int decimals, bool sign = false) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, sign ? "%+.*f" : "%.*f", decimals, v);
-  return buf;
-}
+std::string fixed(double v, int decimals, bool sign = false) { return fixed_text(v, decimals, sign); }
 
 // v as printed with `decimals` decimals, read back.
 double printed(double v, int decimals) { return std::stod(fixed(v, decimals)); }

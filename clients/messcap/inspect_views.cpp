@@ -1,6 +1,7 @@
 // The views of the HTML report: nominal geometry in part coordinates projected orthographically,
 // the measured points over it, ticks, and placed labels (label_layout.hpp).
 #include "inspect_views.hpp"
+#include "number_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -24,11 +25,7 @@ constexpr double kWidth = 360, kHeight = 300;
 constexpr double kLeft = 46, kRight = 10, kTop = 10, kBottom = 36;
 constexpr double kFont = 10;
 
-std::string fmt(double v, const char* f = "%.1f") {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
+std::string fmt(double v, const char* f = "%.1f") { return number_text(v, f); }
 
 
 struct Box3 {

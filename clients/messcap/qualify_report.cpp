@@ -1,6 +1,8 @@
 // Terminal lines and JSON of messcap qualify (qualify_report.hpp).
 #include "qualify_report.hpp"
 
+#include "number_text.hpp"
+
 #include <cmath>
 #include <cstdio>
 
@@ -11,11 +13,7 @@ namespace {
 
 using nlohmann::json;
 
-std::string fixed(double v, int decimals) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
+std::string fixed(double v, int decimals) { return fixed_text(v, decimals); }
 std::string triple(const Eigen::Vector3d& v, int decimals) {
   return fixed(v.x(), decimals) + " " + fixed(v.y(), decimals) + " " + fixed(v.z(), decimals);
 }

@@ -7,6 +7,7 @@
 
 #include "inspect_report.hpp"
 #include "label_layout.hpp"
+#include "number_text.hpp"
 
 using namespace imess::messcap;
 using imess::metrology::CharacteristicKind;
@@ -51,6 +52,21 @@ TEST_CASE("inspection reports print enough decimals to show the verdict, four wh
   CHECK(decimals_for(size(0.0499996, 0.05)) == 4);   // prints +0.0500 <= +0.0500: ok, and it is
   CHECK(decimals_for(size(-0.0500004, 0.05)) == 7);  // OUT by 0.4 nm: shown at the 7th decimal
   CHECK(verdict_text(size(-0.0500004, 0.05)) == "OUT");
+}
+
+TEST_CASE("report numbers: a value that prints as zero has no minus sign, a signed format gives it +") {
+  using imess::messcap::fixed_text;
+  using imess::messcap::number_text;
+  CHECK(fixed_text(-0.00001, 4) == "0.0000");
+  CHECK(fixed_text(-0.00001, 4, true) == "+0.0000");
+  CHECK(fixed_text(-0.0, 2) == "0.00");
+  CHECK(fixed_text(-0.00006, 4) == "-0.0001");  // a real negative value keeps its sign
+  CHECK(fixed_text(0.00001, 4, true) == "+0.0000");
+  CHECK(number_text(-0.00004, "%.4f") == "0.0000");
+  CHECK(number_text(-0.00004, "%+.4f") == "+0.0000");
+  CHECK(number_text(-0.4, "%.0f") == "0");
+  CHECK(number_text(-12.5, "%.1f") == "-12.5");
+  CHECK(number_text(-1e-9, "%.3f mm") == "0.000 mm");
 }
 
 TEST_CASE("labels are placed inside their area and never over one another") {
