@@ -3,6 +3,7 @@
 # (telnet: the README's tour talks to messd with it.)
 imess_packages=(cmake ninja-build g++ pkg-config libboost-dev libeigen3-dev libspdlog-dev
                 nlohmann-json3-dev catch2 libncurses-dev ccache telnet)
+imess_packages+=(libjs-three)  # three.js, which messd serves as /three/ for the web panel's 3-D view (scripts/run, tests)
 # Only for scripts/bench: cyclictest (rt-tests), the floor bench_rt measures messd against,
 # and matplotlib for the plots.
 imess_bench_packages=(rt-tests python3 python3-matplotlib)

@@ -29,6 +29,14 @@ TEST_CASE("web panel: messd serves the panel's files, nothing outside them, GET 
   CHECK(http_request(messd.web_port(), http::verb::get, "/%2e%2e/CMakeLists.txt").result() == http::status::not_found);
   CHECK(http_request(messd.web_port(), http::verb::get, "/no-such-file.js").result() == http::status::not_found);
   CHECK(http_request(messd.web_port(), http::verb::post, "/").result() == http::status::method_not_allowed);
+  // Debian's libjs-three (scripts/deps.sh installs it) as /three/, by the same rules.
+  auto three = http_request(messd.web_port(), http::verb::get, "/three/build/three.module.js");
+  CHECK(three.result() == http::status::ok);
+  CHECK(three[http::field::content_type] == "text/javascript; charset=utf-8");
+  CHECK(three.body().find("WebGLRenderer") != std::string::npos);
+  CHECK(http_request(messd.web_port(), http::verb::get, "/three/examples/jsm/controls/OrbitControls.js").result() == http::status::ok);
+  CHECK(http_request(messd.web_port(), http::verb::get, "/three/../../../etc/passwd").result() == http::status::not_found);
+  CHECK(http_request(messd.web_port(), http::verb::get, "/three/").result() == http::status::not_found);
 }
 
 TEST_CASE("web panel: --http-port 0 turns it off") {

@@ -194,17 +194,22 @@ def main():
         check(wait_for(lambda: position(driver) == "430.000 330.000 100.000", 20), "back above the cube")
 
         # Press and hold -Z: the probe touches the top face, the hit is in the list and the views.
-        jog = ActionChains(driver)
-        jog.click_and_hold(driver.find_element(By.ID, "jog-Z-")).perform()
+        minus_z = driver.find_element(By.ID, "jog-Z-")
+        driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", minus_z)
+        ActionChains(driver).click_and_hold(minus_z).perform()
         row = wait_for(lambda: driver.find_elements(By.CSS_SELECTOR, "#points tbody tr"), 15)
         ActionChains(driver).release().perform()
         cells = [c.text for c in row[0].find_elements(By.TAG_NAME, "td")] if row else []
         check(cells[1:4] == ["430.000", "330.000", "80.000"], "holding -Z touches the top: the hit in the list %s" % cells)
-        painted = driver.execute_script(
-            "const c = document.getElementById('view-top'); const d = c.getContext('2d')"
-            ".getImageData(0, 0, c.width, c.height).data; let n = 0; for (let i = 3; i < d.length; i += 4) n += d[i] > 0;"
-            " return n;")
-        check(painted > 50, "the hit is drawn in the view (%d pixels)" % painted)
+        # The 3-D view (three.js from Debian's libjs-three, served by messd as /three/): the
+        # scene holds the hit as its newest point, and the newest point's colour is drawn
+        # where that point appears on the canvas.
+        view = lambda key: driver.find_element(By.ID, "view3d").get_attribute("data-" + key)
+        check(wait_for(lambda: view("last") == "430.000 330.000 80.000" and view("points") == "1", 5),
+              "the hit is the 3-D view's one point: %s (%s points)" % (view("last"), view("points")))
+        check(wait_for(lambda: view("probe") == position(driver), 5), "the probe is in the 3-D view where the page says it is (%s)" % view("probe"))
+        rgb = driver.execute_script("return window.imessView3d.pixelAt(430, 330, 80)")
+        check(rgb and rgb[0] > 150 and rgb[1] < 90 and rgb[2] < 90, "the hit is drawn red (the newest) in the 3-D view: rgb %s" % rgb)
         shot(driver, "panel-hit")
 
         # The browser path against the line protocol's push, in the same run: for each

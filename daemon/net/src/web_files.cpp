@@ -1,5 +1,6 @@
-// The panel's files: GET and HEAD of a path below the web root, nothing else. A path that
-// leaves the root (.., a link pointing out), names no regular file or holds odd bytes is 404.
+// The panel's files: GET and HEAD of a path below the web root, nothing else; /three/… comes
+// from Debian's libjs-three (kThreeRoot) by the same rules. A path that leaves its root (.., a
+// link pointing out), names no regular file or holds odd bytes is 404.
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -43,12 +44,21 @@ std::string file_of(std::string_view target, const std::string& root) {
   std::string relative(path.substr(1));
   if (relative.empty() || relative.back() == '/') relative += "index.html";
   std::error_code ec;
-  const auto file = std::filesystem::weakly_canonical(std::filesystem::path(root) / relative, ec);
+  const auto base = std::filesystem::weakly_canonical(root, ec);
   if (ec) return {};
-  const auto inside = std::filesystem::relative(file, root, ec);
+  const auto file = std::filesystem::weakly_canonical(base / relative, ec);
+  if (ec) return {};
+  const auto inside = std::filesystem::relative(file, base, ec);
   if (ec || inside.empty() || *inside.begin() == "..") return {};
   if (!std::filesystem::is_regular_file(file, ec)) return {};
   return file.string();
+}
+
+// The folder a target's path is in and the target below it: /three/… is three.js.
+std::pair<std::string, std::string_view> mapped(std::string_view target, const std::string& root) {
+  constexpr std::string_view prefix = "/three/";
+  if (target.starts_with(prefix)) return {std::string(kThreeRoot), target.substr(prefix.size() - 1)};
+  return {root, target};
 }
 
 }  // namespace
@@ -59,7 +69,8 @@ http::response<http::string_body> file_response(const WebRequest& request, const
     r.set(http::field::allow, "GET, HEAD");
     return r;
   }
-  const std::string file = file_of(std_view(request.target()), root);
+  const auto [folder, target] = mapped(std_view(request.target()), root);
+  const std::string file = file_of(target, folder);
   if (file.empty()) return plain(request, http::status::not_found, "no such file in messd's web panel");
   std::ifstream in(file, std::ios::binary);
   std::ostringstream body;

@@ -22,6 +22,9 @@ struct WebServer::Shared {
   bool running = true;
 };
 
+// Debian's libjs-three, served as /three/ (the panel's 3-D view; docs/web.md).
+inline constexpr std::string_view kThreeRoot = "/usr/share/javascript/three";
+
 // Beast's string_view (Boost's in 1.74) as the standard one.
 inline std::string_view std_view(boost::beast::string_view s) { return {s.data(), s.size()}; }
 
