@@ -70,6 +70,13 @@ TEST_CASE("web panel: the WebSocket is a MESSD client in JSON — position, repl
   REQUIRE(line);
   CHECK(*line == (*hit)["line"].get<std::string>());
   CHECK(is(web.until_type("MeasPt", 3.0), "MeasPt"));
+  // The page's points as a file: the web front end answers with messcap's writer, at once.
+  json point = {{"seq", (*hit)["seq"]}};
+  for (const char* k : {"x", "y", "z", "i", "j", "k", "r"}) point[k] = (*hit)[k];
+  web.send_text(json{{"export", "csv"}, {"id", 1}, {"hits", json::array({point})}}.dump());
+  auto file = web.until_type("Export", 3.0);
+  REQUIRE(file);
+  CHECK((*file)["text"] == "hit,x,y,z\n" + std::to_string((*hit)["seq"].get<int>()) + ",430.000,330.000,80.000\n");
   // A message that is no command gets the line protocol's Err, saying what is accepted.
   web.send_text("StartMv 0 0 -20");
   auto refused = web.until_type("Err", 3.0);

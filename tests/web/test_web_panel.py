@@ -6,6 +6,7 @@ views, 40 ForcePt points reach the page's list (the delay after the line protoco
 printed as figures), a reloaded page lists the journal's newest hits, releasing a jog button stops, closing the tab mid-jog stops the machine, and a browser
 from a host that may not control watches but cannot move. Screenshots of each state go to
 OUT_DIR (docs/web/ holds one set). Usage: test_web_panel.py BIN_DIR SOURCE_DIR OUT_DIR"""
+import json
 import os
 import re
 import shutil
@@ -29,8 +30,11 @@ os.makedirs(OUT, exist_ok=True)
 failures = []
 
 
+STARTED = time.monotonic()
+
+
 def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what, flush=True)
+    print("%s %5.1f s  %s" % ("ok  " if ok else "FAIL", time.monotonic() - STARTED, what), flush=True)
     if not ok:
         failures.append(what)
     return ok
@@ -124,9 +128,13 @@ def percentile(values, p):
     return ordered[min(len(ordered) - 1, int(round(p / 100.0 * (len(ordered) - 1))))]
 
 
+DOWNLOADS = tempfile.mkdtemp(prefix="imess-web-downloads-")
+
+
 def browser():
     options = webdriver.ChromeOptions()
     options.binary_location = "/usr/bin/chromium"
+    options.add_experimental_option("prefs", {"download.default_directory": DOWNLOADS, "download.prompt_for_download": False})
     for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1024,768",
               "--disable-dev-shm-usage", "--user-data-dir=" + tempfile.mkdtemp(prefix="imess-chromium-")):
         options.add_argument(a)
@@ -158,6 +166,46 @@ def position(driver):
     return " ".join(text(driver, "pos-" + a) for a in "XYZ")
 
 
+def file_text(path):
+    with open(path) as f:
+        return f.read()
+
+
+def without_time(dmis):  # DMIS names the time it was written: ", 2026-11-29T03:40:00" on its second line
+    return re.sub(r"(measured points[^\n]*), [0-9T:-]+\n", r"\1\n", dmis, count=1)
+
+
+def check_files_and_fit(driver, captures, captured):
+    """The page's downloads of the program's eight touches are the files messcap captured of
+    them, and its circle fit is what messcap fit prints for messcap's .hits file."""
+    for c in captures:
+        c.wait(10)
+    for ext in ("csv", "xyz", "dmi", "hits"):
+        driver.find_element(By.ID, "download-" + ext).click()
+        got = wait_for(lambda: os.path.exists(os.path.join(DOWNLOADS, "points." + ext)) and
+                       file_text(os.path.join(DOWNLOADS, "points." + ext)), 5)
+        want = file_text(os.path.join(captured, "points." + ext))
+        if ext == "dmi":
+            got, want = without_time(got or ""), without_time(want)
+        check(got == want, "the page's %s download is messcap's capture of the same hits (%d bytes)" % (ext, len(want)))
+    driver.find_element(By.CSS_SELECTOR, "#fit-kind option[value='circle']").click()
+    driver.find_element(By.ID, "fit").click()
+    line = wait_for(lambda: text(driver, "fit-line"), 5)
+    fitted = subprocess.run([os.path.join(BIN, "messcap"), "fit", "circle", os.path.join(captured, "points.hits")],
+                            capture_output=True, text=True).stdout.strip()
+    page, messcap = json.loads(line or "{}"), json.loads(fitted)
+    flat = lambda v: v if isinstance(v, list) else [v]
+    close = lambda a, b: a == b if isinstance(a, str) or isinstance(b, str) else abs(a - b) < 1e-9
+    same = page.keys() == messcap.keys() and all(
+        len(flat(page[k])) == len(flat(messcap[k])) and all(close(a, b) for a, b in zip(flat(page[k]), flat(messcap[k])))
+        for k in page)
+    check(same, "the page's circle fit is messcap fit's of the same hits:\n  page    %s\n  messcap %s" % (line, fitted))
+    check("Ø 30.0000" in text(driver, "fit-result"), "the fit shows the bore's diameter: " + text(driver, "fit-result"))
+    check(wait_for(lambda: "fit" in driver.find_element(By.ID, "view3d").get_attribute("data-extras"), 5),
+          "the fitted circle is drawn in the 3-D view")
+    shot(driver, "panel-fit")
+
+
 def main():
     messd = Messd(["--config", os.path.join(SRC, "tests", "e2e", "fast-cmm.json")])
     watcher = Line(messd.port)
@@ -178,6 +226,13 @@ def main():
         driver.find_element(By.ID, "program-load").click()
         check(wait_for(lambda: text(driver, "program-check").startswith("Ok Load bore-inspection.ngc"), 10),
               "Load shows the check's summary: " + text(driver, "program-check"))
+        # messcap captures the same touches on 1066, into the files the page's downloads must equal.
+        captured = tempfile.mkdtemp(prefix="imess-web-messcap-")
+        captures = [subprocess.Popen([os.path.join(BIN, "messcap"), "127.0.0.1:%d" % messd.port, "-n", "8", "-o",
+                                      os.path.join(captured, "points." + ext)], stdout=subprocess.DEVNULL,
+                                     stderr=subprocess.PIPE, text=True) for ext in ("csv", "xyz", "dmi", "hits")]
+        for c in captures:
+            check("connected" in c.stderr.readline(), "messcap is capturing beside the page")
         driver.find_element(By.ID, "program-run").click()
         check(wait_for(lambda: "block" in text(driver, "program-block"), 10), "Run shows the current block")
         shot(driver, "panel-program-running")
@@ -188,6 +243,7 @@ def main():
         hits_of_program = len(driver.find_elements(By.CSS_SELECTOR, "#points tbody tr"))
         check(hits_of_program == 8, "the program's 8 touches are in the points list (%d)" % hits_of_program)
         shot(driver, "panel-program-ended")
+        check_files_and_fit(driver, captures, captured)
         driver.find_element(By.ID, "clear-points").click()
         watcher.request("Release")  # nobody holds control now; the page's jog takes it
         driver.find_element(By.ID, "console-line").send_keys("GoTo 430 330 100\n")

@@ -3,6 +3,7 @@
 import { Messd } from './messd.js';
 import { setupJog } from './jog.js';
 import { setupPoints } from './points.js';
+import { setupPointTools } from './point_tools.js';
 import { setupPrograms } from './programs.js';
 
 const $ = (id) => document.getElementById(id);
@@ -93,6 +94,6 @@ $('console').onsubmit = async (ev) => {
 };
 
 setupJog(messd, log);
-setupPoints(messd);
+setupPointTools(messd, setupPoints(messd), log);
 setupPrograms(messd, log);
 window.imess = messd;  // for the browser tests and the curious: the connection

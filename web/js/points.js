@@ -27,6 +27,7 @@ export function setupPoints(messd) {
     row.className = 'new';
     row.dataset.seq = e.seq;
     row.dataset.shownAt = String(performance.timeOrigin + performance.now());  // wall clock, ms: the latency test reads it
+    row.onclick = () => row.classList.toggle('selected');  // the selection to fit or download
     for (const text of [e.seq, e.x.toFixed(3), e.y.toFixed(3), e.z.toFixed(3),
       `${e.i.toFixed(3)} ${e.j.toFixed(3)} ${e.k.toFixed(3)}`]) {
       const cell = document.createElement('td');
@@ -53,17 +54,6 @@ export function setupPoints(messd) {
     if (last > 0) await messd.send('Replay', [Math.max(1, last - 19)]);
   });
 
-  function download(name, text) {
-    const a = document.createElement('a');
-    a.href = URL.createObjectURL(new Blob([text], { type: 'text/plain' }));
-    a.download = name;
-    a.click();
-    setTimeout(() => URL.revokeObjectURL(a.href), 1000);
-  }
-  document.getElementById('download-csv').onclick = () => download('points.csv',
-    'seq,x,y,z,i,j,k,r\n' + points.map((p) => [p.seq, p.x, p.y, p.z, p.i, p.j, p.k, p.r].join(',')).join('\n') + '\n');
-  document.getElementById('download-xyz').onclick = () => download('points.xyz',
-    points.map((p) => `${p.x.toFixed(4)} ${p.y.toFixed(4)} ${p.z.toFixed(4)}`).join('\n') + '\n');
   document.getElementById('clear-points').onclick = () => {
     points.length = 0;
     known.clear();
@@ -71,5 +61,16 @@ export function setupPoints(messd) {
     count.textContent = '0';
     if (view) view.clearPoints();
   };
-  return { points, ready };
+  // The selected points, oldest first (all when none is selected), as the page got them.
+  function selection() {
+    const chosen = new Set([...body.querySelectorAll('tr.selected')].map((r) => Number(r.dataset.seq)));
+    return chosen.size ? points.filter((p) => chosen.has(p.seq)) : points.slice();
+  }
+  document.getElementById('select-all').onclick = () => {
+    for (const r of body.rows) r.classList.add('selected');
+  };
+  document.getElementById('select-none').onclick = () => {
+    for (const r of body.rows) r.classList.remove('selected');
+  };
+  return { points, ready, selection };
 }

@@ -73,6 +73,7 @@ export async function createView3d(box) {
     box.dataset.points = String(points.children.length);
     box.dataset.last = points.children.length ? fmt(points.children[points.children.length - 1].position) : '';
     box.dataset.probe = probe.visible ? fmt(probe.position) : '';
+    box.dataset.extras = extras.children.map((o) => o.name).join(' ');
   }
 
   function resize() {

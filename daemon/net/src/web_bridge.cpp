@@ -15,6 +15,7 @@
 
 #include "imess/protocol/messages.hpp"
 #include "imess/webjson/web_json.hpp"
+#include "imess/webpoints/points_request.hpp"
 #include "web_shared.hpp"
 
 namespace imess::net {
@@ -143,6 +144,8 @@ class WebBridge : public std::enable_shared_from_this<WebBridge> {
     in_.consume(in_.size());
     if (!ws_.got_text()) {
       to_browser(err_event(101, "a binary message; the panel speaks JSON text messages (docs/web.md)"));
+    } else if (auto points = webpoints::answer_points_message(message)) {
+      to_browser(std::move(*points));  // a file or a fit of the page's points: answered here, at once
     } else {
       auto result = webjson::command_lines(message);
       if (auto* refusal = std::get_if<webjson::Refusal>(&result)) {
