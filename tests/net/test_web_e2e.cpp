@@ -77,6 +77,15 @@ TEST_CASE("web panel: the WebSocket is a MESSD client in JSON — position, repl
   auto file = web.until_type("Export", 3.0);
   REQUIRE(file);
   CHECK((*file)["text"] == "hit,x,y,z\n" + std::to_string((*hit)["seq"].get<int>()) + ",430.000,330.000,80.000\n");
+  // The loaded program's path: none loaded yet, then the check's 20 segments of the bore's program.
+  web.send_text(R"({"path":"loaded","id":2})");
+  auto none = web.until_type("Path", 3.0);
+  REQUIRE(none);
+  CHECK((*none)["error"].get<std::string>().find("no program loaded") != std::string::npos);
+  web.send_text(R"({"path":"everything"})");
+  auto wrong = web.until_type("Path", 3.0);
+  REQUIRE(wrong);
+  CHECK((*wrong)["error"].get<std::string>().find("accepted: {\"path\":\"loaded\"") != std::string::npos);
   // A message that is no command gets the line protocol's Err, saying what is accepted.
   web.send_text("StartMv 0 0 -20");
   auto refused = web.until_type("Err", 3.0);

@@ -226,6 +226,11 @@ def main():
         driver.find_element(By.ID, "program-load").click()
         check(wait_for(lambda: text(driver, "program-check").startswith("Ok Load bore-inspection.ngc"), 10),
               "Load shows the check's summary: " + text(driver, "program-check"))
+        # Its path in the 3-D view: the segments the check planned, as many as Load counts.
+        segments = re.search(r" Segments (\d+)", text(driver, "program-check"))
+        view = lambda key: driver.find_element(By.ID, "view3d").get_attribute("data-" + key)
+        check(segments and wait_for(lambda: view("path-segments") == segments.group(1), 5) and "program" in view("extras"),
+              "the program's path is drawn: %s segments, as Load says (%s)" % (view("path-segments"), segments and segments.group(1)))
         # messcap captures the same touches on 1066, into the files the page's downloads must equal.
         captured = tempfile.mkdtemp(prefix="imess-web-messcap-")
         captures = [subprocess.Popen([os.path.join(BIN, "messcap"), "127.0.0.1:%d" % messd.port, "-n", "8", "-o",
@@ -235,6 +240,9 @@ def main():
             check("connected" in c.stderr.readline(), "messcap is capturing beside the page")
         driver.find_element(By.ID, "program-run").click()
         check(wait_for(lambda: "block" in text(driver, "program-block"), 10), "Run shows the current block")
+        block_line = lambda: re.search(r" line (\d+) block", text(driver, "program-block") + " line - block").group(1)
+        check(wait_for(lambda: view("path-line") == block_line(), 10),
+              "the current block's line is highlighted in the path (line %s, the Block's %s)" % (view("path-line"), block_line()))
         shot(driver, "panel-program-running")
         end = wait_for(lambda: "ProgEnd" in text(driver, "program-block") and text(driver, "program-block"), 120)
         check(end and "ProgEnd bore-inspection.ngc ok" in end, "the program runs to ProgEnd ok: %s" % end)

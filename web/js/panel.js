@@ -94,6 +94,7 @@ $('console').onsubmit = async (ev) => {
 };
 
 setupJog(messd, log);
-setupPointTools(messd, setupPoints(messd), log);
-setupPrograms(messd, log);
+const pointList = setupPoints(messd);
+setupPointTools(messd, pointList, log);
+setupPrograms(messd, log, pointList.ready);
 window.imess = messd;  // for the browser tests and the curious: the connection

@@ -144,6 +144,8 @@ class WebBridge : public std::enable_shared_from_this<WebBridge> {
     in_.consume(in_.size());
     if (!ws_.got_text()) {
       to_browser(err_event(101, "a binary message; the panel speaks JSON text messages (docs/web.md)"));
+    } else if (auto path = answer_path_message(message, shared_->programs)) {
+      to_browser(std::move(*path));  // the loaded program's path: answered here, at once
     } else if (auto points = webpoints::answer_points_message(message)) {
       to_browser(std::move(*points));  // a file or a fit of the page's points: answered here, at once
     } else {

@@ -22,13 +22,14 @@ std::string default_web_root() {
   return IMESS_WEB_SOURCE_DIR;
 }
 
-WebServer::WebServer(asio::io_context& io, const ServerConfig& config, SessionHub& sessions, LogLimiter& log)
+WebServer::WebServer(asio::io_context& io, const ServerConfig& config, SessionHub& sessions, LogLimiter& log,
+                     const ProgramRunner* programs)
     : acceptor_(io) {
   std::string root = config.web.root.empty() ? default_web_root() : config.web.root;
   std::error_code ec;
   const auto absolute = std::filesystem::weakly_canonical(root, ec);
   root_ = ec ? root : absolute.string();
-  shared_ = std::make_shared<Shared>(Shared{config, sessions, log, root_});
+  shared_ = std::make_shared<Shared>(Shared{config, sessions, log, programs, root_});
 }
 
 WebServer::~WebServer() { stop(); }

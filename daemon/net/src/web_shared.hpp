@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -17,6 +18,7 @@ struct WebServer::Shared {
   const ServerConfig& config;
   SessionHub& sessions;
   LogLimiter& log;
+  const ProgramRunner* programs;  // the loaded program's path ({"path":…}); null: none
   std::string root;           // the panel's files, an absolute path
   std::size_t connections = 0;  // HTTP connections open (not the WebSocket sessions)
   bool running = true;
@@ -34,6 +36,8 @@ using WebRequest = boost::beast::http::request<boost::beast::http::string_body>;
 void serve_http(boost::asio::ip::tcp::socket socket, std::shared_ptr<WebServer::Shared> shared);
 // The WebSocket upgrade of `request` on `stream`: checked (Origin, token), accepted, bridged.
 void start_web_session(boost::beast::tcp_stream stream, WebRequest request, std::shared_ptr<WebServer::Shared> shared);
+// The answer to the page's {"path":"loaded"} (web_path.cpp); nothing for any other message.
+std::optional<std::string> answer_path_message(std::string_view message, const ProgramRunner* programs);
 // The response for a file request (GET/HEAD) below `root`.
 boost::beast::http::response<boost::beast::http::string_body> file_response(const WebRequest& request, const std::string& root);
 
