@@ -21,7 +21,9 @@ export async function createView3d(box) {
     box.classList.add('missing');
     return null;
   }
-  const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  // No antialiasing: a tablet without a fast GPU (or a software one) draws a frame in a few
+  // ms, and the page's messages wait for none (scripts/bench web measures it).
+  const renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
   renderer.setPixelRatio(window.devicePixelRatio || 1);
   renderer.setClearColor(0xfbfcfe);
   box.appendChild(renderer.domElement);
@@ -36,10 +38,20 @@ export async function createView3d(box) {
   controls.enableDamping = false;
 
   const ball = new THREE.SphereBufferGeometry(1, 16, 12);
-  const pointMaterial = new THREE.MeshLambertMaterial({ color: kPoint });
-  const newestMaterial = new THREE.MeshLambertMaterial({ color: kNewest });
-  const points = new THREE.Group();
-  scene.add(points);
+  // The points: one cloud (one draw call however many there are) and the newest as a ball.
+  let capacity = 256;
+  let count = 0;
+  let positions = new Float32Array(capacity * 3);
+  const cloudGeometry = new THREE.BufferGeometry();
+  cloudGeometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+  cloudGeometry.setDrawRange(0, 0);
+  const cloud = new THREE.Points(cloudGeometry, new THREE.PointsMaterial({ color: kPoint, size: 5, sizeAttenuation: false }));
+  cloud.frustumCulled = false;
+  scene.add(cloud);
+  const newest = new THREE.Mesh(ball, new THREE.MeshLambertMaterial({ color: kNewest }));
+  newest.visible = false;
+  scene.add(newest);
+  const bounds = new THREE.Box3();  // of every point
   const probe = new THREE.Group();  // the ball and its stem
   // See-through, so the point it has just touched shows.
   const tip = new THREE.Mesh(ball, new THREE.MeshLambertMaterial({ color: kProbe, transparent: true, opacity: 0.55 }));
@@ -70,8 +82,8 @@ export async function createView3d(box) {
 
   function draw() {
     renderer.render(scene, camera);
-    box.dataset.points = String(points.children.length);
-    box.dataset.last = points.children.length ? fmt(points.children[points.children.length - 1].position) : '';
+    box.dataset.points = String(count);
+    box.dataset.last = count ? fmt(newest.position) : '';
     box.dataset.probe = probe.visible ? fmt(probe.position) : '';
     box.dataset.extras = extras.children.map((o) => o.name).join(' ');
   }
@@ -87,12 +99,12 @@ export async function createView3d(box) {
 
   // The camera on everything there is, from the front left, above.
   function frame() {
-    const bounds = new THREE.Box3();
-    for (const o of [...points.children, ...extras.children]) bounds.expandByObject(o);
-    if (probe.visible) bounds.expandByPoint(probe.position);
-    if (bounds.isEmpty()) return;
-    const mid = bounds.getCenter(new THREE.Vector3());
-    const span = Math.max(40, bounds.getSize(new THREE.Vector3()).length());
+    const all = bounds.clone();
+    for (const o of extras.children) all.expandByObject(o);
+    if (probe.visible) all.expandByPoint(probe.position);
+    if (all.isEmpty()) return;
+    const mid = all.getCenter(new THREE.Vector3());
+    const span = Math.max(40, all.getSize(new THREE.Vector3()).length());
     controls.target.copy(mid);
     camera.position.copy(mid).add(new THREE.Vector3(-0.6, -1.2, 0.8).normalize().multiplyScalar(span * 1.6));
     camera.near = span / 1000;
@@ -100,10 +112,10 @@ export async function createView3d(box) {
     camera.updateProjectionMatrix();
     controls.update();
     size = span / 150;
-    for (const p of points.children) p.scale.setScalar(p.userData.newest ? size * 1.8 : size);
-    axes.position.copy(bounds.min);
+    newest.scale.setScalar(size * 1.8);
+    axes.position.copy(all.min);
     axes.scale.setScalar(span / 8);
-    framed = bounds.clone().expandByScalar(span * 0.15);
+    framed = all.clone().expandByScalar(span * 0.15);
     scaleProbe(tip.userData.radius || 2);
   }
 
@@ -122,18 +134,29 @@ export async function createView3d(box) {
   const view = {
     THREE,
     addPoint(p) {
-      const last = points.children[points.children.length - 1];
-      if (last) { last.material = pointMaterial; last.userData.newest = false; last.scale.setScalar(size); }
-      const m = new THREE.Mesh(ball, newestMaterial);
-      m.position.set(p.x, p.y, p.z);
-      m.userData = { seq: p.seq, newest: true };
-      m.scale.setScalar(size * 1.8);
-      points.add(m);
-      if (follow && (!inView(m.position) || points.children.length <= 2)) frame();
+      if (count === capacity) {  // the cloud's buffer, twice as large
+        capacity *= 2;
+        const grown = new Float32Array(capacity * 3);
+        grown.set(positions);
+        positions = grown;
+        cloudGeometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+      }
+      positions.set([p.x, p.y, p.z], count * 3);
+      count += 1;
+      cloudGeometry.setDrawRange(0, count);
+      cloudGeometry.attributes.position.needsUpdate = true;
+      newest.position.set(p.x, p.y, p.z);
+      newest.scale.setScalar(size * 1.8);
+      newest.visible = true;
+      bounds.expandByPoint(newest.position);
+      if (follow && (!inView(newest.position) || count <= 2)) frame();
       render();
     },
     clearPoints() {
-      points.remove(...points.children);
+      count = 0;
+      cloudGeometry.setDrawRange(0, 0);
+      newest.visible = false;
+      bounds.makeEmpty();
       if (follow) frame();
       render();
     },
