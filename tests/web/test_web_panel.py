@@ -206,6 +206,26 @@ def check_files_and_fit(driver, captures, captured):
     shot(driver, "panel-fit")
 
 
+def check_inspection(driver):
+    """A plan of the programs folder (examples/programs/cube-top.plan.json) measured by messcap
+    inspect, which messd's web front end starts: its table and the HTML report it wrote."""
+    check(wait_for(lambda: "cube-top.plan.json" in text(driver, "plan-list"), 5), "the inspection plans are listed")
+    driver.find_element(By.CSS_SELECTOR, "#plan-list option[value='cube-top.plan.json']").click()
+    driver.find_element(By.ID, "inspect-run").click()
+    done = wait_for(lambda: driver.find_element(By.ID, "inspect-status").get_attribute("data-status") is not None
+                    and text(driver, "inspect-status"), 40)
+    check(done and "every characteristic in tolerance" in done, "messcap inspect measured the plan: %s" % done)
+    check(re.search(r"top flatness\s+flatness\s+0\.0000\s+0\.0000.*ok", text(driver, "inspect-table")) is not None,
+          "its table is shown: %r" % text(driver, "inspect-table")[-200:])
+    frame = driver.find_element(By.ID, "inspect-report")
+    driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", frame)
+    driver.switch_to.frame(frame)
+    report = wait_for(lambda: driver.find_element(By.TAG_NAME, "body").text, 5) or ""
+    driver.switch_to.default_content()
+    check("top flatness" in report and "cube-1996-top" in report, "messcap's HTML report is shown: %r" % report[:120])
+    shot(driver, "panel-inspection")
+
+
 def main():
     messd = Messd(["--config", os.path.join(SRC, "tests", "e2e", "fast-cmm.json")])
     watcher = Line(messd.port)
@@ -252,7 +272,10 @@ def main():
         check(hits_of_program == 8, "the program's 8 touches are in the points list (%d)" % hits_of_program)
         shot(driver, "panel-program-ended")
         check_files_and_fit(driver, captures, captured)
-        driver.find_element(By.ID, "clear-points").click()
+        check_inspection(driver)
+        clear = driver.find_element(By.ID, "clear-points")
+        driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", clear)
+        clear.click()
         watcher.request("Release")  # nobody holds control now; the page's jog takes it
         driver.find_element(By.ID, "console-line").send_keys("GoTo 430 330 100\n")
         check(wait_for(lambda: position(driver) == "430.000 330.000 100.000", 20), "back above the cube")

@@ -31,7 +31,7 @@ export class Messd {
   get open() { return this.ws && this.ws.readyState === WebSocket.OPEN; }
 
   dispatch(e) {
-    if ((e.type === 'Export' || e.type === 'Fit' || e.type === 'Path') && this.tools.has(e.id)) {  // the web front end's own answers
+    if (['Export', 'Fit', 'Path', 'Inspect'].includes(e.type) && this.tools.has(e.id)) {  // the web front end's own answers
       this.tools.get(e.id)(e);
       this.tools.delete(e.id);
     }
@@ -67,8 +67,8 @@ export class Messd {
     return new Promise((resolve) => this.pending.push(resolve));
   }
 
-  // A request the web front end answers itself ({"export":…}, {"fit":…}, {"path":…}, docs/web.md):
-  // resolves to its Export, Fit or Path message, which carries "error" when it failed.
+  // A request the web front end answers itself ({"export":…}, {"fit":…}, {"path":…},
+  // {"inspect":…}, docs/web.md): resolves to its answer, which carries "error" when it failed.
   tool(message) {
     if (!this.open) return Promise.resolve({ type: 'Err', error: 'not connected to messd' });
     const id = this.nextTool++;

@@ -5,6 +5,7 @@ import { setupJog } from './jog.js';
 import { setupPoints } from './points.js';
 import { setupPointTools } from './point_tools.js';
 import { setupPrograms } from './programs.js';
+import { setupInspection } from './inspection.js';
 
 const $ = (id) => document.getElementById(id);
 const token = new URLSearchParams(location.search).get('token');
@@ -97,4 +98,5 @@ setupJog(messd, log);
 const pointList = setupPoints(messd);
 setupPointTools(messd, pointList, log);
 setupPrograms(messd, log, pointList.ready);
+setupInspection(messd, log);
 window.imess = messd;  // for the browser tests and the curious: the connection

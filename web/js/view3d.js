@@ -72,12 +72,16 @@ export async function createView3d(box) {
   controls.addEventListener('start', () => { follow = false; });
   const inView = (v) => framed && framed.containsPoint(v);
 
-  // At most one drawing per frame of the screen: the position comes many times a second.
+  // At most ten drawings a second: the position comes many times a second, and a tablet
+  // without a fast GPU (or a software one) must keep time for the page's messages and its
+  // dead-man keep-alives. Orbiting by hand draws at once.
   let due = false;
+  let drawn = 0;
   function render() {
     if (due) return;
     due = true;
-    requestAnimationFrame(() => { due = false; draw(); });
+    setTimeout(() => requestAnimationFrame(() => { due = false; drawn = performance.now(); draw(); }),
+      Math.max(0, drawn + 100 - performance.now()));
   }
 
   function draw() {
@@ -127,7 +131,7 @@ export async function createView3d(box) {
     stem.position.set(0, 0, length / 2 + radius);
   }
 
-  controls.addEventListener('change', render);
+  controls.addEventListener('change', draw);
   window.addEventListener('resize', resize);
   resize();
 

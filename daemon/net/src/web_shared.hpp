@@ -5,6 +5,7 @@
 #include <boost/beast/http.hpp>
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -20,6 +21,8 @@ struct WebServer::Shared {
   LogLimiter& log;
   const ProgramRunner* programs;  // the loaded program's path ({"path":…}); null: none
   std::string root;           // the panel's files, an absolute path
+  std::string reports;        // messcap inspect's reports, served as /reports/ (web_inspect.cpp)
+  bool inspecting = false;    // one inspection at a time
   std::size_t connections = 0;  // HTTP connections open (not the WebSocket sessions)
   bool running = true;
 };
@@ -38,7 +41,11 @@ void serve_http(boost::asio::ip::tcp::socket socket, std::shared_ptr<WebServer::
 void start_web_session(boost::beast::tcp_stream stream, WebRequest request, std::shared_ptr<WebServer::Shared> shared);
 // The answer to the page's {"path":"loaded"} (web_path.cpp); nothing for any other message.
 std::optional<std::string> answer_path_message(std::string_view message, const ProgramRunner* programs);
-// The response for a file request (GET/HEAD) below `root`.
-boost::beast::http::response<boost::beast::http::string_body> file_response(const WebRequest& request, const std::string& root);
+// The response for a file request (GET/HEAD): the panel's, three.js's (/three/), a report (/reports/).
+boost::beast::http::response<boost::beast::http::string_body> file_response(const WebRequest& request, const WebServer::Shared& shared);
+// The page's {"inspect":…} (web_inspect.cpp): answered (now, or when messcap ends) through
+// `answer`; false for any other message. `refusal`: why this page may not move the machine ("": it may).
+bool answer_inspect_message(std::string_view message, const std::shared_ptr<WebServer::Shared>& shared,
+                            boost::asio::any_io_executor ex, const std::string& refusal, std::function<void(std::string)> answer);
 
 }  // namespace imess::net
