@@ -82,6 +82,11 @@ TEST_CASE("web panel: the WebSocket is a MESSD client in JSON — position, repl
   auto none = web.until_type("Path", 3.0);
   REQUIRE(none);
   CHECK((*none)["error"].get<std::string>().find("no program loaded") != std::string::npos);
+  // Inspection: the programs folder's plans; a name outside it is no plan.
+  web.send_text(R"({"inspect":"run","plan":"../cube-1996.plan.json","id":3})");
+  auto outside = web.until_type("Inspect", 3.0);
+  REQUIRE(outside);
+  CHECK((*outside)["error"].get<std::string>().find("no plan '../cube-1996.plan.json' in the programs folder") != std::string::npos);
   web.send_text(R"({"path":"everything"})");
   auto wrong = web.until_type("Path", 3.0);
   REQUIRE(wrong);
@@ -145,6 +150,12 @@ TEST_CASE("web panel: the host lists hold for the page: an observer host may wat
   CHECK((*refused)["code"] == 210);
   CHECK((*refused)["text"].get<std::string>().find("127.0.0.2") != std::string::npos);
   CHECK(is(far.request(cmd("StopMv")), "Ok"));
+  // An inspection moves the machine: an observer's is refused before messcap starts.
+  far.send_text(R"({"inspect":"run","plan":"cube-top.plan.json","id":9})");
+  auto inspect = far.until_type("Inspect", 3.0);
+  REQUIRE(inspect);
+  CHECK((*inspect)["id"] == 9);
+  CHECK((*inspect)["error"].get<std::string>().find("may observe but not control") != std::string::npos);
   // A host in neither list is refused the page and the WebSocket.
   CHECK(upgrade_status(messd.web_port(), "127.0.0.3", "/ws", "") == 403);
 }
