@@ -238,6 +238,13 @@ def main():
         state = re.search(r" State (\w+) ", status).group(1)
         check(wait_for(lambda: text(driver, "state") == state, 5), "the page shows the state Status says (%s)" % state)
         check(wait_for(lambda: text(driver, "control") == "none", 5), "the page shows nobody in control")
+        # Stats: the motion loop's wake-up latency, as Stats says it.
+        stats = driver.find_element(By.ID, "stats-refresh")
+        driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", stats)
+        stats.click()
+        shown = wait_for(lambda: re.search(r"LatP99 \d+", text(driver, "stats")) and text(driver, "stats"), 5)
+        check(shown and "Cycles" in shown and "Overruns" in shown, "Stats shows the loop's latency: %r" % (shown or "")[:80])
+        driver.execute_script("window.scrollTo(0, 0)")
         shot(driver, "panel-connected")
 
         # A shipped program: Load shows the check's summary, Run its blocks up to ProgEnd.
@@ -374,6 +381,30 @@ def main():
         time.sleep(0.5)
         check(position(driver) == "430.000 330.000 100.000", "nothing moved")
         shot(driver, "panel-observer")
+    finally:
+        messd.stop()
+
+    # A machine whose axes are not X Y Z (the MRM arm: X Y C U V), in the same browser: a pair
+    # of jog buttons for each of its axes, none for Z, and holding C+ turns C (JogAx).
+    messd = Messd(["--config", os.path.join(SRC, "config", "sim-mrm-arm.json")])
+    arm = Line(messd.port)
+    try:
+        driver.get(messd.url)
+        check(wait_for(lambda: driver.find_element(By.ID, "jog-C+").is_displayed() and
+                       not driver.find_element(By.ID, "jog-Z-").is_displayed(), 10),
+              "the arm's page has jog buttons for C U V and none for Z: %s" % [
+                  b.text for b in driver.find_elements(By.CSS_SELECTOR, ".jog-button") if b.is_displayed()])
+        c_of = lambda: float(text(driver, "pos-Cx"))
+        before = c_of()
+        turn = driver.find_element(By.ID, "jog-C+")
+        driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", turn)
+        ActionChains(driver).click_and_hold(turn).perform()
+        check(arm.until("State jog", 5) is not None, "holding C+ jogs the arm")
+        turned = wait_for(lambda: c_of() > before + 1 and c_of(), 5)
+        shot(driver, "panel-arm")
+        ActionChains(driver).release().perform()
+        check(arm.until("State idle", 5) is not None, "releasing C+ stops it")
+        check(turned is not None, "C turned from %.3f to %s" % (before, turned))
     finally:
         driver.quit()
         messd.stop()
