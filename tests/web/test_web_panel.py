@@ -132,10 +132,13 @@ DOWNLOADS = tempfile.mkdtemp(prefix="imess-web-downloads-")
 
 
 def browser():
+    # --in-process-gpu: the software GL (SwiftShader) the 3-D view draws with runs in the page's
+    # process; in a GPU process of its own, on a loaded 2-core host, the page's main thread was
+    # seen to wait on it for more than the dead-man's 1.5 s (Watch then aborted the program).
     options = webdriver.ChromeOptions()
     options.binary_location = "/usr/bin/chromium"
     options.add_experimental_option("prefs", {"download.default_directory": DOWNLOADS, "download.prompt_for_download": False})
-    for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1024,768",
+    for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--in-process-gpu", "--window-size=1024,768",
               "--disable-dev-shm-usage", "--user-data-dir=" + tempfile.mkdtemp(prefix="imess-chromium-")):
         options.add_argument(a)
     return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)

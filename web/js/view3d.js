@@ -23,7 +23,7 @@ export async function createView3d(box) {
   }
   // No antialiasing: a tablet without a fast GPU (or a software one) draws a frame in a few
   // ms, and the page's messages wait for none (scripts/bench web measures it).
-  const renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
+  const renderer = new THREE.WebGLRenderer({ antialias: false });
   renderer.setPixelRatio(window.devicePixelRatio || 1);
   renderer.setClearColor(0xfbfcfe);
   box.appendChild(renderer.domElement);
@@ -72,16 +72,16 @@ export async function createView3d(box) {
   controls.addEventListener('start', () => { follow = false; });
   const inView = (v) => framed && framed.containsPoint(v);
 
-  // At most ten drawings a second: the position comes many times a second, and a tablet
-  // without a fast GPU (or a software one) must keep time for the page's messages and its
-  // dead-man keep-alives. Orbiting by hand draws at once.
+  // At most five drawings a second: the position comes many times a second, and a tablet
+  // without a fast GPU (or a software one: headless Chromium's) must keep time for the page's
+  // messages and its dead-man keep-alives. Orbiting by hand draws at once.
   let due = false;
   let drawn = 0;
   function render() {
     if (due) return;
     due = true;
     setTimeout(() => requestAnimationFrame(() => { due = false; drawn = performance.now(); draw(); }),
-      Math.max(0, drawn + 100 - performance.now()));
+      Math.max(0, drawn + 200 - performance.now()));
   }
 
   function draw() {
@@ -180,7 +180,8 @@ export async function createView3d(box) {
     },
     frame() { follow = true; frame(); render(); },
     render,
-    // The colour drawn where a point of the scene appears on the canvas: [r, g, b].
+    // The colour drawn where a point of the scene appears on the canvas: [r, g, b] (drawn and
+    // read in one task: the drawing buffer is not kept after it is shown).
     pixelAt(x, y, z) {
       draw();
       const v = new THREE.Vector3(x, y, z).project(camera);
