@@ -4,9 +4,11 @@
 imess_packages=(cmake ninja-build g++ pkg-config libboost-dev libeigen3-dev libspdlog-dev
                 nlohmann-json3-dev catch2 libncurses-dev ccache telnet)
 imess_packages+=(libmosquitto-dev)  # messmqtt and messfleet talk MQTT through libmosquitto (docs/mqtt.md)
+imess_packages+=(libjs-three)  # three.js, which messd serves as /three/ for the web panel's 3-D view (scripts/run, tests)
 # Only for scripts/bench: cyclictest (rt-tests), the floor bench_rt measures messd against,
 # and matplotlib for the plots.
 imess_bench_packages=(rt-tests python3 python3-matplotlib)
+imess_bench_packages+=(chromium chromium-driver python3-selenium)  # scripts/bench web: the panel in a real browser
 
 # Only for scripts/package and the suite's packaging test: dpkg-dev, whose dpkg-shlibdeps
 # computes the package's Depends (lintian, which scripts/package adds, is optional for the test).

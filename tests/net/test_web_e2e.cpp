@@ -29,6 +29,14 @@ TEST_CASE("web panel: messd serves the panel's files, nothing outside them, GET 
   CHECK(http_request(messd.web_port(), http::verb::get, "/%2e%2e/CMakeLists.txt").result() == http::status::not_found);
   CHECK(http_request(messd.web_port(), http::verb::get, "/no-such-file.js").result() == http::status::not_found);
   CHECK(http_request(messd.web_port(), http::verb::post, "/").result() == http::status::method_not_allowed);
+  // Debian's libjs-three (scripts/deps.sh installs it) as /three/, by the same rules.
+  auto three = http_request(messd.web_port(), http::verb::get, "/three/build/three.module.js");
+  CHECK(three.result() == http::status::ok);
+  CHECK(three[http::field::content_type] == "text/javascript; charset=utf-8");
+  CHECK(three.body().find("WebGLRenderer") != std::string::npos);
+  CHECK(http_request(messd.web_port(), http::verb::get, "/three/examples/jsm/controls/OrbitControls.js").result() == http::status::ok);
+  CHECK(http_request(messd.web_port(), http::verb::get, "/three/../../../etc/passwd").result() == http::status::not_found);
+  CHECK(http_request(messd.web_port(), http::verb::get, "/three/").result() == http::status::not_found);
 }
 
 TEST_CASE("web panel: --http-port 0 turns it off") {
@@ -62,6 +70,27 @@ TEST_CASE("web panel: the WebSocket is a MESSD client in JSON — position, repl
   REQUIRE(line);
   CHECK(*line == (*hit)["line"].get<std::string>());
   CHECK(is(web.until_type("MeasPt", 3.0), "MeasPt"));
+  // The page's points as a file: the web front end answers with messcap's writer, at once.
+  json point = {{"seq", (*hit)["seq"]}};
+  for (const char* k : {"x", "y", "z", "i", "j", "k", "r"}) point[k] = (*hit)[k];
+  web.send_text(json{{"export", "csv"}, {"id", 1}, {"hits", json::array({point})}}.dump());
+  auto file = web.until_type("Export", 3.0);
+  REQUIRE(file);
+  CHECK((*file)["text"] == "hit,x,y,z\n" + std::to_string((*hit)["seq"].get<int>()) + ",430.000,330.000,80.000\n");
+  // The loaded program's path: none loaded yet, then the check's 20 segments of the bore's program.
+  web.send_text(R"({"path":"loaded","id":2})");
+  auto none = web.until_type("Path", 3.0);
+  REQUIRE(none);
+  CHECK((*none)["error"].get<std::string>().find("no program loaded") != std::string::npos);
+  // Inspection: the programs folder's plans; a name outside it is no plan.
+  web.send_text(R"({"inspect":"run","plan":"../cube-1996.plan.json","id":3})");
+  auto outside = web.until_type("Inspect", 3.0);
+  REQUIRE(outside);
+  CHECK((*outside)["error"].get<std::string>().find("no plan '../cube-1996.plan.json' in the programs folder") != std::string::npos);
+  web.send_text(R"({"path":"everything"})");
+  auto wrong = web.until_type("Path", 3.0);
+  REQUIRE(wrong);
+  CHECK((*wrong)["error"].get<std::string>().find("accepted: {\"path\":\"loaded\"") != std::string::npos);
   // A message that is no command gets the line protocol's Err, saying what is accepted.
   web.send_text("StartMv 0 0 -20");
   auto refused = web.until_type("Err", 3.0);
@@ -121,6 +150,12 @@ TEST_CASE("web panel: the host lists hold for the page: an observer host may wat
   CHECK((*refused)["code"] == 210);
   CHECK((*refused)["text"].get<std::string>().find("127.0.0.2") != std::string::npos);
   CHECK(is(far.request(cmd("StopMv")), "Ok"));
+  // An inspection moves the machine: an observer's is refused before messcap starts.
+  far.send_text(R"({"inspect":"run","plan":"cube-top.plan.json","id":9})");
+  auto inspect = far.until_type("Inspect", 3.0);
+  REQUIRE(inspect);
+  CHECK((*inspect)["id"] == 9);
+  CHECK((*inspect)["error"].get<std::string>().find("may observe but not control") != std::string::npos);
   // A host in neither list is refused the page and the WebSocket.
   CHECK(upgrade_status(messd.web_port(), "127.0.0.3", "/ws", "") == 403);
 }

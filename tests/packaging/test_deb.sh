@@ -43,6 +43,7 @@ field() { sed -n "s/^$1: //p" "$tmp/control/control"; }
 [ "$(field Version)" = "$version" ] || fail "Version is '$(field Version)', not the project's $version"
 [ "$(field Architecture)" = "$(dpkg --print-architecture)" ] || fail "Architecture is '$(field Architecture)'"
 grep -q 'libc6' <<<"$(field Depends)" || fail "Depends '$(field Depends)' names no libc6: dpkg-shlibdeps did not run"
+[ "$(field Recommends)" = libjs-three ] || fail "Recommends is '$(field Recommends)', not libjs-three (the web panel's 3-D view)"
 for f in Maintainer Section Description; do [ -n "$(field $f)" ] || fail "no $f field"; done
 grep -qx '/etc/imess/messd.json' "$tmp/control/conffiles" 2>/dev/null || fail "/etc/imess/messd.json is not a conffile"
 for s in postinst postrm; do [ -x "$tmp/control/$s" ] || fail "no executable $s"; done

@@ -6,6 +6,7 @@ views, 40 ForcePt points reach the page's list (the delay after the line protoco
 printed as figures), a reloaded page lists the journal's newest hits, releasing a jog button stops, closing the tab mid-jog stops the machine, and a browser
 from a host that may not control watches but cannot move. Screenshots of each state go to
 OUT_DIR (docs/web/ holds one set). Usage: test_web_panel.py BIN_DIR SOURCE_DIR OUT_DIR"""
+import json
 import os
 import re
 import shutil
@@ -29,8 +30,11 @@ os.makedirs(OUT, exist_ok=True)
 failures = []
 
 
+STARTED = time.monotonic()
+
+
 def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what, flush=True)
+    print("%s %5.1f s  %s" % ("ok  " if ok else "FAIL", time.monotonic() - STARTED, what), flush=True)
     if not ok:
         failures.append(what)
     return ok
@@ -124,10 +128,17 @@ def percentile(values, p):
     return ordered[min(len(ordered) - 1, int(round(p / 100.0 * (len(ordered) - 1))))]
 
 
+DOWNLOADS = tempfile.mkdtemp(prefix="imess-web-downloads-")
+
+
 def browser():
+    # --in-process-gpu: the software GL (SwiftShader) the 3-D view draws with runs in the page's
+    # process; in a GPU process of its own, on a loaded 2-core host, the page's main thread was
+    # seen to wait on it for more than the dead-man's 1.5 s (Watch then aborted the program).
     options = webdriver.ChromeOptions()
     options.binary_location = "/usr/bin/chromium"
-    for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1024,768",
+    options.add_experimental_option("prefs", {"download.default_directory": DOWNLOADS, "download.prompt_for_download": False})
+    for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--in-process-gpu", "--window-size=1024,768",
               "--disable-dev-shm-usage", "--user-data-dir=" + tempfile.mkdtemp(prefix="imess-chromium-")):
         options.add_argument(a)
     return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
@@ -158,6 +169,66 @@ def position(driver):
     return " ".join(text(driver, "pos-" + a) for a in "XYZ")
 
 
+def file_text(path):
+    with open(path) as f:
+        return f.read()
+
+
+def without_time(dmis):  # DMIS names the time it was written: ", 2026-11-29T03:40:00" on its second line
+    return re.sub(r"(measured points[^\n]*), [0-9T:-]+\n", r"\1\n", dmis, count=1)
+
+
+def check_files_and_fit(driver, captures, captured):
+    """The page's downloads of the program's eight touches are the files messcap captured of
+    them, and its circle fit is what messcap fit prints for messcap's .hits file."""
+    for c in captures:
+        c.wait(10)
+    for ext in ("csv", "xyz", "dmi", "hits"):
+        driver.find_element(By.ID, "download-" + ext).click()
+        got = wait_for(lambda: os.path.exists(os.path.join(DOWNLOADS, "points." + ext)) and
+                       file_text(os.path.join(DOWNLOADS, "points." + ext)), 5)
+        want = file_text(os.path.join(captured, "points." + ext))
+        if ext == "dmi":
+            got, want = without_time(got or ""), without_time(want)
+        check(got == want, "the page's %s download is messcap's capture of the same hits (%d bytes)" % (ext, len(want)))
+    driver.find_element(By.CSS_SELECTOR, "#fit-kind option[value='circle']").click()
+    driver.find_element(By.ID, "fit").click()
+    line = wait_for(lambda: text(driver, "fit-line"), 5)
+    fitted = subprocess.run([os.path.join(BIN, "messcap"), "fit", "circle", os.path.join(captured, "points.hits")],
+                            capture_output=True, text=True).stdout.strip()
+    page, messcap = json.loads(line or "{}"), json.loads(fitted)
+    flat = lambda v: v if isinstance(v, list) else [v]
+    close = lambda a, b: a == b if isinstance(a, str) or isinstance(b, str) else abs(a - b) < 1e-9
+    same = page.keys() == messcap.keys() and all(
+        len(flat(page[k])) == len(flat(messcap[k])) and all(close(a, b) for a, b in zip(flat(page[k]), flat(messcap[k])))
+        for k in page)
+    check(same, "the page's circle fit is messcap fit's of the same hits:\n  page    %s\n  messcap %s" % (line, fitted))
+    check("Ø 30.0000" in text(driver, "fit-result"), "the fit shows the bore's diameter: " + text(driver, "fit-result"))
+    check(wait_for(lambda: "fit" in driver.find_element(By.ID, "view3d").get_attribute("data-extras"), 5),
+          "the fitted circle is drawn in the 3-D view")
+    shot(driver, "panel-fit")
+
+
+def check_inspection(driver):
+    """A plan of the programs folder (examples/programs/cube-top.plan.json) measured by messcap
+    inspect, which messd's web front end starts: its table and the HTML report it wrote."""
+    check(wait_for(lambda: "cube-top.plan.json" in text(driver, "plan-list"), 5), "the inspection plans are listed")
+    driver.find_element(By.CSS_SELECTOR, "#plan-list option[value='cube-top.plan.json']").click()
+    driver.find_element(By.ID, "inspect-run").click()
+    done = wait_for(lambda: driver.find_element(By.ID, "inspect-status").get_attribute("data-status") is not None
+                    and text(driver, "inspect-status"), 40)
+    check(done and "every characteristic in tolerance" in done, "messcap inspect measured the plan: %s" % done)
+    check(re.search(r"top flatness\s+flatness\s+0\.0000\s+0\.0000.*ok", text(driver, "inspect-table")) is not None,
+          "its table is shown: %r" % text(driver, "inspect-table")[-200:])
+    frame = driver.find_element(By.ID, "inspect-report")
+    driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", frame)
+    driver.switch_to.frame(frame)
+    report = wait_for(lambda: driver.find_element(By.TAG_NAME, "body").text, 5) or ""
+    driver.switch_to.default_content()
+    check("top flatness" in report and "cube-1996-top" in report, "messcap's HTML report is shown: %r" % report[:120])
+    shot(driver, "panel-inspection")
+
+
 def main():
     messd = Messd(["--config", os.path.join(SRC, "tests", "e2e", "fast-cmm.json")])
     watcher = Line(messd.port)
@@ -170,6 +241,13 @@ def main():
         state = re.search(r" State (\w+) ", status).group(1)
         check(wait_for(lambda: text(driver, "state") == state, 5), "the page shows the state Status says (%s)" % state)
         check(wait_for(lambda: text(driver, "control") == "none", 5), "the page shows nobody in control")
+        # Stats: the motion loop's wake-up latency, as Stats says it.
+        stats = driver.find_element(By.ID, "stats-refresh")
+        driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", stats)
+        stats.click()
+        shown = wait_for(lambda: re.search(r"LatP99 \d+", text(driver, "stats")) and text(driver, "stats"), 5)
+        check(shown and "Cycles" in shown and "Overruns" in shown, "Stats shows the loop's latency: %r" % (shown or "")[:80])
+        driver.execute_script("window.scrollTo(0, 0)")
         shot(driver, "panel-connected")
 
         # A shipped program: Load shows the check's summary, Run its blocks up to ProgEnd.
@@ -178,8 +256,23 @@ def main():
         driver.find_element(By.ID, "program-load").click()
         check(wait_for(lambda: text(driver, "program-check").startswith("Ok Load bore-inspection.ngc"), 10),
               "Load shows the check's summary: " + text(driver, "program-check"))
+        # Its path in the 3-D view: the segments the check planned, as many as Load counts.
+        segments = re.search(r" Segments (\d+)", text(driver, "program-check"))
+        view = lambda key: driver.find_element(By.ID, "view3d").get_attribute("data-" + key)
+        check(segments and wait_for(lambda: view("path-segments") == segments.group(1), 5) and "program" in view("extras"),
+              "the program's path is drawn: %s segments, as Load says (%s)" % (view("path-segments"), segments and segments.group(1)))
+        # messcap captures the same touches on 1066, into the files the page's downloads must equal.
+        captured = tempfile.mkdtemp(prefix="imess-web-messcap-")
+        captures = [subprocess.Popen([os.path.join(BIN, "messcap"), "127.0.0.1:%d" % messd.port, "-n", "8", "-o",
+                                      os.path.join(captured, "points." + ext)], stdout=subprocess.DEVNULL,
+                                     stderr=subprocess.PIPE, text=True) for ext in ("csv", "xyz", "dmi", "hits")]
+        for c in captures:
+            check("connected" in c.stderr.readline(), "messcap is capturing beside the page")
         driver.find_element(By.ID, "program-run").click()
         check(wait_for(lambda: "block" in text(driver, "program-block"), 10), "Run shows the current block")
+        block_line = lambda: re.search(r" line (\d+) block", text(driver, "program-block") + " line - block").group(1)
+        check(wait_for(lambda: view("path-line") == block_line(), 10),
+              "the current block's line is highlighted in the path (line %s, the Block's %s)" % (view("path-line"), block_line()))
         shot(driver, "panel-program-running")
         end = wait_for(lambda: "ProgEnd" in text(driver, "program-block") and text(driver, "program-block"), 120)
         check(end and "ProgEnd bore-inspection.ngc ok" in end, "the program runs to ProgEnd ok: %s" % end)
@@ -188,23 +281,34 @@ def main():
         hits_of_program = len(driver.find_elements(By.CSS_SELECTOR, "#points tbody tr"))
         check(hits_of_program == 8, "the program's 8 touches are in the points list (%d)" % hits_of_program)
         shot(driver, "panel-program-ended")
-        driver.find_element(By.ID, "clear-points").click()
+        check_files_and_fit(driver, captures, captured)
+        check_inspection(driver)
+        clear = driver.find_element(By.ID, "clear-points")
+        driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", clear)
+        clear.click()
         watcher.request("Release")  # nobody holds control now; the page's jog takes it
         driver.find_element(By.ID, "console-line").send_keys("GoTo 430 330 100\n")
         check(wait_for(lambda: position(driver) == "430.000 330.000 100.000", 20), "back above the cube")
 
         # Press and hold -Z: the probe touches the top face, the hit is in the list and the views.
-        jog = ActionChains(driver)
-        jog.click_and_hold(driver.find_element(By.ID, "jog-Z-")).perform()
+        minus_z = driver.find_element(By.ID, "jog-Z-")
+        driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", minus_z)
+        ActionChains(driver).click_and_hold(minus_z).perform()
         row = wait_for(lambda: driver.find_elements(By.CSS_SELECTOR, "#points tbody tr"), 15)
         ActionChains(driver).release().perform()
         cells = [c.text for c in row[0].find_elements(By.TAG_NAME, "td")] if row else []
         check(cells[1:4] == ["430.000", "330.000", "80.000"], "holding -Z touches the top: the hit in the list %s" % cells)
-        painted = driver.execute_script(
-            "const c = document.getElementById('view-top'); const d = c.getContext('2d')"
-            ".getImageData(0, 0, c.width, c.height).data; let n = 0; for (let i = 3; i < d.length; i += 4) n += d[i] > 0;"
-            " return n;")
-        check(painted > 50, "the hit is drawn in the view (%d pixels)" % painted)
+        # The 3-D view (three.js from Debian's libjs-three, served by messd as /three/): the
+        # scene holds the hit as its newest point, and the newest point's colour is drawn
+        # where that point appears on the canvas.
+        view = lambda key: driver.find_element(By.ID, "view3d").get_attribute("data-" + key)
+        check(wait_for(lambda: view("last") == "430.000 330.000 80.000" and view("points") == "1", 5),
+              "the hit is the 3-D view's one point: %s (%s points)" % (view("last"), view("points")))
+        check(wait_for(lambda: view("probe") == position(driver), 5), "the probe is in the 3-D view where the page says it is (%s)" % view("probe"))
+        rgb = driver.execute_script("return window.imessView3d.pixelAt(430, 330, 80)")
+        # (red seen through the see-through probe ball, which stands just above the point)
+        check(rgb and rgb[0] > 90 and rgb[0] > 2 * rgb[1] and rgb[0] > 2 * rgb[2],
+              "the hit is drawn red (the newest) in the 3-D view: rgb %s" % rgb)
         shot(driver, "panel-hit")
 
         # The browser path against the line protocol's push, in the same run: for each
@@ -280,6 +384,30 @@ def main():
         time.sleep(0.5)
         check(position(driver) == "430.000 330.000 100.000", "nothing moved")
         shot(driver, "panel-observer")
+    finally:
+        messd.stop()
+
+    # A machine whose axes are not X Y Z (the MRM arm: X Y C U V), in the same browser: a pair
+    # of jog buttons for each of its axes, none for Z, and holding C+ turns C (JogAx).
+    messd = Messd(["--config", os.path.join(SRC, "config", "sim-mrm-arm.json")])
+    arm = Line(messd.port)
+    try:
+        driver.get(messd.url)
+        check(wait_for(lambda: driver.find_element(By.ID, "jog-C+").is_displayed() and
+                       not driver.find_element(By.ID, "jog-Z-").is_displayed(), 10),
+              "the arm's page has jog buttons for C U V and none for Z: %s" % [
+                  b.text for b in driver.find_elements(By.CSS_SELECTOR, ".jog-button") if b.is_displayed()])
+        c_of = lambda: float(text(driver, "pos-Cx"))
+        before = c_of()
+        turn = driver.find_element(By.ID, "jog-C+")
+        driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", turn)
+        ActionChains(driver).click_and_hold(turn).perform()
+        check(arm.until("State jog", 5) is not None, "holding C+ jogs the arm")
+        turned = wait_for(lambda: c_of() > before + 1 and c_of(), 5)
+        shot(driver, "panel-arm")
+        ActionChains(driver).release().perform()
+        check(arm.until("State idle", 5) is not None, "releasing C+ stops it")
+        check(turned is not None, "C turned from %.3f to %s" % (before, turned))
     finally:
         driver.quit()
         messd.stop()

@@ -7,6 +7,8 @@ export class Messd {
     this.listeners = new Map();
     this.pending = [];
     this.data = [];
+    this.tools = new Map();  // id -> the resolver of a points request (tool())
+    this.nextTool = 1;
     this.connect();
   }
 
@@ -19,6 +21,8 @@ export class Messd {
       for (const p of this.pending) p({ type: 'Err', code: 0, text: 'the connection to messd closed', data: [] });
       this.pending = [];
       this.data = [];
+      for (const [id, t] of this.tools) t({ type: 'Err', id, error: 'the connection to messd closed' });
+      this.tools.clear();
       this.emit('close', {});
       setTimeout(() => this.connect(), 1000);  // messd restarted, the network came back: again
     };
@@ -27,6 +31,10 @@ export class Messd {
   get open() { return this.ws && this.ws.readyState === WebSocket.OPEN; }
 
   dispatch(e) {
+    if (['Export', 'Fit', 'Path', 'Inspect'].includes(e.type) && this.tools.has(e.id)) {  // the web front end's own answers
+      this.tools.get(e.id)(e);
+      this.tools.delete(e.id);
+    }
     if ((e.type === 'Ok' || e.type === 'Err') && this.pending.length) {
       e.data = this.data;
       e.reply = true;  // the answer to a send(): its caller shows it
@@ -57,6 +65,15 @@ export class Messd {
     if (!this.open) return Promise.resolve({ type: 'Err', code: 0, text: 'not connected to messd', data: [] });
     this.ws.send(JSON.stringify(message));
     return new Promise((resolve) => this.pending.push(resolve));
+  }
+
+  // A request the web front end answers itself ({"export":…}, {"fit":…}, {"path":…},
+  // {"inspect":…}, docs/web.md): resolves to its answer, which carries "error" when it failed.
+  tool(message) {
+    if (!this.open) return Promise.resolve({ type: 'Err', error: 'not connected to messd' });
+    const id = this.nextTool++;
+    this.ws.send(JSON.stringify({ ...message, id }));
+    return new Promise((resolve) => this.tools.set(id, resolve));
   }
 
   // The blank line: the dead-man's keep-alive, no reply.

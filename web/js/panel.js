@@ -3,7 +3,9 @@
 import { Messd } from './messd.js';
 import { setupJog } from './jog.js';
 import { setupPoints } from './points.js';
+import { setupPointTools } from './point_tools.js';
 import { setupPrograms } from './programs.js';
+import { setupInspection } from './inspection.js';
 
 const $ = (id) => document.getElementById(id);
 const token = new URLSearchParams(location.search).get('token');
@@ -44,9 +46,11 @@ messd.on('CurrCor', (e) => {
   $('pos-Y').textContent = e.y.toFixed(3);
   $('pos-Z').textContent = e.z.toFixed(3);
 });
-messd.on('AxPos', (e) => {
+messd.on('AxPos', (e) => {  // a machine not of exactly X Y Z: its X Y Z large (those it has), the others below
+  for (const a of 'XYZ') $(`pos-${a}`).parentElement.hidden = !e.axes.includes(a);
   const extra = $('axes-extra');
-  extra.replaceChildren(...e.axes.map((axis, n) => {
+  extra.replaceChildren(...e.axes.flatMap((axis, n) => ('XYZ'.includes(axis) ? [] : [n])).map((n) => {
+    const axis = e.axes[n];
     const box = document.createElement('div');
     box.innerHTML = `<span>${axis}</span><output id="pos-${axis}x"></output>`;
     box.querySelector('output').textContent = e.pos[n].toFixed(3);
@@ -93,6 +97,8 @@ $('console').onsubmit = async (ev) => {
 };
 
 setupJog(messd, log);
-setupPoints(messd);
-setupPrograms(messd, log);
+const pointList = setupPoints(messd);
+setupPointTools(messd, pointList, log);
+setupPrograms(messd, log, pointList.ready);
+setupInspection(messd, log);
 window.imess = messd;  // for the browser tests and the curious: the connection

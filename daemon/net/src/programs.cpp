@@ -200,9 +200,24 @@ void ProgramRunner::stopped(std::string_view who) {
 // Translates and checks the program from `start`; the items of the run in `items`.
 bool ProgramRunner::check_program_text(const LoadedProgram& p, const planner::Pose& start, std::vector<programs::Item>& items,
                                 programs::Check& check, std::string& error) const {
+  checked_from_ = start;
   return check_program_for({config_, gateway_.config(), gateway_.machine(), gateway_.options(), &frames_.frames()}, p, start, items,
                            check, error);
 }
+
+bool ProgramRunner::loaded_path(const programs::SegmentVisitor& visit, std::string& name, std::string& error) const {
+  if (!program_.loaded) {
+    error = "no program loaded; Load or Upload one first";
+    return false;
+  }
+  name = program_.loaded->name;
+  std::vector<programs::Item> items;
+  programs::Check check;
+  return check_program_for({config_, gateway_.config(), gateway_.machine(), gateway_.options(), &frames_.frames()},
+                           *program_.loaded, checked_from_, items, check, error, visit);
+}
+
+const core::AxisLayout& ProgramRunner::layout() const { return gateway_.config().layout; }
 
 bool ProgramRunner::busy(std::string_view verb, const Answer& answer) const {
   if (!program_.running()) return false;

@@ -59,7 +59,7 @@ void Server::start() {
     }
   }
   if (config_.web.on) {
-    web_ = std::make_unique<WebServer>(io_, config_, sessions_, log_limiter_);
+    web_ = std::make_unique<WebServer>(io_, config_, sessions_, log_limiter_, &programs_);
     web_->start();
   }
   add_observers();

@@ -15,6 +15,7 @@
 
 #include "imess/protocol/messages.hpp"
 #include "imess/webjson/web_json.hpp"
+#include "imess/webpoints/points_request.hpp"
 #include "web_shared.hpp"
 
 namespace imess::net {
@@ -143,6 +144,13 @@ class WebBridge : public std::enable_shared_from_this<WebBridge> {
     in_.consume(in_.size());
     if (!ws_.got_text()) {
       to_browser(err_event(101, "a binary message; the panel speaks JSON text messages (docs/web.md)"));
+    } else if (answer_inspect_message(message, shared_, ws_.get_executor(), move_refusal(),
+                                      [self = shared_from_this()](std::string r) { self->to_browser(std::move(r)); })) {
+      // an inspection's list, its refusal, or messcap started: the answer comes when it ends
+    } else if (auto path = answer_path_message(message, shared_->programs)) {
+      to_browser(std::move(*path));  // the loaded program's path: answered here, at once
+    } else if (auto points = webpoints::answer_points_message(message)) {
+      to_browser(std::move(*points));  // a file or a fit of the page's points: answered here, at once
     } else {
       auto result = webjson::command_lines(message);
       if (auto* refusal = std::get_if<webjson::Refusal>(&result)) {
@@ -153,6 +161,16 @@ class WebBridge : public std::enable_shared_from_this<WebBridge> {
       }
     }
     read_browser();
+  }
+
+  // Why this page may not move the machine ("": it may): its token, or its host.
+  std::string move_refusal() const {
+    if (!observe_reason_.empty()) return observe_reason_;
+    auto address = peer_.address();
+    if (address.is_v6() && address.to_v6().is_v4_mapped()) address = asio::ip::make_address_v4(asio::ip::v4_mapped, address.to_v6());
+    if (!shared_->config.control.hosts.contains(address))
+      return "host " + address.to_string() + " may observe but not control the machine (control.hosts)";
+    return {};
   }
 
   void write_session() {

@@ -1,5 +1,6 @@
-// The panel's files: GET and HEAD of a path below the web root, nothing else. A path that
-// leaves the root (.., a link pointing out), names no regular file or holds odd bytes is 404.
+// The panel's files: GET and HEAD of a path below the web root, nothing else; /three/… comes
+// from Debian's libjs-three (kThreeRoot) by the same rules. A path that leaves its root (.., a
+// link pointing out), names no regular file or holds odd bytes is 404.
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -43,23 +44,36 @@ std::string file_of(std::string_view target, const std::string& root) {
   std::string relative(path.substr(1));
   if (relative.empty() || relative.back() == '/') relative += "index.html";
   std::error_code ec;
-  const auto file = std::filesystem::weakly_canonical(std::filesystem::path(root) / relative, ec);
+  const auto base = std::filesystem::weakly_canonical(root, ec);
   if (ec) return {};
-  const auto inside = std::filesystem::relative(file, root, ec);
+  const auto file = std::filesystem::weakly_canonical(base / relative, ec);
+  if (ec) return {};
+  const auto inside = std::filesystem::relative(file, base, ec);
   if (ec || inside.empty() || *inside.begin() == "..") return {};
   if (!std::filesystem::is_regular_file(file, ec)) return {};
   return file.string();
 }
 
+// The folder a target's path is in and the target below it: /three/… is three.js, /reports/…
+// messcap inspect's reports.
+std::pair<std::string, std::string_view> mapped(std::string_view target, const WebServer::Shared& shared) {
+  constexpr std::string_view three = "/three/";
+  constexpr std::string_view reports = "/reports/";
+  if (target.starts_with(three)) return {std::string(kThreeRoot), target.substr(three.size() - 1)};
+  if (target.starts_with(reports) && !shared.reports.empty()) return {shared.reports, target.substr(reports.size() - 1)};
+  return {shared.root, target};
+}
+
 }  // namespace
 
-http::response<http::string_body> file_response(const WebRequest& request, const std::string& root) {
+http::response<http::string_body> file_response(const WebRequest& request, const WebServer::Shared& shared) {
   if (request.method() != http::verb::get && request.method() != http::verb::head) {
     auto r = plain(request, http::status::method_not_allowed, "messd's web panel answers GET and HEAD only");
     r.set(http::field::allow, "GET, HEAD");
     return r;
   }
-  const std::string file = file_of(std_view(request.target()), root);
+  const auto [folder, target] = mapped(std_view(request.target()), shared);
+  const std::string file = file_of(target, folder);
   if (file.empty()) return plain(request, http::status::not_found, "no such file in messd's web panel");
   std::ifstream in(file, std::ios::binary);
   std::ostringstream body;
@@ -70,7 +84,11 @@ http::response<http::string_body> file_response(const WebRequest& request, const
   r.set(http::field::content_type, std::string(content_type(file)));
   r.set(http::field::cache_control, "no-cache");
   r.set("X-Content-Type-Options", "nosniff");
-  r.set("Content-Security-Policy", "default-src 'self'; connect-src 'self'; img-src 'self' data: blob:");
+  // A report is messcap's one self-contained page (its style inline, its pictures inline SVG).
+  if (folder == shared.reports)
+    r.set("Content-Security-Policy", "default-src 'none'; style-src 'unsafe-inline'; img-src data:");
+  else
+    r.set("Content-Security-Policy", "default-src 'self'; connect-src 'self'; img-src 'self' data: blob:");
   r.body() = body.str();
   return r;
 }

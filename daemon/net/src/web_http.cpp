@@ -57,7 +57,7 @@ class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
         return;
       }
     }
-    auto response = std::make_shared<http::response<http::string_body>>(file_response(request, shared_->root));
+    auto response = std::make_shared<http::response<http::string_body>>(file_response(request, *shared_));
     response->keep_alive(request.keep_alive());
     response->prepare_payload();
     if (request.method() == http::verb::head) {  // the length of what GET would send, no body

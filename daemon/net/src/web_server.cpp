@@ -22,16 +22,23 @@ std::string default_web_root() {
   return IMESS_WEB_SOURCE_DIR;
 }
 
-WebServer::WebServer(asio::io_context& io, const ServerConfig& config, SessionHub& sessions, LogLimiter& log)
+WebServer::WebServer(asio::io_context& io, const ServerConfig& config, SessionHub& sessions, LogLimiter& log,
+                     const ProgramRunner* programs)
     : acceptor_(io) {
   std::string root = config.web.root.empty() ? default_web_root() : config.web.root;
   std::error_code ec;
   const auto absolute = std::filesystem::weakly_canonical(root, ec);
   root_ = ec ? root : absolute.string();
-  shared_ = std::make_shared<Shared>(Shared{config, sessions, log, root_});
+  shared_ = std::make_shared<Shared>(Shared{config, sessions, log, programs, root_});
+  // messcap inspect's reports for the page: a folder of this process, gone when it stops.
+  shared_->reports = (std::filesystem::temp_directory_path(ec) / ("messd-reports-" + std::to_string(::getpid()))).string();
 }
 
-WebServer::~WebServer() { stop(); }
+WebServer::~WebServer() {
+  stop();
+  std::error_code ec;
+  std::filesystem::remove_all(shared_->reports, ec);
+}
 
 void WebServer::start() {
   std::error_code ec;
@@ -39,6 +46,11 @@ void WebServer::start() {
     throw std::runtime_error("the web panel's files are not in " + root_ + " (no index.html): server.http_root names "
                              "the folder, server.http_port 0 or --http-port 0 turns the panel off");
   const auto& config = shared_->config;
+  std::filesystem::create_directories(shared_->reports, ec);
+  if (ec) {
+    spdlog::warn("web panel: no folder for inspection reports ({}): {}", shared_->reports, ec.message());
+    shared_->reports.clear();
+  }
   port_ = open_listener(acceptor_, config.listen, config.web.port, " for the web panel",
                         " - is another messd or web server running? (--http-port chooses another, 0 turns it off)");
   running_ = true;

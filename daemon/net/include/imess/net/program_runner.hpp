@@ -41,6 +41,12 @@ class ProgramRunner : public MotionObserver {
   // The block executing now (rate-limited unless `now_or_never`): the report timer calls it.
   void show_block(bool now_or_never);
 
+  // The loaded program's path as its last check (Load, Upload, Run) planned it, each planned
+  // segment to `visit` (the web panel draws it). False with `error` when none is loaded or it
+  // no longer passes.
+  bool loaded_path(const programs::SegmentVisitor& visit, std::string& name, std::string& error) const;
+  const core::AxisLayout& layout() const;
+
   // The observer's side: its ids, the drop (a fault fails it) and a stop (ends it aborted).
   bool owns_segment(std::uint32_t id) const override;
   void segment_end(const core::Event& e) override;
@@ -63,6 +69,7 @@ class ProgramRunner : public MotionObserver {
   LogLimiter& log_;
   Announce announce_;
   ProgramRun program_;
+  mutable planner::Pose checked_from_{};  // where the last check started (loaded_path plans from it)
 };
 
 }  // namespace imess::net

@@ -17,9 +17,13 @@
 
 namespace imess::net {
 
+class ProgramRunner;
+
 class WebServer {
  public:
-  WebServer(boost::asio::io_context& io, const ServerConfig& config, SessionHub& sessions, LogLimiter& log);
+  // programs: the program runner whose loaded program's path the page may ask for (or null).
+  WebServer(boost::asio::io_context& io, const ServerConfig& config, SessionHub& sessions, LogLimiter& log,
+            const ProgramRunner* programs = nullptr);
   ~WebServer();
   void start();  // binds and accepts; throws std::runtime_error naming the address
   void stop();
