@@ -135,6 +135,7 @@ int run_inspect_command(int argc, const char* const argv[]) {
       write_text_file(*o.qif_out, qif_document({{parse_saved_inspection(report, "the report"), "the report"}},
                                                utc_time_now()));
     if (o.html_out) write_text_file(*o.html_out, inspection_html(plan, result, source));
+    if (o.endpoint && !o.points_file) announce_result(plan, result, LiveOptions{*o.endpoint, o.feed}, std::cerr);
     return result.out_of_tolerance() + result.not_evaluated() > 0 ? kExitOutOfTolerance : client::kExitOk;
   } catch (const std::exception& e) {
     std::cerr << "messcap: inspect: " << e.what() << "\n";

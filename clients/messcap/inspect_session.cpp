@@ -152,4 +152,19 @@ std::vector<metrology::MeasuredPoint> measure_live(const InspectionPlan& plan, c
   return Session(plan, options, log).run();
 }
 
+void announce_result(const InspectionPlan& plan, const metrology::InspectionResult& result, const LiveOptions& options,
+                     std::ostream& log) {
+  const std::size_t open = result.out_of_tolerance() + result.not_evaluated();
+  std::string part = plan.part;
+  for (char& c : part)
+    if (c == ' ' || c == '\t') c = '_';  // one word on the wire
+  const std::string line = "Verdict " + part + " " + std::to_string(result.characteristics.size() - open) + " " +
+                           std::to_string(open) + (open == 0 ? " pass" : " fail");
+  MachineLink link(options.endpoint);
+  link.try_request("Hello messcap-inspect");
+  const std::string reply = link.try_request(line);
+  if (reply.rfind("Err ", 0) == 0) log << "messcap: messd did not take the result (" << reply << ")\n";
+  link.finish();
+}
+
 }  // namespace imess::messcap

@@ -24,6 +24,12 @@ struct LiveOptions {
 std::vector<metrology::MeasuredPoint> measure_live(const metrology::InspectionPlan& plan, const LiveOptions& options,
                                                    std::ostream& log);
 
+// Tells messd the run's result (Verdict part in out pass|fail), which it passes on to every
+// client as the Inspected event (the MQTT bridge publishes it): on a connection of its own, after the evaluation. A
+// messd that does not know the verb (older), or refuses it, is only noted in `log`.
+void announce_result(const metrology::InspectionPlan& plan, const metrology::InspectionResult& result,
+                     const LiveOptions& options, std::ostream& log);
+
 // The order features are measured in: the alignment's three first, then the plan's order.
 std::vector<const metrology::PlanFeature*> measuring_order(const metrology::InspectionPlan& plan);
 

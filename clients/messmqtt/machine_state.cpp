@@ -129,6 +129,9 @@ Folded fold_line(MachineState& s, std::string_view line, const std::string& now)
                                {"line", to_long(w[3])}, {"text", after_words(line, 4)}};
     } else if (w[0] == "Qualified") {
       f.event = nlohmann::json{{"type", "qualified"}, {"text", after_words(line, 1)}};
+    } else if (w[0] == "Inspected" && w.size() >= 5) {  // Inspected part in out pass|fail (messcap inspect)
+      f.event = nlohmann::json{{"type", "inspection"}, {"plan", w[1]}, {"in", to_long(w[2])}, {"out", to_long(w[3])},
+                               {"result", w[4]}};
     }
   }
   return f;

@@ -230,6 +230,17 @@ const std::array kVerbs{
              "a probe qualification: TipRadius and the probe offset (ProbeOffX/Y/Z) at once; the Qualified event tells all",
              false, Access::Controlling, command_index<Qualify>(),
              [](const Args& a) -> Command { return Qualify{a.number(0), a.number(1), {a.number(2), a.number(3), a.number(4)}}; }},
+    VerbSpec{"Verdict",
+             args(word("part"),
+                  whole(number("in", 0, 100000, "Verdict takes the characteristics in tolerance as a whole number from {min} to {max}, got '{got}'")),
+                  whole(number("out", 0, 100000, "Verdict takes the characteristics not in tolerance as a whole number from {min} to {max}, got '{got}'")),
+                  choice("result", "pass fail", "Verdict takes the result pass or fail, got '{got}'; usage: {usage}")),
+             "an inspection's result (messcap inspect announces it after a run): the Inspected event tells all",
+             false, Access::Operator, command_index<Verdict>(),
+             [](const Args& a) -> Command {
+               return Verdict{std::string(a.at[0].text), static_cast<int>(a.number(1)), static_cast<int>(a.number(2)),
+                                a.at[3].choice == 0};
+             }},
     VerbSpec{"DelFrame", args(word("name")), "delete a stored part frame (the active one: machine becomes active)", false,
              Access::Controlling, command_index<DelFrame>(),
              [](const Args& a) -> Command { return DelFrame{std::string(a.at[0].text)}; }},

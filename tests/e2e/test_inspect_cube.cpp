@@ -37,6 +37,7 @@ TEST_CASE("messcap inspect: the worked-example cube measured live matches the si
   DaemonProcess messd({"--config", std::string(IMESS_SOURCE_DIR) + "/tests/e2e/fast-cmm.json"},
                       DaemonProcess::Scheduling::RealtimeIfPermitted);
   TempDir dir;
+  LineClient observer(messd.port());  // another client: it sees the run's result announced
   const std::string plan = std::string(IMESS_SOURCE_DIR) + "/examples/cube-1996.plan.json";
   const auto run = run_program({client_binary("messcap"), "inspect", plan, "127.0.0.1:" + std::to_string(messd.port()),
                                 "--feed", "300", "--json", dir.file("cube.json"), "--html", dir.file("cube.html"),
@@ -45,6 +46,7 @@ TEST_CASE("messcap inspect: the worked-example cube measured live matches the si
   INFO("stdout:\n" << run.out << "\nstderr:\n" << run.err);
   REQUIRE(run.status == 0);
   CHECK(run.out.find("13 characteristics: 13 in tolerance, 0 out of tolerance") != std::string::npos);
+  CHECK(observer.until_prefix("Inspected ", 5.0) == std::optional<std::string>("Inspected cube-1996 13 0 pass"));
   {  // messd keeps the part frame messcap built, active, for every client
     LineClient monitor(messd.port());
     CHECK(monitor.request("Frames") == std::optional<std::string>("Ok Frames Active cube-1996 Names machine cube-1996"));

@@ -377,6 +377,19 @@ TEST_CASE("messmqtt: three machines on a real mosquitto, every hit exactly once 
     return false;
   }); }, std::chrono::seconds{3}));
 
+  // An inspection's result announced on m3 (as messcap inspect does after a run) is its event.
+  REQUIRE(cells[2].client->request("Verdict cube-1996 12 1 fail") == std::optional<std::string>("Ok Verdict"));
+  const bool inspection_published = wait_until([&] { return sub.with([](auto& ms) {
+    for (const auto& e : ms["m3"].events)
+      if (e.value("type", "") == "inspection")
+        return e.value("plan", "") == "cube-1996" && e.value("in", -1) == 12 && e.value("out", -1) == 1 &&
+               e.value("result", "") == "fail" && e.value("machine", "") == "m3";
+    return false;
+  }); }, std::chrono::seconds{3});
+  INFO("m3's events: " << sub.with([](auto& ms) { return nlohmann::json(ms["m3"].events).dump(); }) << "\nm3's bridge: "
+                       << cells[2].bridge->err());
+  REQUIRE(inspection_published);
+
   // Retained state: m3 moved by the client "mqtttest", which holds control.
   REQUIRE(cells[2].client->request("GoTo 440 340 90") == std::optional<std::string>("Ok GoTo"));
   REQUIRE(cells[2].client->until([](const std::string& l) { return l == "State idle"; }, 10));

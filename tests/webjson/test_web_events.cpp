@@ -42,6 +42,7 @@ TEST_CASE("web events: each event type's fields by name, and back to the same li
       {"Frame machine", R"({"type":"Frame","name":"machine"})"},
       {"Qualified TipRadius 2.0010 Offset 0.0010 -0.0020 0.0000 Form 0.0004",
        R"({"type":"Qualified","tip_radius":2.001,"dx":0.001,"dy":-0.002,"dz":0.0,"form":0.0004})"},
+      {"Inspected cube-1996 12 1 fail", R"({"type":"Inspected","part":"cube-1996","in":12,"out":1,"result":"fail"})"},
       {"Ok StartMv", R"({"type":"Ok","verb":"StartMv","args":[]})"},
       {"Ok Replay 3 17", R"({"type":"Ok","verb":"Replay","args":["3","17"]})"},
       {"Err 209 the machine is controlled by jog at 127.0.0.1 (client 2)",

@@ -60,6 +60,7 @@ const std::vector<EventRow>& events() {
       {"Frame", {word("name")}},
       {"Qualified", {literal("TipRadius"), fixed("tip_radius", 4), literal("Offset"), fixed("dx", 4), fixed("dy", 4),
                      fixed("dz", 4), literal("Form"), fixed("form", 4)}},
+      {"Inspected", {word("part"), whole("in"), whole("out"), word("result")}},
       {"Ok", {word("verb"), {Kind::Words, "args"}}},
       {"Err", {whole("code"), rest("text")}},
   };

@@ -175,6 +175,7 @@ void MessdDispatch::on_command(Session& s, std::uint32_t slot, const protocol::C
           [&](const protocol::Align& c) { frames_.align(s, slot, c); },
           [&](const protocol::DelFrame& c) { frames_.del_frame(s, slot, c.name); },
           [&](const protocol::Qualify& c) { qualify(s, slot, c); },
+          [&](const protocol::Verdict& c) { verdict(s, slot, c); },
           [&](const protocol::Stream& c) { reply(s, slot, stream_.set_stream_rate(s, c.hz)); },
       },
       cmd);
@@ -275,6 +276,14 @@ void MessdDispatch::qualify(Session& s, std::uint32_t slot, const protocol::Qual
   text += " Form ";
   protocol::append_fixed(text, c.form, 4);
   sessions_.broadcast(protocol::format_event("Qualified", text));
+}
+
+// Verdict part in out result: passed on to everyone as the Inspected event (the MQTT bridge
+// publishes it; a panel shows it). It changes nothing on the machine.
+void MessdDispatch::verdict(Session& s, std::uint32_t slot, const protocol::Verdict& c) {
+  reply(s, slot, protocol::format_ok("Verdict"));
+  sessions_.broadcast(protocol::format_event("Inspected", c.part + " " + std::to_string(c.in) + " " + std::to_string(c.out) +
+                                                              (c.pass ? " pass" : " fail")));
 }
 
 std::string MessdDispatch::status_line() {

@@ -108,6 +108,10 @@ struct DelFrame { std::string name; };
 // A probe qualification's result (messcap qualify measures it on a reference sphere): the
 // effective tip radius, the sphere's form error and the probe offset, applied at once.
 struct Qualify { double radius = 0, form = 0; Xyz offset; };
+// An inspection's verdict, announced by the client that measured it (messcap inspect): the
+// part, its characteristics in tolerance and not (out of tolerance or not evaluated), pass.
+// messd passes it on as the Inspected event.
+struct Verdict { std::string part; int in = 0, out = 0; bool pass = false; };
 inline constexpr double kMaxDwellSeconds = 3600;
 inline constexpr int kMaxArcTurns = 1000;  // ArcTo P: 1 (the arc alone) ... this
 
@@ -120,6 +124,6 @@ using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo
                              Reset, Set, Get, Stats, HandMv, Quit, Replay, Take, Release, Watch, Version,
                              MoveTo, ArcTo, Dwell, Queue, Pause, Resume, Probe, JogAx, SetOut, Outputs,
                              Programs, Load, Upload, Run, Abort, Program, Key, Frames, Frame, PartPos, UseFrame,
-                             SetFrame, Align, DelFrame, Qualify, Stream>;
+                             SetFrame, Align, DelFrame, Qualify, Stream, Verdict>;
 
 }  // namespace imess::protocol

@@ -53,6 +53,7 @@ class MessdDispatch {
   void get_param(Session& s, std::uint32_t slot, const protocol::Get& c);
   void set_param(Session& s, std::uint32_t slot, const protocol::Set& c);
   void qualify(Session& s, std::uint32_t slot, const protocol::Qualify& c);
+  void verdict(Session& s, std::uint32_t slot, const protocol::Verdict& c);
   std::string status_line();
   // messd_control.cpp: the MESSD side of control
   bool allowed(Session& s, const protocol::Command& cmd, std::uint32_t slot);
