@@ -284,6 +284,7 @@ TEST_CASE("README tour step 7: messcap inspect, with telnet open", "[long]") {
   INFO(inspect.out << inspect.err);
   REQUIRE(inspect.status == 0);
   CHECK(inspect.out.find("13 characteristics: 13 in tolerance, 0 out of tolerance") != std::string::npos);
+  CHECK(telnet.until_prefix("Inspected ", 5.0) == std::optional<std::string>("Inspected cube-1996 13 0 pass"));
   CHECK(telnet.request("Frames") == std::optional<std::string>("Ok Frames Active cube-1996 Names machine cube-1996"));
 }
 
