@@ -135,4 +135,24 @@ Json parse_strict(std::string_view input, std::string_view source, const Options
   }
 }
 
+std::optional<nlohmann::json> object_naming(std::string_view message, std::initializer_list<std::string_view> keys,
+                                            const Options& options) {
+  auto names = [&](std::string_view key) {
+    return message.find("\"" + std::string(key) + "\"") != std::string_view::npos;
+  };
+  bool named = false;
+  for (const auto key : keys) named = named || names(key);
+  if (!named) return std::nullopt;
+  nlohmann::json j;
+  try {
+    j = parse_strict(message, "message", options);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (!j.is_object()) return std::nullopt;
+  for (const auto key : keys)
+    if (j.contains(key)) return j;
+  return std::nullopt;
+}
+
 }  // namespace imess::jsontext

@@ -60,19 +60,12 @@ std::string refusal(const PointsRequest& r, const std::string& why) {
 }  // namespace
 
 std::variant<NotPoints, PointsRequest, Refused> parse_points_request(std::string_view message) {
-  // Cheap first: a MESSD command names neither key.
-  if (message.find("\"export\"") == std::string_view::npos && message.find("\"fit\"") == std::string_view::npos)
-    return NotPoints{};
-  nlohmann::json j;
-  try {
-    jsontext::Options options;
-    options.max_depth = 3;
-    options.depth_hint = "a points request is an object with a list of hits";
-    j = jsontext::parse_strict(message, "message", options);
-  } catch (const std::exception&) {
-    return NotPoints{};  // webjson refuses it, saying why
-  }
-  if (!j.is_object() || (!j.contains("export") && !j.contains("fit"))) return NotPoints{};
+  jsontext::Options options;
+  options.max_depth = 3;
+  options.depth_hint = "a points request is an object with a list of hits";
+  const auto request = jsontext::object_naming(message, {"export", "fit"}, options);
+  if (!request) return NotPoints{};  // webjson refuses it, saying why
+  const nlohmann::json& j = *request;
   PointsRequest r;
   r.kind = j.contains("fit") ? PointsRequest::Kind::Fit : PointsRequest::Kind::Export;
   try {

@@ -176,16 +176,11 @@ class InspectRun : public std::enable_shared_from_this<InspectRun> {
 
 bool answer_inspect_message(std::string_view message, const std::shared_ptr<WebServer::Shared>& shared, asio::any_io_executor ex,
                             const std::string& observe_reason, std::function<void(std::string)> answer) {
-  if (message.find("\"inspect\"") == std::string_view::npos) return false;
-  nlohmann::json j;
-  try {
-    jsontext::Options options;
-    options.max_depth = 1;
-    j = jsontext::parse_strict(message, "message", options);
-  } catch (const std::exception&) {
-    return false;  // webjson refuses it, saying why
-  }
-  if (!j.is_object() || !j.contains("inspect")) return false;
+  jsontext::Options options;
+  options.max_depth = 1;
+  const auto request = jsontext::object_naming(message, {"inspect"}, options);
+  if (!request) return false;  // webjson refuses it, saying why
+  const nlohmann::json& j = *request;
   std::int64_t id = 0;
   if (const auto it = j.find("id"); it != j.end() && it->is_number_integer()) id = it->get<std::int64_t>();
   for (const auto& [key, v] : j.items())

@@ -76,16 +76,11 @@ std::string path_reply(std::int64_t id, const ProgramRunner& programs) {
 }  // namespace
 
 std::optional<std::string> answer_path_message(std::string_view message, const ProgramRunner* programs) {
-  if (message.find("\"path\"") == std::string_view::npos) return std::nullopt;
-  nlohmann::json j;
-  try {
-    jsontext::Options options;
-    options.max_depth = 1;
-    j = jsontext::parse_strict(message, "message", options);
-  } catch (const std::exception&) {
-    return std::nullopt;  // webjson refuses it, saying why
-  }
-  if (!j.is_object() || !j.contains("path")) return std::nullopt;
+  jsontext::Options options;
+  options.max_depth = 1;
+  const auto request = jsontext::object_naming(message, {"path"}, options);
+  if (!request) return std::nullopt;  // webjson refuses it, saying why
+  const nlohmann::json& j = *request;
   nlohmann::ordered_json refusal{{"type", "Path"}, {"id", 0}};
   const auto id = j.find("id");
   if (id != j.end() && id->is_number_integer()) refusal["id"] = id->get<std::int64_t>();

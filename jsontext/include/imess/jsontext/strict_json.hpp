@@ -2,6 +2,8 @@
 // nesting are refused naming the file and the key; syntax errors name line and column.
 #pragma once
 #include <cstddef>
+#include <initializer_list>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -28,5 +30,12 @@ struct Options {
 
 // Parses `text`, read from `source` (a file name, "<stdin>" ...). Throws JsonTextError.
 nlohmann::json parse_strict(std::string_view text, std::string_view source, const Options& options = {});
+
+// A message meant for one reader among several (the web panel's requests): the object it is
+// when its text names one of `keys` and it parses strictly as an object holding one of them;
+// otherwise nothing, and whoever reads such messages in general refuses it, saying why. The
+// text is searched before it is parsed, so messages for other readers cost no parse.
+std::optional<nlohmann::json> object_naming(std::string_view message, std::initializer_list<std::string_view> keys,
+                                            const Options& options);
 
 }  // namespace imess::jsontext
