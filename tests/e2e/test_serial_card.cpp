@@ -202,7 +202,7 @@ PathEnd run_planned_line(LineClient& c, Started&& started) {
   return r;
 }
 
-TEST_CASE("servo-card: damaged bytes on a path: the host frames hit are sent again and the path ends Done", "[long]") {
+TEST_CASE("servo-card: damaged bytes on a path: the host frames hit are sent again and the path ends Done", "[alone]") {
   // From the first byte on: set-up retries what is hit, the GoTo and the path are sent again.
   MesscardProcess card({"--corrupt", "0.0003", "--seed", "5"});
   DaemonProcess messd = messd_on(card);
@@ -219,7 +219,7 @@ TEST_CASE("servo-card: damaged bytes on a path: the host frames hit are sent aga
   CHECK(card.until("a damaged frame from the host", 2));
 }
 
-TEST_CASE("servo-card: a byte error rate the path cannot survive stops it with Fault LinkErrors, on the planned line", "[long]") {
+TEST_CASE("servo-card: a byte error rate the path cannot survive stops it with Fault LinkErrors, on the planned line", "[alone]") {
   // Set-up and the GoTo clean; half a second into the path every 20th byte is hit, both ways.
   MesscardProcess card({"--corrupt", "0.05", "--faults-at-ms", "3600000", "--seed", "3"});
   DaemonProcess messd = messd_on(card);
