@@ -28,7 +28,7 @@ bool xyz(const std::vector<std::string_view>& w, Xyz& p) {
   return true;
 }
 
-// "Hit seq id x y z i j k r t": exactly 11 words, whole numbers for seq and id.
+// "Hit seq id x y z i j k r t" (or "Scan …"): exactly 11 words, whole numbers for seq and id.
 bool hit(const std::vector<std::string_view>& w, HitMsg& h) {
   if (w.size() != 11) return false;
   auto seq = parse_sequence_number(w[1]), id = parse_sequence_number(w[2]);
@@ -39,14 +39,14 @@ bool hit(const std::vector<std::string_view>& w, HitMsg& h) {
     if (!n) return false;
     v[i] = *n;
   }
-  h = HitMsg{*seq, *id, {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v[6], v[7]};
+  h = HitMsg{*seq, *id, {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v[6], v[7], w[0] == "Scan"};
   return true;
 }
 
 }  // namespace
 
 std::string format_hit(const HitMsg& h) {
-  std::string s = "Hit " + std::to_string(h.seq) + " " + std::to_string(h.id);
+  std::string s = (h.scan ? "Scan " : "Hit ") + std::to_string(h.seq) + " " + std::to_string(h.id);
   for (double v : {h.p.x, h.p.y, h.p.z}) {
     s.push_back(' ');
     append_fixed(s, v, 4);
@@ -100,7 +100,7 @@ Message parse_message(std::string_view line) {
   Xyz p;
   if (verb == "CurrCor" && xyz(w, p)) return CurrCorMsg{p};
   if (verb == "MeasPt" && xyz(w, p)) return MeasPtMsg{p};
-  if (HitMsg h; verb == "Hit" && hit(w, h)) return h;
+  if (HitMsg h; (verb == "Hit" || verb == "Scan") && hit(w, h)) return h;
   if (verb == "State" && w.size() == 2) return StateMsg{std::string(w[1])};
   if (verb == "Limit" && w.size() == 3) return LimitMsg{std::string(w[1]), std::string(w[2])};
   if (verb == "Warn" && w.size() >= 2) return WarnMsg{std::string(w[1]), rest_after(line, 2)};

@@ -19,6 +19,13 @@ TEST_CASE("a record is the Hit line plus its checksum, and decodes back to it") 
   REQUIRE(r);
   CHECK(r->seq == 17);
   CHECK(std::string(r->wire) + "\n" == wire);
+  // A scanning point is a record of the same sequence.
+  const std::string scan = "Scan 18 4 1.0000 2.0000 3.0000 -1.000000 0.000000 0.000000 2.0000 5.001000\n";
+  const std::string scan_rec = encode_record(scan);
+  const auto s = decode_record(std::string_view(scan_rec).substr(0, scan_rec.size() - 1));
+  REQUIRE(s);
+  CHECK(s->seq == 18);
+  CHECK(std::string(s->wire) + "\n" == scan);
 }
 
 TEST_CASE("torn, altered and foreign lines are not records") {

@@ -68,3 +68,13 @@ TEST_CASE("Hit carries seq, id, point, direction, radius and time, and parses ba
   CHECK(std::holds_alternative<OtherMsg>(parse_message("Hit -1 0 1 2 3 0 0 1 2 0.5")));
   CHECK(std::holds_alternative<OtherMsg>(parse_message("Hit 1 0 1 2 x 0 0 1 2 0.5")));
 }
+
+TEST_CASE("a scanning point is a Scan line of the Hit's words, and parses back as one") {
+  HitMsg s{19, 7, {445, 350, 30}, {-1, 0, 0}, 2, 12.0005, true};
+  CHECK(format_hit(s) == "Scan 19 7 445.0000 350.0000 30.0000 -1.000000 0.000000 0.000000 2.0000 12.000500\n");
+  const auto m = parse_message(format_hit(s));
+  REQUIRE(std::holds_alternative<HitMsg>(m));
+  CHECK(std::get<HitMsg>(m) == s);
+  CHECK_FALSE(std::get<HitMsg>(parse_message("Hit 19 7 445 350 30 -1 0 0 2 12.0005")).scan);
+  CHECK(std::holds_alternative<OtherMsg>(parse_message("Scan 19 7 445 350 30 -1 0 0 2")));
+}

@@ -18,8 +18,13 @@ std::string encode_record(std::string_view wire_line) {
 }
 
 std::optional<std::uint64_t> record_seq(std::string_view line) {
-  if (line.substr(0, 4) != "Hit ") return std::nullopt;
-  line.remove_prefix(4);
+  // A hit or a scanning point: both are numbered in the one sequence.
+  if (line.substr(0, 4) == "Hit ")
+    line.remove_prefix(4);
+  else if (line.substr(0, 5) == "Scan ")
+    line.remove_prefix(5);
+  else
+    return std::nullopt;
   return protocol::parse_sequence_number(line.substr(0, line.find(' ')));
 }
 

@@ -43,6 +43,14 @@ struct MachineState {
   AxisArray<std::uint32_t> status{};     // status word per axis
   AxisArray<std::uint8_t> inputs{};      // module inputs per axis (raw)
   bool tip_touched = false;              // probe deflected, switch polarity already applied
+  // A measuring (analog) probe: its deflection vector, sampled at the same card tick as the
+  // positions (mm, machine X Y Z: the ball centre pushed off its rest position by the
+  // surface). deflection_valid: this backend reads a measuring probe (false on the port
+  // backends and with a touch-trigger probe: scanning is refused there); probe_over_range:
+  // the deflection reached the probe's range (the reading is clamped).
+  Vec3 deflection = Vec3::Zero();
+  bool deflection_valid = false;
+  bool probe_over_range = false;
 
   // Every / any of the machine's axes (the unused entries never count).
   bool all(std::uint32_t bit) const {

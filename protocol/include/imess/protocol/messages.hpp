@@ -16,6 +16,9 @@ namespace imess::protocol {
 
 // A journaled hit: `Hit seq id x y z i j k r t`. The ball centre was p - radius * dir; a ForcePt
 // point has dir 0 0 0 and radius 0. time: seconds on the daemon's monotonic clock.
+// A scanning point is journaled and numbered like a hit, with the same words under the verb
+// `Scan` (`scan` true): dir is then the measured direction from the ball centre toward the
+// surface (minus the surface's outward normal), id the scan's.
 struct HitMsg {
   std::uint64_t seq = 0;  // the journal's sequence number (gap-free, survives restarts)
   std::uint64_t id = 0;   // the Probe that took it; 0 = none (hand and jog hits)
@@ -23,6 +26,7 @@ struct HitMsg {
   Xyz dir;                // unit approach direction
   double radius = 0;      // tip radius applied, mm
   double time = 0;        // trigger time, s
+  bool scan = false;      // a scanning point: the line's verb is `Scan`, not `Hit` (same words)
   friend bool operator==(const HitMsg&, const HitMsg&) = default;
 };
 
@@ -34,7 +38,8 @@ std::string format_ok(std::string_view verb, std::string_view data = {});
 std::string format_err(ErrorCode code, std::string_view text);
 std::string format_event(std::string_view verb, std::string_view text);  // "State idle\n", "Warn TipNotFree ...\n"
 // "Hit 17 0 430.0000 330.0000 80.0000 0.000000 0.000000 -1.000000 2.0000 1234.567890\n":
-// point and radius with 4 decimals (0.1 um), direction with 6, time with 6 (1 us).
+// point and radius with 4 decimals (0.1 um), direction with 6, time with 6 (1 us); a scanning
+// point "Scan 18 5 …" in the same words.
 std::string format_hit(const HitMsg& hit);
 // A data line of Replay's reply, in the place of journaled hits first … last whose records
 // cannot be read back (damaged, missing): "Replay Lost 5 5 damaged or missing in the journal\n".

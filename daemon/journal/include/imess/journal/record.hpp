@@ -1,4 +1,4 @@
-// One journal record per line: the Hit line exactly as sent live, then " *" and the CRC-32 of
+// One journal record per line: the Hit (or Scan) line exactly as sent live, then " *" and the CRC-32 of
 // that text in 8 hex digits. The checksum tells a complete record from a torn or garbled one.
 #pragma once
 #include <cstdint>
