@@ -214,6 +214,8 @@ bool ServoCardDriver::read_state(MachineState& out) noexcept {
   return true;
 }
 
+double ServoCardDriver::path_lead_s() const noexcept { return session_ ? session_->lead() : 0.0; }
+
 bool ServoCardDriver::follow(const Setpoint& sp) noexcept {
   if (rebooting() || reboot_failed_) return false;
   if (session_) return session_->follow(sp);

@@ -65,6 +65,7 @@ std::string describe(const AppendResult& r, const Machine& m) {
     case PlanError::ArcBadTurns: return seg + "arc extra turns must be 0 or more";
     case PlanError::ProbeNoDirection:
       return seg + "probe target must lie at least 0.001 mm from where the probe starts (it gives the direction)";
+    case PlanError::BadScan: return seg + "the scan's shape makes no scan";
   }
   return seg + "refused";
 }
@@ -150,6 +151,7 @@ AppendResult Planner::queue_line(const Line& l) {
   seg.id = l.id;
   seg.kind = SegmentKind::Line;
   seg.probe = l.probe;
+  seg.scan = l.scan;
   seg.start = position_;
   seg.end = target;
   if (!(L > kZeroLength)) {  // zero-length: no motion, completes with its id
@@ -225,6 +227,7 @@ AppendResult Planner::queue_arc(const Arc& arc) {
   PlannedSegment seg;
   seg.id = arc.id;
   seg.kind = SegmentKind::Arc;
+  seg.scan = arc.scan;
   seg.start = position_;
   seg.end = target;
   seg.length = L;

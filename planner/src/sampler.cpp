@@ -47,7 +47,7 @@ void Sampler::complete() noexcept {
   position_ = current_.end;
   has_current_ = false;
   if (sample_.done_count < kMaxCompletionsPerTick)
-    sample_.done[sample_.done_count++] = Completion{current_.id, current_.kind, current_.probe};
+    sample_.done[sample_.done_count++] = Completion{current_.id, current_.kind, current_.probe, current_.scan.phase};
   if (!has_next_ && current_.v1 > 0 && !scaled_) starving_ = true;  // ran off the end at speed
 }
 

@@ -158,6 +158,31 @@ const std::array kVerbs{
              "beyond; at the edge Hit, retract RetractDist from the hit, Done (no edge: Failed PartNotFound)",
              false, Access::Moving, command_index<Probe>(),
              [](const Args& a) -> Command { return Probe{id_of(a), path_words(a)}; }},
+    VerbSpec{"ScanLine",
+             args(move_id(), coordinate("x1"), coordinate("y1"), coordinate("z1"), coordinate("x2"), coordinate("y2"),
+                  coordinate("z2"), coordinate("i"), coordinate("j"), coordinate("k"),
+                  optional(above_min(number("speed", 0, kAny, "ScanLine speed must be greater than {min} mm/s")))),
+             "queue a scan along a line on a surface: start and end surface points, the surface's outward normal i j k, "
+             "mm/s (default ScanSpeed); Scan points, Done (lost contact: Failed ScanLostContact)",
+             false, Access::Moving, command_index<ScanLine>(),
+             [](const Args& a) -> Command {
+               return ScanLine{id_of(a), {a.number(1), a.number(2), a.number(3)}, {a.number(4), a.number(5), a.number(6)},
+                               {a.number(7), a.number(8), a.number(9)}, optional_number(a, 10)};
+             }},
+    VerbSpec{"ScanCirc",
+             args(move_id(), coordinate("cx"), coordinate("cy"), coordinate("cz"), coordinate("x"), coordinate("y"),
+                  coordinate("z"), coordinate("i"), coordinate("j"), coordinate("k"),
+                  number("sweep", -kMaxScanSweep, kMaxScanSweep, "ScanCirc sweeps from {min} to {max} degrees, got '{got}'"),
+                  choice("surface", "bore boss", "ScanCirc scans a bore or a boss, got '{got}'; usage: {usage}"),
+                  optional(above_min(number("speed", 0, kAny, "ScanCirc speed must be greater than {min} mm/s")))),
+             "queue a scan round an axis: centre, start surface point, axis i j k, sweep degrees (right hand), bore or "
+             "boss, mm/s (default ScanSpeed); Scan points, Done",
+             false, Access::Moving, command_index<ScanCircle>(),
+             [](const Args& a) -> Command {
+               return ScanCircle{id_of(a),      {a.number(1), a.number(2), a.number(3)}, {a.number(4), a.number(5), a.number(6)},
+                                 {a.number(7), a.number(8), a.number(9)}, a.number(10), a.at[11].choice == 0,
+                                 optional_number(a, 12)};
+             }},
     VerbSpec{"SetOut",
              args(move_id(), word("output"), choice("state", "off on", "SetOut switches an output on or off, got '{got}'; usage: {usage}")),
              "queue an output switch (Outputs lists them): the path stops, switches, holds the output's settle time, Done",

@@ -35,7 +35,7 @@ bool PathFollower::fresh_segments_waiting(Nanos now) noexcept {
   while (!segments_.empty() && stale(segments_.front())) {
     QueuedSegment q;
     segments_.pop(q);
-    fail_segment(q.seg.id, q.seg.probe, FailReason::Stopped, now);
+    fail_segment(q.seg.id, q.seg.probe, FailReason::Stopped, now, q.seg.scan.phase);
   }
   return !segments_.empty();
 }
@@ -46,14 +46,14 @@ bool PathFollower::pop_segment(planner::PlannedSegment& out) noexcept {
   QueuedSegment q;
   while (segments_.pop(q)) {
     if (stale(q)) {
-      fail_segment(q.seg.id, q.seg.probe, FailReason::Stopped, path_now_);
+      fail_segment(q.seg.id, q.seg.probe, FailReason::Stopped, path_now_, q.seg.scan.phase);
       continue;
     }
     if (check_start_) {
       check_start_ = false;
       for (int a = 0; a < loop_.n; ++a)
         if (std::abs(q.seg.start[a] - loop_.ms.position[a]) > kPathStartTolerance) {
-          fail_segment(q.seg.id, q.seg.probe, FailReason::OffPath, path_now_);
+          fail_segment(q.seg.id, q.seg.probe, FailReason::OffPath, path_now_, q.seg.scan.phase);
           check_start_ = true;  // the next one must start here too
           break;
         }
@@ -61,6 +61,7 @@ bool PathFollower::pop_segment(planner::PlannedSegment& out) noexcept {
     }
     if (held_count_ < static_cast<int>(held_ids_.size())) {
       held_probe_[held_count_] = q.seg.probe;
+      held_scan_[held_count_] = q.seg.scan.phase;
       held_ids_[held_count_++] = q.seg.id;
     }
     if (q.seg.probe != planner::ProbePhase::None) {
@@ -119,9 +120,11 @@ void PathFollower::run(Nanos now) noexcept {
   for (int i = 0; i < smp.done_count; ++i) {
     if (refused && smp.done[i].id == *refused) break;
     // A Probe's approach ends in its search (one id, one Done or Failed); a search that ends
-    // without an edge is PartNotFound, the machine at rest at its end.
+    // without an edge is PartNotFound, the machine at rest at its end. A scan is done when
+    // its Leave is.
     const auto phase = smp.done[i].probe;
-    if (phase != planner::ProbePhase::Approach) {
+    const auto scan = smp.done[i].scan;
+    if (phase != planner::ProbePhase::Approach && (scan == planner::ScanPhase::None || scan == planner::ScanPhase::Leave)) {
       const bool missed = phase == planner::ProbePhase::Search;
       const Arrival end{smp.done[i].id, missed ? EventKind::Failed : EventKind::Done,
                         missed ? FailReason::PartNotFound : FailReason::Stopped};
@@ -134,6 +137,7 @@ void PathFollower::run(Nanos now) noexcept {
       for (int k = 1; k < held_count_; ++k) {
         held_ids_[k - 1] = held_ids_[k];
         held_probe_[k - 1] = held_probe_[k];
+        held_scan_[k - 1] = held_scan_[k];
       }
       --held_count_;
     }
@@ -145,14 +149,18 @@ void PathFollower::run(Nanos now) noexcept {
   }
   // A Probe cycle that begins with the probe switched off fails before it moves on (it could
   // only end in PartNotFound, or in a collision the probe does not see).
-  if (held_count_ > 0 && held_probe_[0] != planner::ProbePhase::None && !outputs_.probe_powered())
-    return fail_and_brake(FailReason::ProbeOff, now);
+  const bool probing = held_count_ > 0 && (held_probe_[0] != planner::ProbePhase::None ||
+                                           (held_scan_[0] != planner::ScanPhase::None && held_scan_[0] != planner::ScanPhase::Position));
+  if (probing && !outputs_.probe_powered()) return fail_and_brake(FailReason::ProbeOff, now);
   hal::Setpoint sp;
   sp.time = path_time_;
   for (int a = 0; a < loop_.n; ++a) {
     sp.position[a] = smp.pose[a];
     sp.velocity[a] = smp.velocity[a];
   }
+  // A scan's segment: the contact correction on the setpoint, and its points.
+  if (FailReason why{}; !scan_.apply(sampler_.current(), sampler_.current_fraction(), sp, dt, now, why))
+    return scan_stop(why, now);
   if (sp.velocity.norm() > 1e-9) loop_.motion_dir = sp.velocity.normalized();  // for a stop's braking line
   if (!loop_.hw.follow(sp))  // this backend cannot follow a planned path (or did not answer)
     return fail_and_brake(FailReason::Faulted, now);
@@ -178,6 +186,7 @@ void PathFollower::settle(Nanos now) noexcept {
   const bool arrived = loop_.ms.motion_done() && loop_.ms.all(hal::status::kInPosition);
   if (!arrived && hal::seconds(now - settle_since_) < kSettleLimit) return;
   release_arrivals(now);
+  scan_.reset();
   loop_.enter(Mode::Idle, now);
 }
 
@@ -192,8 +201,9 @@ void PathFollower::fail_queue(FailReason why, Nanos now, bool tell) noexcept {
   path_now_ = now;
   release_arrivals(now);  // paths already complete and arriving: Done, not failed
   probe_.close(EventKind::Failed, why, now);
-  for (int i = 0; i < held_count_; ++i) fail_segment(held_ids_[i], held_probe_[i], why, now);
+  for (int i = 0; i < held_count_; ++i) fail_segment(held_ids_[i], held_probe_[i], why, now, held_scan_[i]);
   held_count_ = 0;
+  scan_.reset();
   QueuedSegment q;
   // The stop lane (tell false) fails the segments sent before the stop (stale by their
   // ticket), not those the io side sent after it (a Run or MoveTo in the same write after a
@@ -203,7 +213,7 @@ void PathFollower::fail_queue(FailReason why, Nanos now, bool tell) noexcept {
   // Run at once, "ProgEnd … failed … Failed Stopped" (tests/golden/test_program_properties.cpp).
   while (!segments_.empty() && (tell || stale(segments_.front()))) {
     segments_.pop(q);
-    fail_segment(q.seg.id, q.seg.probe, stale(q) ? FailReason::Stopped : why, now);
+    fail_segment(q.seg.id, q.seg.probe, stale(q) ? FailReason::Stopped : why, now, q.seg.scan.phase);
   }
   sampler_to_machine();
   if (!tell) return;  // the stop lane: segments sent before it are stale by their ticket
@@ -216,16 +226,31 @@ void PathFollower::fail_queue(FailReason why, Nanos now, bool tell) noexcept {
   loop_.emit(e);
 }
 
-// A Probe's search follows its approach with the same id: one Failed for the two.
-void PathFollower::fail_segment(std::uint32_t id, planner::ProbePhase phase, FailReason why, Nanos now) noexcept {
-  const bool second_half = phase == planner::ProbePhase::Search && failed_approach_ && failed_id_ == id;
+// A Probe's search follows its approach with the same id: one Failed for the two; a scan's
+// segments all carry the scan's id: one Failed for them all.
+void PathFollower::fail_segment(std::uint32_t id, planner::ProbePhase phase, FailReason why, Nanos now,
+                                planner::ScanPhase scan) noexcept {
+  const bool in_scan = scan != planner::ScanPhase::None;
+  const bool second_half = failed_id_ == id && ((phase == planner::ProbePhase::Search && failed_approach_) ||
+                                                (in_scan && scan != planner::ScanPhase::Position && failed_scan_));
   failed_approach_ = phase == planner::ProbePhase::Approach;
+  failed_scan_ = in_scan;
   failed_id_ = id;
   if (!second_half) loop_.segment_event(EventKind::Failed, id, why, now);
 }
 
+void PathFollower::scan_stop(FailReason why, Nanos now) noexcept {
+  const Vec3 n = scan_.measured_normal();
+  const double pressed = loop_.ms.deflection.norm();
+  fail_queue(why, now);
+  if (why == FailReason::ScanOverRange)  // off the surface along its normal: brake, then back off
+    return probe_.back_off(loop_.ms.position, -loop_.config.layout.machine(n), pressed + loop_.config.params.retract_distance, now);
+  loop_.brake_to_rest(Mode::Path, now);
+}
+
 void PathFollower::end_search(std::uint32_t id, Nanos now) noexcept {
   held_count_ = 0;  // the search ends here; nothing queued follows it in the ring (the io side holds it)
+  scan_.reset();
   QueuedSegment q;
   while (segments_.pop(q))
     if (q.seg.id != id) loop_.segment_event(EventKind::Failed, q.seg.id, FailReason::Stopped, now);

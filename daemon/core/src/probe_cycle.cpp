@@ -39,6 +39,7 @@ void ProbeCycle::on_latch(Nanos now) noexcept {
       return;
     case Mode::Path:
       if (path_.in_search()) return probe_hit(latched, now);
+      if (path_.in_scan_contact()) return;  // a measuring probe in contact on a scan: no hit
       [[fallthrough]];  // an edge on a move, or on a Probe's fast approach: unexpected
     case Mode::Move:
     case Mode::Home:
@@ -90,10 +91,18 @@ void ProbeCycle::close(EventKind k, FailReason why, Nanos now) noexcept {
   loop_.emit(e);
 }
 
+void ProbeCycle::back_off(const AxisVec& from, const AxisVec& dir, double distance, Nanos now) noexcept {
+  loop_.approach_dir = dir;
+  retract_by(from, dir, distance, now);
+}
+
 void ProbeCycle::retract_from(const AxisVec& latched, const AxisVec& dir, Nanos now) noexcept {
+  retract_by(latched, dir, loop_.config.params.retract_distance, now);
+}
+
+void ProbeCycle::retract_by(const AxisVec& latched, const AxisVec& dir, double distance, Nanos now) noexcept {
   // Once referenced, a retract stays within the soft limits too: it is shortened to end
   // at the travel's edge (or does not move) rather than leave it.
-  double distance = loop_.config.params.retract_distance;
   if (loop_.referenced)
     for (int a = 0; a < loop_.n; ++a) {
       const double d = -dir[a];  // the retract's direction

@@ -158,6 +158,10 @@ planner::AppendResult MotionGateway::plan(const QueuedCommand& c) {
   } else if (const auto* o = std::get_if<protocol::SetOut>(&c)) {
     const core::OutputSettings& out = *core::find_output(core_.config(), o->output);  // queue_command checked the name
     res = planner_.append(planner::SetOutput{o->id, static_cast<std::uint16_t>(out.number), o->on ? 1.0 : 0.0, out.settle_s});
+  } else if (const auto* sl = std::get_if<protocol::ScanLine>(&c)) {
+    res = plan_scan(sl->id, scan_shape(*sl), scan_settings(sl->speed));
+  } else if (const auto* sc = std::get_if<protocol::ScanCircle>(&c)) {
+    res = plan_scan(sc->id, scan_shape(*sc), scan_settings(sc->speed));
   } else {
     res = plan_probe(std::get<protocol::Probe>(c));
     if (res.ok()) probe_open_ = res.id;
@@ -170,8 +174,10 @@ void MotionGateway::feed_segments() {
   planner::PlannedSegment seg;
   while (core_.segment_room() > 0 && planner_.take(seg)) {
     // A Probe's search whose approach has already been answered (it failed before the
-    // search was fed): its id is closed, the search must never run. It is not sent.
-    const bool search = seg.probe == planner::ProbePhase::Search;
+    // search was fed): its id is closed, the search must never run. It is not sent. The same
+    // for a scan's segments after its first (Position).
+    const bool search = seg.probe == planner::ProbePhase::Search ||
+                        (seg.scan.phase != planner::ScanPhase::None && seg.scan.phase != planner::ScanPhase::Position);
     if (search && (in_loop_.empty() || in_loop_.back().first != seg.id) && (unsent_.empty() || unsent_.front() != seg.id))
       continue;
     if (!core_.submit_segment({seg, core_.stop_ticket(), drops_})) {
@@ -180,7 +186,8 @@ void MotionGateway::feed_segments() {
       if (!unsent_.empty()) unsent_.pop_front();
       continue;
     }
-    // A Probe's search after its approach: the same id, one entry (its approach took it from unsent_).
+    // A Probe's search after its approach, a scan's segment after its first: the same id, one
+    // entry (the first took it from unsent_).
     if (search && !in_loop_.empty() && in_loop_.back().first == seg.id) {
       in_loop_.back().second += seg.duration();
       continue;

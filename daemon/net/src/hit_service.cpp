@@ -10,6 +10,7 @@
 namespace imess::net {
 
 void HitService::measured(const core::Event& e) {
+  if (e.kind == core::EventKind::ScanPt) return scan_point(e);
   ++points_;
   core::Event point = e;  // the probe offset (a qualification's) moves every measured point
   point.p += hal::Vec3(probe_offset_[0], probe_offset_[1], probe_offset_[2]);
@@ -25,9 +26,17 @@ void HitService::measured(const core::Event& e) {
   }
 }
 
-JournaledHit HitService::record(const core::Event& e) {
+void HitService::scan_point(const core::Event& e) {
+  ++scan_points_;
+  core::Event point = e;
+  point.p += hal::Vec3(probe_offset_[0], probe_offset_[1], probe_offset_[2]);
+  const JournaledHit journaled = record(point, true);
+  observers_.each("Scan", [&](MotionObserver& o) { o.scanned(point, journaled); });
+}
+
+JournaledHit HitService::record(const core::Event& e, bool scan) {
   protocol::HitMsg hit{0, e.id, {e.p.x(), e.p.y(), e.p.z()}, {e.dir.x(), e.dir.y(), e.dir.z()}, e.radius,
-                       hal::seconds(e.time)};
+                       hal::seconds(e.time), scan};
   std::string line;
   try {
     line = journal_.append(hit);

@@ -50,7 +50,10 @@ ErrorCode error_of(core::FailReason why) {
     case core::FailReason::Faulted: return ErrorCode::MachineInErrorState;
     case core::FailReason::UnexpectedHit:
     case core::FailReason::TipTouched: return ErrorCode::IllegalTouch;
-    case core::FailReason::PartNotFound: return ErrorCode::SurfaceNotFound;
+    case core::FailReason::PartNotFound:
+    case core::FailReason::ScanLostContact: return ErrorCode::SurfaceNotFound;
+    case core::FailReason::ScanOverRange: return ErrorCode::IllegalTouch;
+    case core::FailReason::NoMeasuringProbe: return ErrorCode::ToolNotCalibrated;
     case core::FailReason::ProbeOff: return ErrorCode::ToolNotCalibrated;
     case core::FailReason::OffPath:
     case core::FailReason::Refused: return ErrorCode::ErrorProcessingMethod;

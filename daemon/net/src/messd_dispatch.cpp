@@ -152,6 +152,8 @@ void MessdDispatch::on_command(Session& s, std::uint32_t slot, const protocol::C
           [&](const protocol::Dwell& c) { queue_command(s, slot, c); },
           [&](const protocol::Probe& c) { queue_command(s, slot, c); },
           [&](const protocol::SetOut& c) { queue_command(s, slot, c); },
+          [&](const protocol::ScanLine& c) { queue_command(s, slot, c); },
+          [&](const protocol::ScanCircle& c) { queue_command(s, slot, c); },
           [&](const protocol::Outputs&) { outputs_status(s, slot); },
           [&](const protocol::Queue&) { queue_status(s, slot); },
           [&](const protocol::Pause&) { to_core(s, slot, {CommandKind::Pause}); },

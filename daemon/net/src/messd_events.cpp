@@ -33,6 +33,8 @@ void MessdEvents::hit(const core::Event&, const JournaledHit& h) {
   send_part_point(h.msg);
 }
 
+void MessdEvents::scanned(const core::Event&, const JournaledHit& h) { sessions_.broadcast(h.line); }
+
 void MessdEvents::state(core::Mode mode) {
   sessions_.broadcast(protocol::format_event("State", mode_name(mode)));
   if (log_motion_) spdlog::info("state {}", mode_name(mode));

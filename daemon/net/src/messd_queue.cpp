@@ -18,7 +18,7 @@ std::uint32_t id_of(const QueuedCommand& c) {
 }
 
 std::string_view verb_of(const QueuedCommand& c) {
-  static constexpr std::string_view kVerbs[] = {"MoveTo", "ArcTo", "Dwell", "Probe", "SetOut"};
+  static constexpr std::string_view kVerbs[] = {"MoveTo", "ArcTo", "Dwell", "Probe", "SetOut", "ScanLine", "ScanCirc"};
   return kVerbs[c.index()];
 }
 }  // namespace
@@ -41,6 +41,20 @@ void MessdDispatch::queue_command(Session& s, std::uint32_t slot, const QueuedCo
     const std::string bad = arc_refusal(*arc);
     if (!bad.empty()) {
       reply(s, slot, format_err(ErrorCode::BadValue, bad));
+      return;
+    }
+  }
+  if (std::holds_alternative<protocol::ScanLine>(c) || std::holds_alternative<protocol::ScanCircle>(c)) {
+    // X Y Z as machine axes 0 1 2 (the scan's poses), and a shape that makes a scan.
+    if (layout().cartesian_axis(0) != 0 || layout().cartesian_axis(1) != 1 || layout().cartesian_axis(2) != 2) {
+      reply(s, slot, format_err(ErrorCode::BadValue, std::string(verb) + " needs the linear axes X Y Z; this machine has " + layout().names()));
+      return;
+    }
+    const auto shape = std::holds_alternative<protocol::ScanLine>(c) ? scan_shape(std::get<protocol::ScanLine>(c))
+                                                                     : scan_shape(std::get<protocol::ScanCircle>(c));
+    const auto check = planner::scan_requests(id_of(c), gateway_.planned_end(), shape, gateway_.scan_settings());
+    if (const auto* why = std::get_if<std::string>(&check)) {
+      reply(s, slot, format_err(ErrorCode::BadValue, std::string(verb) + " " + std::to_string(id_of(c)) + ": " + *why));
       return;
     }
   }

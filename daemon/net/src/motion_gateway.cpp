@@ -51,7 +51,8 @@ std::size_t MotionGateway::pump_events() {
         });
         break;
       }
-      case EventKind::MeasPt: observers_.each("Hit", [&](MotionObserver& o) { o.measured(e); }); break;
+      case EventKind::MeasPt:
+      case EventKind::ScanPt: observers_.each("Hit", [&](MotionObserver& o) { o.measured(e); }); break;
       case EventKind::State: observers_.each("Retry", [&](MotionObserver& o) { o.state(e.mode); }); break;
       case EventKind::Limit: observers_.each("Limit", [&](MotionObserver& o) { o.limit(e); }); break;
       case EventKind::Warn: observers_.each("HomeFailed", [&](MotionObserver& o) { o.warning(e); }); break;

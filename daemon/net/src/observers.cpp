@@ -15,6 +15,7 @@ void MotionObserver::stopped(std::string_view) {}
 bool MotionObserver::core_reply(const core::Event&) { return false; }
 void MotionObserver::measured(const core::Event&) {}
 void MotionObserver::hit(const core::Event&, const JournaledHit&) {}
+void MotionObserver::scanned(const core::Event&, const JournaledHit&) {}
 void MotionObserver::state(core::Mode) {}
 void MotionObserver::limit(const core::Event&) {}
 void MotionObserver::warning(const core::Event&) {}

@@ -89,6 +89,9 @@ Wording fail_wording(core::FailReason f) {
     case core::FailReason::Refused: return {"Refused", "not plannable from where the Probe ended"};
     case core::FailReason::ProbeOff: return {"ProbeOff", "the probe is switched off: SetOut <id> <its output> on first"};
     case core::FailReason::HostStall: return {"HostStall", "messd stalled beyond the card's lead; resend"};
+    case core::FailReason::ScanLostContact: return {"ScanLostContact", "the probe left the surface mid-scan: stopped"};
+    case core::FailReason::ScanOverRange: return {"ScanOverRange", "probe pressed to its range: stopped, backed off"};
+    case core::FailReason::NoMeasuringProbe: return {"NoMeasuringProbe", "this probe measures no deflection: no scan"};
   }
   return {"Unknown", ""};
 }

@@ -129,6 +129,9 @@ class MotionBackend {
     OwnClock,
   };
   virtual PathTime path_time() const noexcept { return PathTime::PerCycle; }
+  // How long after it is sent the backend runs a setpoint, s (a streamed card's lead; 0 for
+  // the others): the delay a feedback loop through the path (a scan's contact control) sees.
+  virtual double path_lead_s() const noexcept { return 0; }
   // False while the link to the controller still carries earlier commands (a streamed serial
   // line: a flood of GoTo lines outruns 115 200 baud): the core then leaves the next command in
   // its ring for a later cycle, so the line's backlog stays short and a stop never waits

@@ -50,6 +50,7 @@ class ServoCardDriver final : public MotionBackend {
   // Streamed: the card runs the buffered path on its own clock through a host stall; the
   // knots are stamped by the setpoints' path time.
   PathTime path_time() const noexcept override { return session_ ? PathTime::OwnClock : PathTime::Bridged; }
+  double path_lead_s() const noexcept override;
   bool ready_for_command() const noexcept override { return !session_ || session_->line_ready(); }
   bool stop(const AxisVec& decel) noexcept override;
   bool set_position(int axis, double value) noexcept override;

@@ -39,6 +39,7 @@ enum class PlanError : std::uint8_t {
   ArcOffPlane = 9,        // a planar arc whose end is off the plane through the start
   ArcBadTurns = 10,       // extra turns below 0
   ProbeNoDirection = 11,  // a probing move's target on its start (the daemon's Probe)
+  BadScan = 12,           // a scan's shape makes no scan (scan_requests says why)
 };
 
 struct AppendResult {

@@ -19,6 +19,7 @@ struct Completion {
   std::uint32_t id = 0;
   SegmentKind kind = SegmentKind::Line;
   ProbePhase probe = ProbePhase::None;
+  ScanPhase scan = ScanPhase::None;
 };
 
 // A SetOutput segment that began this tick (the path before it has come to rest): the
@@ -93,6 +94,12 @@ class Sampler {
   double time_scale() const noexcept { return k_; }
   bool idle() const noexcept { return !has_current_ && !has_next_; }
   const Sample& last() const noexcept { return sample_; }
+  // The segment the last sample lies on (nullptr at rest after the queue), and how far into
+  // it, 0 … 1 of its time.
+  const PlannedSegment* current() const noexcept { return has_current_ ? &current_ : nullptr; }
+  double current_fraction() const noexcept {
+    return has_current_ && current_.duration() > 0 ? std::clamp(tau_ / current_.duration(), 0.0, 1.0) : 0.0;
+  }
 
  private:
   void begin_tick() noexcept;

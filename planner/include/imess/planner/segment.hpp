@@ -20,12 +20,38 @@ namespace imess::planner {
 // unexpected hit anywhere else; the search running out is PartNotFound.
 enum class ProbePhase : std::uint8_t { None, Approach, Search };
 
+// The part of a scan a segment is (planner/scan.hpp builds them, all with the scan's id):
+// Position (an ordinary move to the clearance point: a probe edge there is an unexpected
+// hit), Approach (toward the surface at the approach speed), Follow (the nominal path in
+// contact, the motion loop holding the deflection at its set-point and taking points), Leave
+// (away from the surface; the loop's correction fades to zero along it, so the scan ends
+// exactly at its planned end). Only the Leave's end is answered `Done id`.
+enum class ScanPhase : std::uint8_t { None, Position, Approach, Follow, Leave };
+
+// What the motion loop needs to hold contact on a scan segment: the nominal surface's outward
+// normal (X Y Z) — constant on a line; on a circle, at a pose p, radial · unit(p − centre,
+// projected off the axis) · √(1 − axial²) + axial · axis — the deflection set-point and band
+// and the spacing of the points, mm.
+struct ScanSpec {
+  ScanPhase phase = ScanPhase::None;
+  std::array<double, 3> normal{};          // radial 0: the surface's outward normal (unit)
+  std::array<double, 3> centre{}, axis{};  // radial ±1: a point on the axis, its unit direction
+  std::int8_t radial = 0;  // 0 a line; +1 the surface faces away from the axis (a boss, a sphere), -1 toward it (a bore)
+  double axial = 0;        // the normal's component along the axis (a cone or a sphere off its equator)
+  double deflection = 0.3, band = 0.1, step = 0.1;
+};
+
+// The largest correction the motion loop makes off a scan's nominal path, mm: a part further
+// off its nominal than this is lost contact (or over range), never chased.
+inline constexpr double kMaxScanCorrection = 1.0;
+
 struct Line {
   std::uint32_t id = 0;
   Pose target{};
   double feed = 0;
   ProbePhase probe = ProbePhase::None;
   double max_accel = 0;  // > 0: caps the path acceleration (I++ DME's GoToPar.Accel); else the axes' limits alone
+  ScanSpec scan{};
 };
 
 // A circular arc or helix. The circle lies in the plane through the three linear axes
@@ -48,6 +74,7 @@ struct Arc {
   bool planar = false;
   double feed = 0;  // mm/s along the helix
   double radius_tolerance = 0;  // mm, > 0: a wider end-radius tolerance the caller accepted (G-code)
+  ScanSpec scan{};
 };
 
 struct Dwell {
@@ -84,6 +111,7 @@ struct PlannedSegment {
   std::uint32_t id = 0;
   SegmentKind kind = SegmentKind::Line;
   ProbePhase probe = ProbePhase::None;  // kind Line
+  ScanSpec scan{};             // kind Line, Arc
   std::uint16_t output = 0;    // SetOutput
   double output_value = 0;     // SetOutput
   Pose start{}, end{};         // end of one segment == start of the next, bit for bit

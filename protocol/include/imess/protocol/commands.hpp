@@ -112,6 +112,20 @@ struct Qualify { double radius = 0, form = 0; Xyz offset; };
 // part, its characteristics in tolerance and not (out of tolerance or not evaluated), pass.
 // messd passes it on as the Inspected event.
 struct Verdict { std::string part; int in = 0, out = 0; bool pass = false; };
+// Scans (docs/protocol.md, "Scanning"): surface points in machine coordinates, mm. ScanLine:
+// from start to end on a surface whose outward normal is `normal`; ScanCircle: about the axis
+// through `centre` with direction `axis` from the surface point `start`, `sweep` degrees
+// (right hand about the axis), in a bore (the surface faces the axis) or round a boss. speed:
+// mm/s along the surface (default ScanSpeed).
+struct ScanLine { std::uint32_t id = 0; Vector3 start{}, end{}, normal{}; std::optional<double> speed; };
+struct ScanCircle {
+  std::uint32_t id = 0;
+  Vector3 centre{}, start{}, axis{};
+  double sweep = 360;
+  bool bore = true;
+  std::optional<double> speed;
+};
+inline constexpr double kMaxScanSweep = 36000;  // degrees: a hundred turns
 inline constexpr double kMaxDwellSeconds = 3600;
 inline constexpr int kMaxArcTurns = 1000;  // ArcTo P: 1 (the arc alone) ... this
 
@@ -124,6 +138,6 @@ using Command = std::variant<StartMv, StopMv, ForcePt, Hello, Help, Status, GoTo
                              Reset, Set, Get, Stats, HandMv, Quit, Replay, Take, Release, Watch, Version,
                              MoveTo, ArcTo, Dwell, Queue, Pause, Resume, Probe, JogAx, SetOut, Outputs,
                              Programs, Load, Upload, Run, Abort, Program, Key, Frames, Frame, PartPos, UseFrame,
-                             SetFrame, Align, DelFrame, Qualify, Stream, Verdict>;
+                             SetFrame, Align, DelFrame, Qualify, Stream, Verdict, ScanLine, ScanCircle>;
 
 }  // namespace imess::protocol

@@ -55,7 +55,7 @@ struct ArgValue {
   std::string_view text;     // the token as typed (every kind)
 };
 
-inline constexpr std::size_t kMaxArgs = 6;
+inline constexpr std::size_t kMaxArgs = 13;  // ScanCirc has the most
 
 struct Args {
   std::array<ArgValue, kMaxArgs> at{};

@@ -42,7 +42,14 @@ inline constexpr double kUnbounded = 1e9;
     "probing: searched past the target before the part counts as not found")                                        \
   X(PrehitDistance, prehit_distance, 2, "PrehitDist", "mm", 0, 50, "motion.prehit_distance",                        \
     "probing: before the target, where the touch speed is reached")                                                 \
-  X(ProbeSpeed, probe_speed, 5, "ProbeSpeed", "mm/s", 0.1, 50, "motion.probe_speed", "probing: the touch speed")
+  X(ProbeSpeed, probe_speed, 5, "ProbeSpeed", "mm/s", 0.1, 50, "motion.probe_speed", "probing: the touch speed")     \
+  X(ScanDeflection, scan_deflection, 0.3, "ScanDeflection", "mm", 0.02, 5, "motion.scan_deflection",                 \
+    "scanning: the measuring probe's deflection held in contact")                                                   \
+  X(ScanBand, scan_band, 0.1, "ScanBand", "mm", 0.005, 5, "motion.scan_band",                                       \
+    "scanning: the deflection's band around ScanDeflection")                                                        \
+  X(ScanStep, scan_step, 0.1, "ScanStep", "mm", 0.001, 100, "motion.scan_step", "scanning: distance between points") \
+  X(ScanSpeed, scan_speed, 5, "ScanSpeed", "mm/s", 0.1, 100, "motion.scan_speed",                                   \
+    "scanning: speed along the surface when a scan names none")
 
 #define IMESS_CORE_PARAM_ID(id, field, initial, ...) id,
 #define IMESS_CORE_PARAM_FIELD(id, field, initial, ...) double field = initial;

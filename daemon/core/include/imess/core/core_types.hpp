@@ -36,6 +36,9 @@ enum class FailReason : std::uint8_t {
   Refused,        // held behind a Probe, the planner refused it from the Probe's end (io side)
   ProbeOff,       // a Probe cycle began while the probe's power output was off
   HostStall,      // the host stalled longer than the card's lead: the card braked on the path
+  ScanLostContact,   // a scan's probe left the surface (no deflection) for longer than the loop allows
+  ScanOverRange,     // a scan pressed the measuring probe to its range: stopped, backed off
+  NoMeasuringProbe,  // a scan on a machine whose probe measures no deflection (a touch-trigger probe)
 };
 
 // Why the loop refused a command; net maps each to a protocol error code.
@@ -157,7 +160,8 @@ struct Command {
 // Done / Failed: a queued segment (id) completed / did not. QueueDropped: the loop dropped
 // every queued segment (drops: its new count, to stamp the segments sent after it).
 // QueueLow: the loop holds no more than the segment it runs: the planner should flush.
-enum class EventKind : std::uint8_t { Reply, MeasPt, State, Limit, Warn, Fault, Homed, Done, Failed, QueueDropped, QueueLow };
+// ScanPt: a scan's point (p the surface point, dir from the ball centre toward it, radius, id).
+enum class EventKind : std::uint8_t { Reply, MeasPt, State, Limit, Warn, Fault, Homed, Done, Failed, QueueDropped, QueueLow, ScanPt };
 
 struct Event {
   EventKind kind = EventKind::Reply;

@@ -8,6 +8,7 @@
 
 #include "imess/core/loop_context.hpp"
 #include "imess/core/queues.hpp"
+#include "imess/core/scan_control.hpp"
 #include "imess/planner/sampler.hpp"
 
 namespace imess::core {
@@ -45,6 +46,9 @@ class PathFollower {
   std::uint32_t running_id() const noexcept { return held_count_ > 0 ? held_ids_[0] : 0; }
   bool in_search() const noexcept { return held_count_ > 0 && held_probe_[0] == planner::ProbePhase::Search; }
   const AxisVec& probe_direction() const noexcept { return probe_dir_; }
+  // A scan's segment in contact with the part (Approach, Follow, Leave): the measuring probe
+  // deflects by design, so its switch edge is no hit.
+  bool in_scan_contact() const noexcept { return held_count_ > 0 && scan_.in_contact_phase(); }
   // A Probe's hit ends its search: nothing held, the ring emptied (what follows a Probe is
   // held by the io side; anything else there is Failed Stopped), the sampler where it stands.
   void end_search(std::uint32_t id, Nanos now) noexcept;
@@ -54,9 +58,13 @@ class PathFollower {
   void release_arrivals(Nanos now) noexcept;  // the Done ids that waited for arrival
   bool pop_segment(planner::PlannedSegment& out) noexcept;  // fails stale segments on the way
   bool stale(const QueuedSegment& q) const noexcept;
-  void fail_segment(std::uint32_t id, planner::ProbePhase phase, FailReason why, Nanos now) noexcept;
+  void fail_segment(std::uint32_t id, planner::ProbePhase phase, FailReason why, Nanos now,
+                    planner::ScanPhase scan = planner::ScanPhase::None) noexcept;
   void fail_and_brake(FailReason why, Nanos now) noexcept;  // the whole queue, then brake to rest
   void sampler_to_machine() noexcept;  // the sampler set to where the machine stands
+  // A scan stopped (lost contact, over range, no measuring probe): the queue fails; over
+  // range backs the probe off along the measured normal, anything else brakes to rest.
+  void scan_stop(FailReason why, Nanos now) noexcept;
 
   LoopContext& loop_;
   Outputs& outputs_;
@@ -64,12 +72,15 @@ class PathFollower {
   // held_ids_: the ids the sampler holds (current, then the buffered one), in order.
   SegmentQueue segments_;
   planner::Sampler sampler_;
+  ScanControl scan_{loop_};
   std::array<std::uint32_t, 4> held_ids_{};
   std::array<planner::ProbePhase, 4> held_probe_{};  // the probe phase of each held segment
+  std::array<planner::ScanPhase, 4> held_scan_{};    // the scan phase of each held segment
   int held_count_ = 0;
   AxisVec probe_dir_ = AxisVec::Zero();  // unit approach of the Probe being run (set as it is popped)
   bool failed_approach_ = false;   // the last segment failed was a Probe's approach ...
-  std::uint32_t failed_id_ = 0;    // ... with this id (its search is not failed again)
+  bool failed_scan_ = false;       // ... or a scan's segment ...
+  std::uint32_t failed_id_ = 0;    // ... with this id (its search, the scan's rest, is not failed again)
   std::uint32_t drops_ = 0;        // queue drops by the loop (stamped on segments by the io side)
   bool check_start_ = false;       // the next segment popped must start where the machine stands
   bool low_sent_ = false;          // QueueLow sent since the last segment popped

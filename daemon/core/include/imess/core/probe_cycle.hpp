@@ -28,6 +28,9 @@ class ProbeCycle {
   // The Failed or Done that closes a Probe whose hit has been reported (after its retract);
   // nothing when no Probe is retracting.
   void close(EventKind k, FailReason why, Nanos now) noexcept;
+  // Brakes, then backs the probe off `distance` from `from` against `dir` (the direction it
+  // pressed in), in Retract like after a hit (a scan pressed over range).
+  void back_off(const AxisVec& from, const AxisVec& dir, double distance, Nanos now) noexcept;
 
  private:
   // A probe edge in a Probe's search: the hit (with the Probe's id), then the retract from it.
@@ -36,6 +39,7 @@ class ProbeCycle {
   // The move that first brakes with the configured deceleration, then backs off RetractDist
   // from the latched point (within the soft limits once referenced).
   void retract_from(const AxisVec& latched, const AxisVec& dir, Nanos now) noexcept;
+  void retract_by(const AxisVec& latched, const AxisVec& dir, double distance, Nanos now) noexcept;
 
   LoopContext& loop_;
   StraightMoves& moves_;

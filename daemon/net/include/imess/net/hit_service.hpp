@@ -22,6 +22,10 @@ class HitService : public MotionObserver {
       : journal_(journal), observers_(observers), probe_offset_(probe_offset), options_(options) {}
 
   void measured(const core::Event& e) override;  // the loop's MeasPt: journal, then every observer's hit()
+  // A scan's point (the loop's ScanPt): journaled in the same sequence, then every observer's
+  // scanned(). Not logged one by one (hundreds a second): scan_points() counts them.
+  void scan_point(const core::Event& e);
+  std::uint64_t scan_points() const noexcept { return scan_points_; }
   // ProbeOffX/Y/Z: added to every measured point (mm); Qualify and Set change it.
   std::array<double, 3>& probe_offset() noexcept { return probe_offset_; }
   // Replay <from>: the journaled lines as the reply (with its Ok or Err line).
@@ -29,13 +33,14 @@ class HitService : public MotionObserver {
   journal::Journal& journal() noexcept { return journal_; }
 
  private:
-  JournaledHit record(const core::Event& e);
+  JournaledHit record(const core::Event& e, bool scan = false);
 
   journal::Journal& journal_;
   Observers& observers_;
   std::array<double, 3>& probe_offset_;
   Options options_;
   std::uint64_t points_ = 0;
+  std::uint64_t scan_points_ = 0;
 };
 
 }  // namespace imess::net

@@ -22,6 +22,7 @@ class MessdEvents : public MotionObserver {
   void unsent_failed(std::uint32_t id, core::FailReason why) override;
   bool core_reply(const core::Event& e) override;
   void hit(const core::Event& point, const JournaledHit& h) override;
+  void scanned(const core::Event& point, const JournaledHit& h) override;  // the Scan line alone
   void state(core::Mode mode) override;
   void limit(const core::Event& e) override;
   void warning(const core::Event& e) override;

@@ -20,16 +20,21 @@
 #include "imess/net/log_limiter.hpp"
 #include "imess/net/observers.hpp"
 #include "imess/planner/planner.hpp"
+#include "imess/planner/scan.hpp"
 #include "imess/protocol/commands.hpp"
 
 namespace imess::net {
 
 // A queued command on the wire; after an unfinished Probe it waits in the gateway, unplanned
 // (its start is the Probe's end, known only after the hit).
-using QueuedCommand = std::variant<protocol::MoveTo, protocol::ArcTo, protocol::Dwell, protocol::Probe, protocol::SetOut>;
+using QueuedCommand = std::variant<protocol::MoveTo, protocol::ArcTo, protocol::Dwell, protocol::Probe, protocol::SetOut,
+                                   protocol::ScanLine, protocol::ScanCircle>;
 
 // The words of a queued command (nullptr for Dwell, SetOut).
 const protocol::PathWords* words_of(const QueuedCommand& c) noexcept;
+// The shape of a MESSD scan (gateway_scan.cpp).
+planner::ScanShape scan_shape(const protocol::ScanLine& c);
+planner::ScanShape scan_shape(const protocol::ScanCircle& c);
 // A pose from start with every axis the words name (on this layout) replaced.
 planner::Pose target_of(const hal::AxisLayout& layout, const protocol::PathWords& w, const planner::Pose& start) noexcept;
 
@@ -67,6 +72,13 @@ class MotionGateway {
   // Behind an unfinished Probe: checked as far as can be, held until its Done.
   std::optional<std::uint32_t> open_probe() const noexcept { return probe_open_; }
   planner::AppendResult hold(const QueuedCommand& c);
+  // A scan from the planner's position (planner/scan.hpp): every segment checked before any is
+  // appended, so a refused scan leaves nothing behind; its id is queued once. The settings a
+  // front end starts from: the motion loop's parameters (ScanDeflection, ScanBand, ScanStep,
+  // ScanSpeed × SpeedLevel, ProbeSpeed onto the surface, PrehitDist as the clearance, at least
+  // 2 mm), speed given: that instead of ScanSpeed.
+  planner::ScanSettings scan_settings(std::optional<double> speed = std::nullopt) const;
+  planner::AppendResult plan_scan(std::uint32_t id, const planner::ScanShape& shape, const planner::ScanSettings& settings);
   // A planner request of a front end's own (a program's item, an I++ DME line); its id is queued once.
   planner::AppendResult append(const planner::Request& r);
   void flush() { planner_.flush(); }  // the plan's tail made final: it ends at rest

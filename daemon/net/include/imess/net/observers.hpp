@@ -39,8 +39,9 @@ class MotionObserver {
   virtual void stopped(std::string_view who);                  // a stop (StopMv, Abort, the dead-man ...) after the drop
   // The loop's answer to a command; true when it was this observer's client's.
   virtual bool core_reply(const core::Event& e);
-  virtual void measured(const core::Event& e);                 // the raw MeasPt (the hit service journals it)
+  virtual void measured(const core::Event& e);                 // the raw MeasPt or ScanPt (the hit service journals it)
   virtual void hit(const core::Event& point, const JournaledHit& h);  // after the journal
+  virtual void scanned(const core::Event& point, const JournaledHit& h);  // a scan's point, after the journal
   virtual void state(core::Mode mode);
   virtual void limit(const core::Event& e);
   virtual void warning(const core::Event& e);
