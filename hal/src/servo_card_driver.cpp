@@ -2,10 +2,12 @@
 // only the fixed writer_/reply_ buffers.
 #include "imess/hal/servo_card_driver.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "imess/hal/servo_card_protocol.hpp"
+#include "imess/hal/stream_frame.hpp"
 
 namespace imess::hal {
 
@@ -148,7 +150,15 @@ void ServoCardDriver::initialise(bool force_reboot) {
 
 // 4. With a stream: status frames every status period, real-time calls on the stream from now.
 void ServoCardDriver::start_stream() {
-  const auto& s = config_.stream;
+  StreamSettings s = config_.stream;
+  if (analog_ && s.baud > 0) {
+    // The deflection makes a status frame 13 bytes longer (60 on the line with three axes:
+    // 5.2 ms at 115 200 baud, more than the 5 ms period): the period grows to the whole
+    // milliseconds in which the frames take at most 90 % of the line.
+    const double bytes = kFrameOverhead + 13 + kAxes + 9.0 * kAxes + 13;
+    const double needed = bytes * 10 / s.baud / 0.9;
+    s.status_period = std::max(s.status_period, std::ceil(needed * 1000 - 1e-9) / 1000);
+  }
   if (!(s.status_period > 0 && s.status_period * 1e6 < 65536 && s.period > 0 && s.segment_cycles >= 1 && s.lead > 0))
     fail("stream settings out of range (status period 0-65 ms, period and lead > 0, segment cycles >= 1)");
   session_.reset();

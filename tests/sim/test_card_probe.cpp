@@ -11,6 +11,7 @@
 #include "core_rig.hpp"
 #include "port_rigs.hpp"
 #include "imess/hal/servo_card_driver.hpp"
+#include "imess/sim/analog_probe.hpp"
 #include "imess/sim/simulated_cmm.hpp"
 
 using namespace imess;
@@ -216,6 +217,120 @@ TEST_CASE("card probe, request/reply: with a touch-trigger probe pressed in, the
   CHECK_FALSE(ms.probe_over_range);
   CHECK(ms.deflection.norm() == 0.0);
   CHECK(ms.tip_touched);  // the switch does its work as ever
+}
+
+// The streamed link (the default simulated machine's): the driver over the byte-timed 115 200
+// baud line; each status frame's deflection must be the reading at that frame's clock tick.
+struct ProbeStreamRig {
+  explicit ProbeStreamRig(const sim::SimulatedCmmConfig& c)
+      : cmm(c, clock), driver(cmm.link(), hal::ServoCardConfig{}, cmm.stream()),
+        probe(c.mechanics.probe.analog, c.mechanics.probe.ball_radius) {
+    driver.initialise(false);
+    REQUIRE(driver.stream() != nullptr);
+    REQUIRE(driver.set_loops(true));
+  }
+  // One motion period; true when a new status frame came (its state in ms).
+  bool cycle(hal::MachineState& ms) {
+    clock.advance(kProbeCycle);
+    const std::uint32_t before = driver.stream()->status_frames();
+    ms.deflection_valid = !expect_valid;  // proves read_state sets it
+    REQUIRE(driver.read_state(ms));
+    return driver.stream()->status_frames() != before;
+  }
+  // A new status frame's deflection against the probe read afresh where its positions say the
+  // carriage was: a frame pairing the deflection with positions of another tick misses by the
+  // distance travelled in the ticks between (0.5 µm a tick at 5 mm/s); here it may differ by the
+  // stream's 0.1 µm quantisation of both (half a unit each).
+  void check_paired(const hal::MachineState& ms) {
+    REQUIRE(ms.deflection_valid == expect_valid);
+    if (!expect_valid) return;
+    const sim::AnalogReading expected = probe.read(cmm.mechanics().scene(), ms.position.head<3>());
+    CHECK((ms.deflection - expected.deflection).cwiseAbs().maxCoeff() <= 1.0001e-4);
+    CHECK(ms.probe_over_range == expected.over_range);
+    const std::uint8_t flags = driver.stream()->newest().probe;
+    CHECK(flags == (pr::kAnalogPresent | (expected.contact ? pr::kContact : 0) | (expected.over_range ? pr::kOverRange : 0)));
+    ++frames;
+    if (expected.contact) ++in_contact;
+    if (expected.over_range) ++over_range;
+  }
+  // Moves Z to z at speed on the card's own profile, checking every status frame on the way.
+  void press_to(double z, double speed) {
+    hal::AxisArray<hal::AxisMove> moves{};
+    moves[2] = {z, speed, 500.0};
+    REQUIRE(driver.move(moves, 4u));
+    hal::MachineState ms;
+    for (int i = 0; i < 3000; ++i) {
+      if (cycle(ms)) check_paired(ms);
+      if (ms.all(hal::status::kInPosition) && std::abs(ms.position[2] - z) < 1e-3) return;
+    }
+    FAIL("the move to z " << z << " did not end");
+  }
+  VirtualClock clock;
+  sim::SimulatedCmm cmm;
+  hal::ServoCardDriver driver;
+  sim::AnalogProbe probe;  // the same probe, noise-free: the reading a position must give
+  bool expect_valid = true;
+  int frames = 0, in_contact = 0, over_range = 0;
+};
+
+TEST_CASE("card probe, stream: every status frame carries the deflection of its clock tick", "[sim][card][analog]") {
+  ProbeStreamRig rig(probe_cmm(true));
+  REQUIRE(rig.driver.analog_probe());
+  // 1 mm down to 0.3 mm into the top at 5 mm/s, then on to 1.5 mm (beyond the range).
+  rig.press_to(kCubeTop + kProbeBall - 0.3, 5.0);
+  CHECK(rig.in_contact > 10);
+  hal::MachineState ms;
+  for (int i = 0; i < 200; ++i) rig.cycle(ms);  // settled in the position loop
+  while (!rig.cycle(ms)) {
+  }
+  rig.check_paired(ms);
+  // At rest: the mechanics' own reading, within the stream's quantisation.
+  CHECK((ms.deflection - rig.cmm.mechanics().analog_reading().deflection).norm() < 0.51e-4);
+  CHECK(ms.deflection.z() == Approx(0.3).margin(0.002));
+  CHECK_FALSE(ms.probe_over_range);
+  CHECK((rig.driver.stream()->newest().flags & hal::card::flag::kDeflection) != 0);
+  rig.press_to(kCubeTop + kProbeBall - 1.5, 5.0);
+  CHECK(rig.over_range > 10);
+  while (!rig.cycle(ms)) {
+  }
+  CHECK(ms.probe_over_range);
+  CHECK(ms.deflection.z() == Approx(kProbeRange).margin(0.51e-4));
+  CHECK(rig.driver.stream()->newest().probe == (pr::kAnalogPresent | pr::kContact | pr::kOverRange));
+  rig.press_to(kCubeTop + kProbeBall + 0.5, 5.0);
+  while (!rig.cycle(ms)) {
+  }
+  CHECK(ms.deflection_valid);
+  CHECK(ms.deflection.norm() == 0.0);
+  CHECK(rig.driver.stream()->newest().probe == pr::kAnalogPresent);
+  // The frames, 60 bytes on the line with the deflection, came every 6 ms (5 ms would take
+  // more than the 115 200 baud line carries), none lost or damaged.
+  CHECK(rig.driver.errors() == 0);
+  const std::uint32_t clock = rig.driver.stream()->newest().clock;
+  while (!rig.cycle(ms)) {
+  }
+  CHECK(rig.driver.stream()->newest().clock - clock == 60);
+}
+
+TEST_CASE("card probe, stream: with a touch-trigger probe the status frames are the 1996 size and carry no deflection", "[sim][card][analog]") {
+  sim::SimulatedCmmConfig c = probe_cmm(true);
+  c.mechanics.probe.type = sim::ProbeType::Trigger;
+  ProbeStreamRig rig(c);
+  rig.expect_valid = false;
+  rig.press_to(kCubeTop + kProbeBall - 0.3, 5.0);
+  hal::MachineState ms;
+  while (!rig.cycle(ms)) {
+  }
+  CHECK_FALSE(ms.deflection_valid);
+  CHECK(ms.tip_touched);
+  CHECK((rig.driver.stream()->newest().flags & hal::card::flag::kDeflection) == 0);
+  // The card's frame: 12 + table (4) + 3 × 9 bytes, and the latch data of the touch.
+  std::span<const std::uint8_t> frame;
+  while (!rig.cmm.card().take_stream_frame(frame)) rig.cmm.card().step();
+  CHECK(frame.size() == 12 + 4 + 27 + ((frame[7] & hal::card::flag::kLatchData) ? 12 : 0));
+  const std::uint32_t clock = rig.driver.stream()->newest().clock;  // every 5 ms, as ever
+  while (!rig.cycle(ms)) {
+  }
+  CHECK(rig.driver.stream()->newest().clock - clock == 50);
 }
 
 TEST_CASE("card probe: the port backends report no deflection", "[sim][analog]") {
