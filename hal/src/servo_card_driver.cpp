@@ -200,7 +200,9 @@ std::string ServoCardDriver::reboot() {
   return failure;
 }
 
-std::string ServoCardDriver::describe() const { return "servo card, firmware '" + revision_ + "'"; }
+std::string ServoCardDriver::describe() const {
+  return "servo card, firmware '" + revision_ + "'" + (analog_ ? ", measuring probe" : "");
+}
 
 bool ServoCardDriver::read_state(MachineState& out) noexcept {
   if (rebooting() || reboot_failed_) {  // the card is being re-booted, or could not be
