@@ -39,6 +39,7 @@ void write_status(LinkWriter& w, const StatusFrame& s) noexcept {
   if (s.flags & flag::kLatchData)
     for (int a = 0; a < kAxes; ++a)
       if (named(s.mask, a)) w.i32(to_units(s.latched[a]));
+  if (s.flags & flag::kDeflection) w.i32(to_units(s.deflection.x())).i32(to_units(s.deflection.y())).i32(to_units(s.deflection.z())).u8(s.probe);
 }
 
 bool read_status(std::span<const std::uint8_t> frame, StatusFrame& s) noexcept {
@@ -62,6 +63,10 @@ bool read_status(std::span<const std::uint8_t> frame, StatusFrame& s) noexcept {
   if (s.flags & flag::kLatchData)
     for (int a = 0; a < kAxes; ++a)
       if (named(s.mask, a)) s.latched[a] = from_units(r.i32());
+  if (s.flags & flag::kDeflection) {
+    for (int i = 0; i < 3; ++i) s.deflection[i] = from_units(r.i32());
+    s.probe = r.u8();
+  }
   return r.ok() && r.at_end();
 }
 

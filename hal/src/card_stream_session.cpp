@@ -28,7 +28,7 @@ void CardStreamSession::start(std::uint32_t ticks_per_second, std::uint32_t cloc
   lead_ticks_ = ticks(settings_.lead, ticks_per_second);
   // A status frame is read up to a period after its last byte arrived, which took its length
   // on the line after it was sampled: half a period plus that, on average.
-  const double bytes = kFrameOverhead + 13 + kAxes + 9.0 * kAxes;
+  const double bytes = kFrameOverhead + 13 + kAxes + 9.0 * kAxes + (state.deflection_valid ? 13 : 0);
   const double line = settings_.baud > 0 ? bytes * kBitsPerByte / settings_.baud : 0;
   delay_ticks_ = ticks(line + 0.5 * settings_.period, ticks_per_second);
   // A frame's ack comes with the next status frame after it arrives, which is on the line a
@@ -43,6 +43,12 @@ void CardStreamSession::start(std::uint32_t ticks_per_second, std::uint32_t cloc
     // A latch the card holds shows with the first status frame, which brings its positions.
     newest_.status[a] = state.status[a] & ~status::kLatchValid;
     newest_.inputs[a] = state.inputs[a];
+  }
+  if (state.deflection_valid) {  // a measuring probe: its reading comes with every status frame
+    newest_.flags |= card::flag::kDeflection;
+    newest_.deflection = state.deflection;
+    newest_.probe = static_cast<std::uint8_t>(card::probe::kAnalogPresent |
+                                              (state.probe_over_range ? card::probe::kOverRange : 0));
   }
   stream_status_ = comm_lost_ = link_broken_ = refused_ = following_ = false;
   seq_ = 0;
@@ -185,6 +191,10 @@ bool CardStreamSession::read_state(MachineState& out) noexcept {
     if (refused_) s |= status::kDataError;
     out.status[a] = s;
   }
+  // The deflection sampled with the positions of the same status frame.
+  out.deflection_valid = (newest_.flags & card::flag::kDeflection) && (newest_.probe & card::probe::kAnalogPresent);
+  out.deflection = out.deflection_valid ? newest_.deflection : Vec3::Zero();
+  out.probe_over_range = out.deflection_valid && (newest_.probe & card::probe::kOverRange);
   const bool contact = (out.inputs[0] & input::kTip) != 0;  // wired to every module; axis 0 carries it
   out.tip_touched = tip_reversed_ ? !contact : contact;
   return true;

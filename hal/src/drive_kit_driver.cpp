@@ -273,6 +273,8 @@ bool DriveKitDriver::read_state(MachineState& out) noexcept {
     out.position[a] = position(a);
   }
   out.tip_touched = contact;
+  out.deflection_valid = out.probe_over_range = false;  // a touch-trigger probe only: no deflection
+  out.deflection = Vec3::Zero();
   return port_.errors() == 0;
 }
 

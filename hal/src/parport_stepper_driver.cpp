@@ -186,6 +186,8 @@ bool ParportStepperDriver::read_state(MachineState& out) noexcept {
   follow_fresh_ = false;
   out.count = kParportAxes;
   out.tip_touched = config_.tip_reversed ? !raw_probe : raw_probe;
+  out.deflection_valid = out.probe_over_range = false;  // a touch-trigger probe only: no deflection
+  out.deflection = Vec3::Zero();
   return port_.errors() == 0;
 }
 

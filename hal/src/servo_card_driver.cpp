@@ -2,10 +2,12 @@
 // only the fixed writer_/reply_ buffers.
 #include "imess/hal/servo_card_driver.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "imess/hal/servo_card_protocol.hpp"
+#include "imess/hal/stream_frame.hpp"
 
 namespace imess::hal {
 
@@ -105,7 +107,12 @@ void ServoCardDriver::initialise(bool force_reboot) {
     auto len = r.u8();
     std::string rev;
     for (int i = 0; i < len; ++i) rev.push_back(static_cast<char>(r.u8()));
+    // The probe type ends the reply of a card that has one to tell (a 1996 card: a trigger probe).
+    const std::uint8_t probe = r.ok() && !r.at_end() ? r.u8() : card::probe::kTrigger;
     if (!r.ok() || st != 0) fail("malformed ReadInfo reply");
+    if (probe > card::probe::kAnalog)
+      fail("ReadInfo names probe type " + std::to_string(probe) + " (0 touch-trigger and 1 analog are known)");
+    analog_ = probe == card::probe::kAnalog;
     if (axes < kAxes) fail("card reports " + std::to_string(axes) + " axes, messd needs " + std::to_string(kAxes));
     if (booted && rev == config_.firmware && !force_reboot) {
       revision_ = rev;
@@ -123,6 +130,7 @@ void ServoCardDriver::initialise(bool force_reboot) {
   table(kAllAxes);
   for (int a = 0; a < kAxes; ++a)
     writer_.f64(config_.max_velocity[a]).f64(config_.max_accel[a]).f64(config_.max_following_error[a]);
+  if (analog_) writer_.u8(1);  // the probe reading with every state (a trigger probe: the 1996 frame)
   set_up_call("loading control parameters");
   // 3. Reset axes (loops open, faults cleared), switch limit/reference/probe inputs on.
   begin(Op::ResetAxes);
@@ -142,7 +150,15 @@ void ServoCardDriver::initialise(bool force_reboot) {
 
 // 4. With a stream: status frames every status period, real-time calls on the stream from now.
 void ServoCardDriver::start_stream() {
-  const auto& s = config_.stream;
+  StreamSettings s = config_.stream;
+  if (analog_ && s.baud > 0) {
+    // The deflection makes a status frame 13 bytes longer (60 on the line with three axes:
+    // 5.2 ms at 115 200 baud, more than the 5 ms period): the period grows to the whole
+    // milliseconds in which the frames take at most 90 % of the line.
+    const double bytes = kFrameOverhead + 13 + kAxes + 9.0 * kAxes + 13;
+    const double needed = bytes * 10 / s.baud / 0.9;
+    s.status_period = std::max(s.status_period, std::ceil(needed * 1000 - 1e-9) / 1000);
+  }
   if (!(s.status_period > 0 && s.status_period * 1e6 < 65536 && s.period > 0 && s.segment_cycles >= 1 && s.lead > 0))
     fail("stream settings out of range (status period 0-65 ms, period and lead > 0, segment cycles >= 1)");
   session_.reset();
@@ -184,11 +200,14 @@ std::string ServoCardDriver::reboot() {
   return failure;
 }
 
-std::string ServoCardDriver::describe() const { return "servo card, firmware '" + revision_ + "'"; }
+std::string ServoCardDriver::describe() const {
+  return "servo card, firmware '" + revision_ + "'" + (analog_ ? ", measuring probe" : "");
+}
 
 bool ServoCardDriver::read_state(MachineState& out) noexcept {
   if (rebooting() || reboot_failed_) {  // the card is being re-booted, or could not be
     out = last_;
+    out.deflection_valid = out.probe_over_range = false;
     for (int a = 0; a < kAxes; ++a) {
       out.status[a] &= ~(status::kFaultMask | status::kClosedLoop | status::kLatchValid);
       if (reboot_failed_) out.status[a] |= status::kCommTimeout;
@@ -236,6 +255,14 @@ bool ServoCardDriver::parse_state(std::span<const std::uint8_t> payload, Machine
     out.position[a] = r.f64();
     out.status[a] = r.u32();
     out.inputs[a] = r.u8();
+  }
+  out.deflection_valid = out.probe_over_range = false;
+  out.deflection = Vec3::Zero();
+  if (analog_) {  // the probe reading of the tick the positions were sampled at
+    const std::uint8_t flags = r.u8();
+    for (int i = 0; i < 3; ++i) out.deflection[i] = r.f64();
+    out.deflection_valid = (flags & card::probe::kAnalogPresent) != 0;
+    out.probe_over_range = (flags & card::probe::kOverRange) != 0;
   }
   if (!r.ok() || !r.at_end()) {
     ++errors_;

@@ -259,6 +259,7 @@ Status EmulatedCard::answer(Op op, LinkReader& r, hal::LinkWriter& out) noexcept
     case Op::ReadLatch: return read_latch(r, out);
     case Op::WriteOutputs: return write_outputs(r);
     case Op::ShiftPosition: return shift_position(r);
+    case Op::ReadProbe: return read_probe(r, out);
     case Op::StartStream: return start_stream(r, out);
     case Op::Segment: return segment(r);
     case Op::Status: return Status::BadOpcode;  // the card's own frame
@@ -277,6 +278,7 @@ Status EmulatedCard::read_info(LinkReader& r, hal::LinkWriter& out) const noexce
   std::string_view rev = booted_ ? std::string_view(config_.firmware) : std::string_view("BOOTLOADER");
   out.u8(static_cast<std::uint8_t>(rev.size()));
   for (char c : rev) out.u8(static_cast<std::uint8_t>(c));
+  out.u8(analog_probe() ? hal::card::probe::kAnalog : hal::card::probe::kTrigger);
   return Status::Ok;
 }
 
@@ -287,7 +289,7 @@ Status EmulatedCard::boot(LinkReader& r) noexcept {
   if (!r.ok() || !r.at_end()) return Status::BadLength;
   if (std::string_view(name, len) != config_.firmware) return Status::WrongFirmware;
   booted_ = true;
-  params_ = false;
+  params_ = analog_ = false;
   streaming_ = false;  // a new firmware starts quiet, until StartStream
   open_all();
   return Status::Ok;
@@ -299,11 +301,18 @@ Status EmulatedCard::load_params(LinkReader& r) noexcept {
   unsigned mask = 0;
   if (auto s = read_axis_table(r, mask); s != Status::Ok) return s;
   hal::AxisArray<std::array<double, 3>> values{};  // vmax, amax, max following error
-  if (auto s = read_axis_values(r, mask, values); s != Status::Ok) return s;
+  for (int a = 0; a < kAxes; ++a)
+    if (named(mask, a))
+      for (double& v : values[a]) v = r.f64();
+  // The trailing u8 analog is optional (a 1996 host sends none).
+  const std::uint8_t analog = r.ok() && !r.at_end() ? r.u8() : 0;
+  if (!r.ok() || !r.at_end()) return Status::BadLength;
   for (int a = 0; a < kAxes; ++a)
     if (named(mask, a))
       for (double v : values[a])
         if (!std::isfinite(v) || v <= 0) return Status::BadValue;
+  // Only 0 or 1, and 1 only with a measuring probe fitted.
+  if (analog > 1 || (analog == 1 && !analog_probe())) return Status::BadValue;
   latch_on_falling_ = falling != 0;
   for (int a = 0; a < kAxes; ++a)
     if (named(mask, a)) {
@@ -311,6 +320,7 @@ Status EmulatedCard::load_params(LinkReader& r) noexcept {
       axes_[a].amax = values[a][1];
       axes_[a].max_following_error = values[a][2];
     }
+  analog_ = analog == 1;
   params_ = true;
   return Status::Ok;
 }
@@ -445,6 +455,30 @@ Status EmulatedCard::follow(LinkReader& r, hal::LinkWriter& out) noexcept {
 void EmulatedCard::write_state(unsigned mask, hal::LinkWriter& out) const noexcept {
   for (int a = 0; a < kAxes; ++a)
     if (named(mask, a)) out.f64(encoder(a)).u32(status_word(a)).u8(inputs(a));
+  if (analog_) write_probe(out);  // the reading of the same tick as the positions
+}
+
+bool EmulatedCard::analog_probe() const noexcept { return machine_.config().probe.type == ProbeType::Analog; }
+
+std::uint8_t EmulatedCard::probe_flags() const noexcept {
+  namespace pr = hal::card::probe;
+  if (!analog_probe()) return 0;
+  const AnalogReading& reading = machine_.analog_reading();
+  return static_cast<std::uint8_t>(pr::kAnalogPresent | (reading.contact ? pr::kContact : 0) |
+                                   (reading.over_range ? pr::kOverRange : 0));
+}
+
+void EmulatedCard::write_probe(hal::LinkWriter& out) const noexcept {
+  const Vec3& d = machine_.analog_reading().deflection;  // zero with a trigger probe
+  out.u8(probe_flags()).f64(d.x()).f64(d.y()).f64(d.z());
+}
+
+// ReadProbe: no arguments -> u8 flags, f64 dx, dy, dz.
+Status EmulatedCard::read_probe(LinkReader& r, hal::LinkWriter& out) const noexcept {
+  if (!booted_ || !params_) return Status::NotReady;
+  if (!r.at_end()) return Status::BadLength;
+  write_probe(out);
+  return Status::Ok;
 }
 
 Status EmulatedCard::read_state(LinkReader& r, hal::LinkWriter& out) const noexcept {

@@ -124,6 +124,11 @@ void EmulatedCard::emit_status() noexcept {
     s.latched[a] = axes_[a].latched;
     if (axes_[a].latch_valid) s.flags |= card::flag::kLatchData;
   }
+  if (analog_) {  // the probe reading of this tick: it pairs with the positions above
+    s.flags |= card::flag::kDeflection;
+    s.deflection = machine_.analog_reading().deflection;
+    s.probe = probe_flags();
+  }
   outbox_.clear();
   card::write_status(outbox_, s);
   outbox_ready_ = true;

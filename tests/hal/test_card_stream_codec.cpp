@@ -153,6 +153,40 @@ TEST_CASE("stream frames: the status frame and the timed setpoint round trip —
   CHECK(card::read_knot(shorter, kb) == card::Status::BadLength);
 }
 
+TEST_CASE("stream frames: the deflection follows the latch data with flag 0x4 — i32 dx dy dz in 0.1 µm, u8 probe flags") {
+  card::StatusFrame s;
+  s.clock = 4242;
+  s.flags = card::flag::kLatchData | card::flag::kDeflection;
+  s.mask = (1u << kAxes) - 1;
+  for (int a = 0; a < kAxes; ++a) {
+    s.position[a] = 100.0 + a;
+    s.latched[a] = 50.0 - a;
+  }
+  s.deflection = Vec3(0.12344, -0.00004, 0.99996);
+  s.probe = card::probe::kAnalogPresent | card::probe::kContact;
+  LinkWriter w;
+  card::write_status(w, s);
+  REQUIRE(w.ok());
+  CHECK(w.bytes().size() == 12u + 1 + kAxes + 9u * kAxes + 4u * kAxes + 13);
+  // The 13 bytes after the latch data: dz is the last i32 before the flags, 10000 units.
+  const auto b = w.bytes();
+  CHECK(b[b.size() - 1] == s.probe);
+  CHECK((b[b.size() - 5] | b[b.size() - 4] << 8 | b[b.size() - 3] << 16 | b[b.size() - 2] << 24) == 10000);
+  card::StatusFrame back;
+  REQUIRE(card::read_status(w.bytes(), back));
+  CHECK(back.flags == s.flags);
+  CHECK(back.probe == s.probe);
+  CHECK(back.deflection.x() == Approx(0.1234).margin(1e-12));  // 0.1 µm units, rounded
+  CHECK(back.deflection.y() == Approx(0.0).margin(1e-12));
+  CHECK(back.deflection.z() == Approx(1.0).margin(1e-12));
+  for (int a = 0; a < kAxes; ++a) CHECK(back.latched[a] == Approx(s.latched[a]).margin(1e-9));
+  for (std::size_t n = 0; n < w.bytes().size(); ++n) CHECK_FALSE(card::read_status(w.bytes().first(n), back));
+  // Without the flag the same bytes are one probe reading too long.
+  std::vector<std::uint8_t> unflagged(b.begin(), b.end());
+  unflagged[7] = card::flag::kLatchData;
+  CHECK_FALSE(card::read_status(unflagged, back));
+}
+
 TEST_CASE("stream frames: an axis table with no axis, too many, an unknown or a repeated one is refused") {
   auto table = [](std::vector<std::uint8_t> bytes) {
     LinkReader r(bytes);

@@ -23,8 +23,8 @@ inline double from_units(std::int32_t u) noexcept { return u * kStreamUnit; }
 void write_table(LinkWriter& w, unsigned mask) noexcept;
 Status read_table(LinkReader& r, unsigned& mask) noexcept;
 
-// The longest frame the card sends (a status frame with latch data is 55 bytes, the longest
-// set-up reply ReadInfo's 5 + its revision): a receiver takes a longer length byte as damaged
+// The longest frame the card sends (a status frame with latch data and the deflection is 68
+// bytes, the longest set-up reply ReadInfo's 6 + its revision): a receiver takes a longer length byte as damaged
 // at once rather than wait for the bytes of the frames behind it.
 inline constexpr std::size_t kMaxCardPayload = 96;
 
@@ -35,6 +35,9 @@ namespace flag {
 // the next 16 that the held bits do not name.
 inline constexpr std::uint8_t kResendWanted = 0x1;
 inline constexpr std::uint8_t kLatchData = 0x2;    // latched positions follow the axis data
+// The measuring probe's deflection follows (after the latch data): i32 dx, dy, dz (units as the
+// positions), u8 probe flags (servo_card_protocol.hpp, card::probe) — sampled at `clock`.
+inline constexpr std::uint8_t kDeflection = 0x4;
 }
 
 // The card's periodic status frame: Op::Status, u32 clock (card ticks when sampled), u8 ack
@@ -42,7 +45,7 @@ inline constexpr std::uint8_t kLatchData = 0x2;    // latched positions follow t
 // u8 starvations (saturating count), u8 knots (setpoints buffered), u16 margin (ticks from
 // now to the last buffered setpoint), with kResendWanted u16 held (bit i: the card holds
 // host frame ack + 2 + i), table, per axis i32 position, u32 status word, u8 inputs; with
-// kLatchData per axis i32 latched position.
+// kLatchData per axis i32 latched position; with kDeflection i32 dx, dy, dz, u8 probe flags.
 struct StatusFrame {
   std::uint32_t clock = 0;
   std::uint8_t ack = 0, ack_status = 0, flags = 0, starvations = 0, knots = 0;
@@ -52,6 +55,8 @@ struct StatusFrame {
   AxisArray<double> position{}, latched{};
   AxisArray<std::uint32_t> status{};
   AxisArray<std::uint8_t> inputs{};
+  Vec3 deflection = Vec3::Zero();  // mm, machine X Y Z, with kDeflection
+  std::uint8_t probe = 0;          // card::probe flags, with kDeflection
 };
 void write_status(LinkWriter& w, const StatusFrame& s) noexcept;
 // Parses a whole status frame (opcode included); false when it is not one or is malformed.

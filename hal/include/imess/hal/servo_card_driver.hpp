@@ -75,6 +75,9 @@ class ServoCardDriver final : public MotionBackend {
 
   // Link transactions that failed or were refused since start (for Stats and -dt).
   unsigned long errors() const noexcept { return errors_ + (session_ ? session_->errors() : 0); }
+  // The card's probe is a measuring one (ReadInfo's probe type): every state carries its
+  // deflection (MachineState::deflection_valid).
+  bool analog_probe() const noexcept { return analog_; }
   // The stream's side, when the driver has one (counters for tests and Stats).
   const CardStreamSession* stream() const noexcept { return session_ ? &*session_ : nullptr; }
 
@@ -102,6 +105,7 @@ class ServoCardDriver final : public MotionBackend {
   MachineState followed_{};     // the state that came back with the last Follow frame
   bool have_followed_ = false;  // not yet returned by read_state()
   bool comm_lost_ = false;      // a Follow frame failed: report kCommTimeout until reset
+  bool analog_ = false;         // ReadInfo: a measuring probe; LoadParams enabled its reading
   // Output 1 as last written (initialise(): on); atomic: a re-boot writes it while the motion
   // thread may read it.
   std::atomic<bool> probe_on_{false};

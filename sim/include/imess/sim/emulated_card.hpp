@@ -104,6 +104,11 @@ class EmulatedCard {
   // Every axis latched where it stands now (unless a latch is held): a probe power edge.
   void latch_here() noexcept;
   void write_state(unsigned mask, hal::LinkWriter& out) const noexcept;
+  // The measuring probe: fitted (sim.probe.type analog), its reading's flags
+  // (hal::card::probe) and the reading as the link carries it (u8 flags, f64 dx, dy, dz).
+  bool analog_probe() const noexcept;
+  std::uint8_t probe_flags() const noexcept;
+  void write_probe(hal::LinkWriter& out) const noexcept;
 
   // The link operations (hal/servo_card_protocol.hpp), one each: read the request's
   // arguments from r, act, append the reply's data to out; Status::Ok or the refusal.
@@ -121,6 +126,7 @@ class EmulatedCard {
   Status follow(hal::LinkReader& r, hal::LinkWriter& out) noexcept;
   Status read_state(hal::LinkReader& r, hal::LinkWriter& out) const noexcept;
   Status read_latch(hal::LinkReader& r, hal::LinkWriter& out) noexcept;
+  Status read_probe(hal::LinkReader& r, hal::LinkWriter& out) const noexcept;
   Status write_outputs(hal::LinkReader& r) noexcept;
   Status shift_position(hal::LinkReader& r) noexcept;
   Status start_stream(hal::LinkReader& r, hal::LinkWriter& out) noexcept;
@@ -132,6 +138,7 @@ class EmulatedCard {
   double time_ = 0;
   bool running_ = false;  // time_ set by the first advance_to
   bool booted_ = false, params_ = false, latch_on_falling_ = false;
+  bool analog_ = false;  // LoadParams' analog: the probe reading ends ReadState/Follow replies and status frames
   bool following_ = false;   // some axis follows setpoints
   double follow_age_ = 0;    // s since the last setpoint arrived
   double follow_span_ = 0;   // s, the host period: measured between Follow frames (averaged)
