@@ -7,6 +7,7 @@
 #include "imess/core/event_fd.hpp"
 #include "imess/core/interval_stats.hpp"
 #include "imess/planner/probe.hpp"
+#include "imess/planner/scan.hpp"
 
 #include "allocation_counter.hpp"
 
@@ -134,4 +135,30 @@ TEST_CASE("the loop's interval statistics record and restart without allocating"
   }
   g_counting = false;
   CHECK(g_allocations.load() == 0);
+}
+
+TEST_CASE("no motion cycle allocates while scanning: approach, contact control, points, leave — and a lost contact",
+          "[scan]") {
+  const bool streamed = GENERATE(false, true);
+  RigOptions o = default_options();
+  o.sim.mechanics.probe.type = imess::sim::ProbeType::Analog;
+  o.sim.mechanics.start = axes3(Vec3(470, 330, 90));
+  o.sim.streamed = streamed;
+  CoreRig rig(o);
+  rig.run(0.2);
+  planner::Machine m = planner::make_machine("XYZ", 0, 1000, 150, 1000);
+  m.axes[2].travel_max = 600;
+  planner::Planner plan(m);
+  plan.set_position({470, 330, 90});
+  planner::ScanSettings s;
+  s.step = 0.05;
+  s.speed = 20;
+  // Along the top, then off its right edge: points, then Failed ScanLostContact and a stop.
+  const auto requests = planner::scan_requests(1, plan.position(), planner::ScanLineShape{{470, 330, 80}, {540, 330, 80}, {0, 0, 1}}, s);
+  for (const auto& r : std::get<std::vector<planner::Request>>(requests)) REQUIRE(plan.append(r).ok());
+  plan.flush();
+  planner::PlannedSegment seg;
+  while (plan.take(seg)) REQUIRE(rig.core().submit_segment({seg, rig.core().stop_ticket(), 0}));
+  CHECK(allocations_over_cycles(rig, 6000) == 0);
+  CHECK(rig.mode() == Mode::Idle);  // stopped, at rest (its events drained by the counter: test_scan.cpp checks them)
 }

@@ -17,6 +17,7 @@ using planner::ScanPhase;
 void ScanControl::reset() noexcept {
   e_ = e_leave_ = Vec3::Zero();
   have_point_ = false;
+  travelled_ = 0;
   contact_phase_ = false;
   phase_ = ScanPhase::None;
   lost_s_ = 0;
@@ -83,9 +84,13 @@ bool ScanControl::apply(const planner::PlannedSegment* seg, double fraction, hal
       why = FailReason::ScanLostContact;
       return false;
     }
-    if (contact && (!have_point_ || (here - last_point_).norm() >= spec.step)) {
+    // The path travelled since the last point, with the remainder carried: points come every
+    // `step` on average, not every whole number of cycles' travel beyond it.
+    if (have_point_) travelled_ += (here - last_point_).norm();
+    last_point_ = here;
+    if (contact && (!have_point_ || travelled_ >= spec.step)) {
+      travelled_ = have_point_ ? std::min(travelled_ - spec.step, spec.step) : 0.0;
       have_point_ = true;
-      last_point_ = here;
       Event ev;
       ev.kind = EventKind::ScanPt;
       ev.id = seg->id;

@@ -41,7 +41,8 @@ class ScanControl {
   Vec3 e_ = Vec3::Zero();        // the correction now, Cartesian mm
   Vec3 e_leave_ = Vec3::Zero();  // the correction when the Leave began
   Vec3 n_hat_ = Vec3::UnitZ();
-  Vec3 last_point_ = Vec3::Zero();
+  Vec3 last_point_ = Vec3::Zero();  // where the ball was last cycle of the Follow
+  double travelled_ = 0;            // mm along the path since the last point
   bool have_point_ = false;
   bool contact_phase_ = false;
   planner::ScanPhase phase_ = planner::ScanPhase::None;

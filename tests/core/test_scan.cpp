@@ -1,0 +1,290 @@
+// Scanning in virtual time (docs/scanning.md): the motion core on the simulated CMM whose probe
+// measures its deflection, both card links, scans planned by planner::scan_requests. Every
+// scan point lies on the true surface (the scene's signed distance) within 1 µm, the deflection
+// stays in its band while following, contact is never lost and the range never reached; the
+// scan ends Done at its planned end. Scans that cannot hold contact stop with their reason.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "core_rig.hpp"
+#include "imess/planner/planner.hpp"
+#include "imess/planner/scan.hpp"
+#include "imess/sim/analog_probe.hpp"
+
+using namespace imess;
+using namespace imess::test;
+using core::FailReason;
+
+namespace {
+
+constexpr double kBall = 2.0;
+constexpr double kRange = 1.0;
+// The streamed card's status frames with a measuring probe: a fresh sample this often, s
+// (docs/servo-card-link.md, "The measuring probe").
+constexpr double kStreamSamplePeriod = 0.006;
+
+RigOptions analog_options(const Vec3& start, bool streamed) {
+  RigOptions o = default_options();
+  o.sim.mechanics.probe.ball_radius = kBall;
+  o.sim.mechanics.probe.type = sim::ProbeType::Analog;
+  o.sim.mechanics.probe.analog.range = kRange;
+  o.sim.mechanics.probe.analog.noise = 0;
+  o.sim.mechanics.start = axes3(start);
+  o.sim.streamed = streamed;
+  return o;
+}
+
+// The core on the simulated CMM, a planner feeding it like the io side does, and what a scan
+// leaves: its points, the deflection while following, its end.
+class ScanRig {
+ public:
+  ScanRig(const Vec3& start, bool streamed) : rig_(analog_options(start, streamed)) {
+    machine_ = planner::make_machine("XYZ", 0, 1000, 150, 1000);
+    machine_.axes[2].travel_max = 600;
+    planner_.emplace(machine_);
+    rig_.run(0.2);  // the link set up, the probe armed
+  }
+
+  // Plans the scan from where the machine stands; the shape's refusal fails the test.
+  void plan(std::uint32_t id, const planner::ScanShape& shape, const planner::ScanSettings& s) {
+    planner::Pose here{};
+    for (int a = 0; a < 3; ++a) here[a] = rig_.position()[a];
+    planner_->set_position(here);
+    const auto requests = planner::scan_requests(id, here, shape, s);
+    REQUIRE(std::holds_alternative<std::vector<planner::Request>>(requests));
+    for (const auto& r : std::get<std::vector<planner::Request>>(requests)) {
+      const auto res = planner_->append(r);
+      INFO(planner::describe(res, machine_));
+      REQUIRE(res.ok());
+    }
+    planner_->flush();
+  }
+
+  // Runs until the scan's id ends (Done or Failed) or max_s passes; records the deflection on
+  // every cycle of the Follow (the sampler's segment is not visible: the cycles between the
+  // first and the last point).
+  void run(std::uint32_t id, double max_s) {
+    for (long i = 0; i < static_cast<long>(max_s * 1000); ++i) {
+      planner::PlannedSegment seg;
+      while (rig_.core().segment_room() > 0 && planner_->take(seg))
+        REQUIRE(rig_.core().submit_segment({seg, rig_.core().stop_ticket(), 0}));
+      rig_.step();
+      const auto& ms = rig_.core().machine();
+      for (const auto& e : rig_.events()) {
+        if (e.kind == EventKind::ScanPt) points.push_back(e);
+        if ((e.kind == EventKind::Done || e.kind == EventKind::Failed) && e.id == id) end = e;
+      }
+      deflections.push_back(ms.deflection.norm());
+      point_counts.push_back(points.size());
+      over_range = over_range || ms.probe_over_range;
+      rig_.clear_events();
+      if (end) break;
+    }
+    rig_.run(0.05);
+  }
+
+  // The deflections from the first point to the last, less the settling after each corner.
+  std::vector<double> following(std::size_t skip) const {
+    std::vector<double> out;
+    std::size_t first = 0, last = 0;
+    for (std::size_t i = 0; i < point_counts.size(); ++i) {
+      if (point_counts[i] == 0) first = i + 1;
+      if (point_counts[i] < points.size()) last = i;
+    }
+    for (std::size_t i = first + skip; i <= last && i < deflections.size(); ++i) out.push_back(deflections[i]);
+    return out;
+  }
+
+  CoreRig& core_rig() { return rig_; }
+  std::vector<Event> points;
+  std::vector<double> deflections;
+  std::vector<std::size_t> point_counts;
+  std::optional<Event> end;
+  bool over_range = false;
+
+ private:
+  CoreRig rig_;
+  planner::Machine machine_;
+  std::optional<planner::Planner> planner_;
+};
+
+planner::ScanSettings settings(double speed, double step) {
+  planner::ScanSettings s;
+  s.tip_radius = kBall;
+  s.speed = speed;
+  s.step = step;
+  s.approach_speed = 5;
+  s.feed = 50;
+  return s;
+}
+
+// The largest distance of a scan's points from the true surface, mm.
+double worst_surface_error(ScanRig& rig) {
+  const auto& scene = rig.core_rig().mechanics().scene();
+  double worst = 0;
+  for (const auto& p : rig.points) worst = std::max(worst, std::fabs(scene.distance(p.p)));
+  return worst;
+}
+
+// The cube's right face (local x = 60), turned by its yaw: a point on it and its outward normal.
+Vec3 cube_face_point(double y_local, double z) {
+  const double yaw = 0.3 * M_PI / 180;
+  const Vec3 local(60, y_local, 0);
+  return Vec3(460 + std::cos(yaw) * local.x() - std::sin(yaw) * local.y(), 350 + std::sin(yaw) * local.x() + std::cos(yaw) * local.y(), z);
+}
+Vec3 cube_face_normal() {
+  const double yaw = 0.3 * M_PI / 180;
+  return Vec3(std::cos(yaw), std::sin(yaw), 0);
+}
+
+planner::Point3 p3(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+struct Case {
+  const char* name;
+  Vec3 start;  // where the machine stands
+  planner::ScanShape shape;
+  double length;  // mm along the ball centre's path
+};
+
+std::vector<Case> cases() {
+  std::vector<Case> out;
+  // The bore (Ø 30 at 460 350, vertical), a full circle 20 mm below the top.
+  planner::ScanCircleShape bore;
+  bore.centre = {460, 350, 60};
+  bore.start = {475, 350, 60};
+  bore.sweep = 360;
+  bore.radial = -1;
+  out.push_back({"bore", Vec3(460, 350, 60), bore, 2 * M_PI * (15 - 1.7)});
+  // The cube's top, a line clear of the bore and the fillet.
+  out.push_back({"top face", Vec3(430, 330, 90), planner::ScanLineShape{{430, 330, 80}, {490, 330, 80}, {0, 0, 1}}, 60});
+  // The cube's right face, turned by the yaw.
+  const Vec3 a = cube_face_point(-30, 40), b = cube_face_point(30, 40);
+  out.push_back({"right face", a + 6 * cube_face_normal(), planner::ScanLineShape{p3(a), p3(b), p3(cube_face_normal())}, 60});
+  // The reference sphere (Ø 25 at 750 650 60): circles at three heights above its stem.
+  for (const double h : {0.0, 5.0, 9.0}) {
+    planner::ScanCircleShape ring;
+    const double r = std::sqrt(12.5 * 12.5 - h * h);
+    ring.centre = {750, 650, 60 + h};
+    ring.start = {750 + r, 650, 60 + h};
+    ring.sweep = h == 5.0 ? -270 : 360;
+    ring.radial = 1;
+    ring.axial = h / 12.5;
+    out.push_back({h == 0 ? "sphere equator" : h == 5 ? "sphere at 5" : "sphere at 9", Vec3(750 + r + 8, 650, 60 + h + 8), ring,
+                   std::fabs(ring.sweep) / 360 * 2 * M_PI * (r + 1.7 * std::sqrt(1 - ring.axial * ring.axial))});
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("scans of the bore, the faces and the sphere: every point on the surface within 1 um, the deflection in its band",
+          "[scan][long]") {
+  const bool streamed = GENERATE(false, true);
+  for (const Case& c : cases())
+    for (const double speed : {5.0, 15.0})
+      for (const double step : {0.05, 0.5}) {
+        INFO(c.name << (streamed ? ", streamed" : ", request/reply") << ", " << speed << " mm/s, step " << step << " mm");
+        ScanRig rig(c.start, streamed);
+        rig.plan(7, c.shape, settings(speed, step));
+        rig.run(7, c.length / speed + 30);
+        REQUIRE(rig.end);
+        CHECK(rig.end->kind == EventKind::Done);
+        CHECK_FALSE(rig.over_range);
+        // Points: as many as the step gives along the path (on the stream no closer than its
+        // status frames come, at most every 6 ms with a measuring probe), every one on the surface,
+        // its direction the surface's inward normal.
+        const double spacing = streamed ? std::max(step, speed * kStreamSamplePeriod) : step;
+        CHECK(rig.points.size() >= static_cast<std::size_t>(0.9 * c.length / spacing));
+        CHECK(rig.points.size() <= static_cast<std::size_t>(1.1 * c.length / step) + 2);
+        CHECK(worst_surface_error(rig) <= 0.001);
+        const auto& scene = rig.core_rig().mechanics().scene();
+        for (const auto& p : rig.points) {
+          CHECK(p.id == 7);
+          CHECK(p.radius == kBall);
+          CHECK(p.dir.dot(-sim::surface_normal(scene, p.p - 0.01 * p.dir)) > 0.9999);
+        }
+        // The deflection held within 0.3 ± 0.1 mm while following (after 50 ms of settling
+        // from the approach's corner).
+        const auto held = rig.following(50);
+        REQUIRE(held.size() > 100);
+        const auto [lo, hi] = std::minmax_element(held.begin(), held.end());
+        CHECK(*lo >= 0.2);
+        CHECK(*hi <= 0.4);
+        // It ends where it was planned, off the surface.
+        CHECK(rig.core_rig().core().machine().deflection.norm() < 1e-9);
+      }
+}
+
+TEST_CASE("a scan that loses the surface, presses beyond the range or has no measuring probe stops with its reason", "[scan]") {
+  const bool streamed = GENERATE(false, true);
+  INFO((streamed ? "streamed" : "request/reply"));
+  SECTION("a line running off the cube's edge: Failed ScanLostContact, the machine stops near the edge") {
+    ScanRig rig(Vec3(470, 330, 90), streamed);
+    rig.plan(3, planner::ScanLineShape{{470, 330, 80}, {560, 330, 80}, {0, 0, 1}}, settings(5, 0.1));
+    rig.run(3, 40);
+    REQUIRE(rig.end);
+    CHECK(rig.end->kind == EventKind::Failed);
+    CHECK(rig.end->fail == FailReason::ScanLostContact);
+    CHECK_FALSE(rig.over_range);
+    rig.core_rig().run(1);
+    CHECK(rig.core_rig().mode() == Mode::Idle);
+    // The right edge lies near x 520; the machine stopped soon after the ball left it.
+    CHECK(rig.core_rig().position().x() < 522 + 2 + 5 * 0.5);
+    CHECK(rig.core_rig().position().z() > 80 + 2 - planner::kMaxScanCorrection - 0.5);
+    for (const auto& p : rig.points) CHECK(std::fabs(rig.core_rig().mechanics().scene().distance(p.p)) <= 0.001);
+  }
+  SECTION("a nominal surface 1.5 mm above the part: no contact, Failed ScanLostContact") {
+    ScanRig rig(Vec3(430, 330, 95), streamed);
+    rig.plan(4, planner::ScanLineShape{{430, 330, 81.5}, {490, 330, 81.5}, {0, 0, 1}}, settings(5, 0.1));
+    rig.run(4, 40);
+    REQUIRE(rig.end);
+    CHECK(rig.end->fail == FailReason::ScanLostContact);
+    CHECK(rig.points.empty());
+  }
+  SECTION("a nominal surface 2 mm inside the part: Failed ScanOverRange, backed off until free") {
+    // Deeper than the largest correction and the range allow; a clearance of 3 mm keeps the
+    // move to the clearance point off the part (else that move's touch is an unexpected hit).
+    ScanRig rig(Vec3(430, 330, 95), streamed);
+    auto s = settings(5, 0.1);
+    s.clearance = 3;
+    rig.plan(5, planner::ScanLineShape{{430, 330, 78}, {490, 330, 78}, {0, 0, 1}}, s);
+    rig.run(5, 40);
+    REQUIRE(rig.end);
+    CHECK(rig.end->kind == EventKind::Failed);
+    CHECK(rig.end->fail == FailReason::ScanOverRange);
+    rig.core_rig().run(2);
+    CHECK(rig.core_rig().core().machine().deflection.norm() < 1e-9);
+    CHECK(rig.core_rig().mode() == Mode::Idle);
+  }
+}
+
+TEST_CASE("a scan with a touch-trigger probe fails NoMeasuringProbe at the clearance point, off the part", "[scan]") {
+  RigOptions o = analog_options(Vec3(430, 330, 95), false);
+  o.sim.mechanics.probe.type = sim::ProbeType::Trigger;
+  CoreRig rig(o);
+  rig.run(0.2);
+  planner::Machine m = planner::make_machine("XYZ", 0, 1000, 150, 1000);
+  m.axes[2].travel_max = 600;
+  planner::Planner plan(m);
+  plan.set_position({430, 330, 95});
+  const auto requests =
+      planner::scan_requests(9, plan.position(), planner::ScanLineShape{{430, 330, 80}, {490, 330, 80}, {0, 0, 1}}, settings(5, 0.1));
+  for (const auto& r : std::get<std::vector<planner::Request>>(requests))
+    if (const auto res = plan.append(r); !res.ok()) FAIL(planner::describe(res, m));
+  plan.flush();
+  planner::PlannedSegment seg;
+  while (plan.take(seg)) REQUIRE(rig.core().submit_segment({seg, rig.core().stop_ticket(), 0}));
+  std::vector<Event> failed;
+  REQUIRE(rig.run_until([&] {
+    for (const auto& e : rig.take(EventKind::Failed)) failed.push_back(e);
+    return !failed.empty();
+  }, 20));
+  CHECK(failed.size() == 1);
+  CHECK(failed[0].fail == core::FailReason::NoMeasuringProbe);
+  rig.run(1);
+  CHECK(rig.mode() == Mode::Idle);
+  CHECK(rig.position().z() > 80 + kBall);  // never touched the top
+}
