@@ -43,6 +43,8 @@ const std::vector<EventRow>& events() {
       {"AxPos", {{Kind::AxisValues, "axes", 3}}},
       {"Hit", {whole("seq"), whole("id"), fixed("x", 4), fixed("y", 4), fixed("z", 4), fixed("i", 6), fixed("j", 6),
                fixed("k", 6), fixed("r", 4), fixed("t", 6)}},
+      {"Scan", {whole("seq"), whole("id"), fixed("x", 4), fixed("y", 4), fixed("z", 4), fixed("i", 6), fixed("j", 6),
+                fixed("k", 6), fixed("r", 4), fixed("t", 6)}},
       {"MeasPt", {fixed("x", 3), fixed("y", 3), fixed("z", 3)}},
       {"PartPt", {whole("seq"), word("frame"), fixed("x", 4), fixed("y", 4), fixed("z", 4), fixed("i", 6),
                   fixed("j", 6), fixed("k", 6)}},

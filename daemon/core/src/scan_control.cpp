@@ -84,9 +84,13 @@ bool ScanControl::apply(const planner::PlannedSegment* seg, double fraction, hal
       why = FailReason::ScanLostContact;
       return false;
     }
-    // The path travelled since the last point, with the remainder carried: points come every
-    // `step` on average, not every whole number of cycles' travel beyond it.
-    if (have_point_) travelled_ += (here - last_point_).norm();
+    // The path travelled along the surface since the last point (the correction's motion
+    // across it does not count), with the remainder carried: points come every `step` on
+    // average, not every whole number of cycles' travel beyond it.
+    if (have_point_) {
+      const Vec3 moved = here - last_point_;
+      travelled_ += (moved - n_hat_ * moved.dot(n_hat_)).norm();
+    }
     last_point_ = here;
     if (contact && (!have_point_ || travelled_ >= spec.step)) {
       travelled_ = have_point_ ? std::min(travelled_ - spec.step, spec.step) : 0.0;
