@@ -2,6 +2,7 @@
 #include "imess/planner/scan.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace imess::planner {
@@ -30,7 +31,7 @@ Line line(std::uint32_t id, const Pose& from, const V3& to, double feed, const S
 V3 circle_normal(const ScanCircleShape& c, const V3& axis, const V3& p) {
   V3 v = p - vec(c.centre);
   v -= axis * v.dot(axis);
-  return c.radial * v.normalized() * std::sqrt(1 - c.axial * c.axial) + c.axial * axis;
+  return c.radial * v.normalized() * std::sqrt(std::max(0.0, 1 - c.axial * c.axial)) + c.axial * axis;
 }
 
 struct Ends {
@@ -69,14 +70,14 @@ ScanRequests scan_requests(std::uint32_t id, const Pose& from, const ScanShape& 
     if (!(axis.norm() > 1e-9)) return std::string("the circle's axis must not be zero");
     axis.normalize();
     if (c.radial != 1 && c.radial != -1) return std::string("the surface must face away from the axis or toward it");
-    if (!(std::fabs(c.axial) < 1)) return std::string("the normal's part along the axis must lie between -1 and 1");
+    if (!(std::fabs(c.axial) <= 1)) return std::string("the normal's part along the axis must lie between -1 and 1");
     if (!(std::fabs(c.sweep) >= 1e-3)) return std::string("the sweep must not be zero");
     e.start = vec(c.start);
     V3 radial = e.start - vec(c.centre);
     radial -= axis * radial.dot(axis);
     const double r_surface = radial.norm();
     if (!(r_surface >= 1e-3)) return std::string("the start must lie off the axis");
-    const double r_ball = r_surface + c.radial * offset * std::sqrt(1 - c.axial * c.axial);
+    const double r_ball = r_surface + c.radial * offset * std::sqrt(std::max(0.0, 1 - c.axial * c.axial));
     if (!(r_ball > 0.01)) return std::string("the circle is too small for the tip (radius " + std::to_string(r_surface) + " mm)");
     const double sweep = c.sweep * M_PI / 180;
     const Eigen::AngleAxisd turn(sweep, axis);

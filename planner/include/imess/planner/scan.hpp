@@ -30,7 +30,7 @@ struct ScanLineShape {
 // more than 360 goes round again), `lead` mm along the axis over the whole sweep. radial +1:
 // the surface faces away from the axis (a boss, a sphere's circle), -1: toward it (a bore).
 // axial: the outward normal's part along the axis (0 on a cylinder; sin of a cone's or a
-// sphere's surface angle), |axial| < 1.
+// sphere's surface angle; ±1 a ring on a flat face square to the axis), |axial| ≤ 1.
 struct ScanCircleShape {
   Point3 centre{}, start{}, axis{0, 0, 1};
   double sweep = 360;
@@ -53,7 +53,7 @@ struct ScanSettings {
 };
 
 // The requests, or why there are none (a zero normal or axis, a line shorter than 0.001 mm,
-// a normal along the line, a start on the axis, a zero sweep, |axial| ≥ 1, a bore too small
+// a normal along the line, a start on the axis, a zero sweep, |axial| > 1, a bore too small
 // for the ball, a clearance not above the largest correction).
 using ScanRequests = std::variant<std::vector<Request>, std::string>;
 ScanRequests scan_requests(std::uint32_t id, const Pose& from, const ScanShape& shape, const ScanSettings& settings);
