@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace imess::planner {
 namespace {
@@ -78,7 +79,12 @@ ScanRequests scan_requests(std::uint32_t id, const Pose& from, const ScanShape& 
     const double r_surface = radial.norm();
     if (!(r_surface >= 1e-3)) return std::string("the start must lie off the axis");
     const double r_ball = r_surface + c.radial * offset * std::sqrt(std::max(0.0, 1 - c.axial * c.axial));
-    if (!(r_ball > 0.01)) return std::string("the circle is too small for the tip (radius " + std::to_string(r_surface) + " mm)");
+    if (!(r_ball > 0.01)) {
+      char why[160];
+      std::snprintf(why, sizeof why, "the circle (radius %.4g mm) is too small for the tip (radius %.4g mm, deflected %.4g mm)",
+                    r_surface, s.tip_radius, s.deflection);
+      return std::string(why);
+    }
     const double sweep = c.sweep * M_PI / 180;
     const Eigen::AngleAxisd turn(sweep, axis);
     e.end = vec(c.centre) + axis * (e.start - vec(c.centre)).dot(axis) + turn * radial + c.lead * axis;
