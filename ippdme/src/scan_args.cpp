@@ -64,9 +64,10 @@ bool orthogonal(const Vector3& a, const Vector3& b) {
 // The distance of p from the line through `at` along `axis` (axis with a norm) is not zero.
 bool off_axis(const Point3& p, const Point3& at, const Vector3& axis) { return !without_norm(cross(from_to(at, p), axis)); }
 
+// The first given direction (null: not given) without norm: 1010.
 Fault first_without_norm(std::initializer_list<const Vector3*> vectors) {
   for (const Vector3* v : vectors)
-    if (without_norm(*v)) return ErrorCode::VectorHasNoNorm;
+    if (v && without_norm(*v)) return ErrorCode::VectorHasNoNorm;
   return std::nullopt;
 }
 
@@ -137,8 +138,10 @@ Fault read_unknown_density(const Value& call, Checked& out) {
 
 // ---- known contours -------------------------------------------------------------------------
 
+// A circle's start lies in its plane (the start direction orthogonal to the normal); a helix's
+// anywhere off its axis (the centre is a point of the axis).
 template <class T>
-Fault read_circle_like(const Value& call, T& c, std::size_t count) {
+Fault read_circle_like(const Value& call, T& c, std::size_t count, bool in_plane) {
   if (!number_count(call, {count})) return ErrorCode::IncorrectArguments;
   Numbers n(call.args);
   c.center = n.point();
@@ -149,21 +152,22 @@ Fault read_circle_like(const Value& call, T& c, std::size_t count) {
   c.step = n.next();
   if (auto f = first_without_norm({&c.normal})) return f;
   const Vector3 radius = from_to(c.center, c.start);
-  if (without_norm(radius) || !orthogonal(radius, c.normal)) return ErrorCode::BadArgument;
+  if (in_plane ? without_norm(radius) || !orthogonal(radius, c.normal) : !off_axis(c.start, c.center, c.normal))
+    return ErrorCode::BadArgument;
   if (c.delta == 0 || c.step == 0) return ErrorCode::BadArgument;
   return std::nullopt;
 }
 
 Fault read_circle(const Value& call, Checked& out) {
   ScanOnCircle c;
-  if (auto f = read_circle_like(call, c, 12)) return f;
+  if (auto f = read_circle_like(call, c, 12, true)) return f;
   out.built = c;
   return std::nullopt;
 }
 
 Fault read_helix(const Value& call, Checked& out) {
   ScanOnHelix c;
-  if (auto f = read_circle_like(call, c, 13)) return f;
+  if (auto f = read_circle_like(call, c, 13, false)) return f;
   c.pitch = call.args[12].number;
   // A surface angle of 90 or 270: a plane face, on which no helix runs.
   const double along = std::remainder(c.sfa, 180.0);
@@ -227,7 +231,7 @@ Fault read_plane_end_sphere(const Value& call, Checked& out) {
   c.diameter = n.next();
   const double times = v143 ? n.next() : 1;
   c.end_normal = n.vector();
-  if (auto f = first_without_norm({&c.start_normal, &c.plane_normal, &c.end_normal})) return f;
+  if (auto f = first_without_norm({&c.start_normal, v143 ? &c.plane_normal : nullptr, &c.end_normal})) return f;
   if (auto f = unknown_contour_domain(c.start, c.direction, c.step, times, c.count)) return f;
   if (!(c.diameter > 0)) return ErrorCode::BadArgument;
   if (auto f = derive_plane(c, v143)) return f;
@@ -246,7 +250,7 @@ Fault read_plane_end_plane(const Value& call, Checked& out) {
   c.stop_normal = n.vector();
   const double times = n.next();
   c.end_normal = n.vector();
-  if (auto f = first_without_norm({&c.start_normal, &c.plane_normal, &c.stop_normal, &c.end_normal})) return f;
+  if (auto f = first_without_norm({&c.start_normal, v143 ? &c.plane_normal : nullptr, &c.stop_normal, &c.end_normal})) return f;
   if (auto f = unknown_contour_domain(c.start, c.direction, c.step, times, c.count)) return f;
   if (auto f = derive_plane(c, v143)) return f;
   out.built = c;
@@ -265,7 +269,7 @@ Fault read_plane_end_cyl(const Value& call, Checked& out) {
   c.diameter = n.next();
   const double times = n.next();
   c.end_normal = n.vector();
-  if (auto f = first_without_norm({&c.start_normal, &c.plane_normal, &c.axis, &c.end_normal})) return f;
+  if (auto f = first_without_norm({&c.start_normal, v143 ? &c.plane_normal : nullptr, &c.axis, &c.end_normal})) return f;
   if (auto f = unknown_contour_domain(c.start, c.direction, c.step, times, c.count)) return f;
   if (!(c.diameter > 0)) return ErrorCode::BadArgument;
   if (auto f = derive_plane(c, v143)) return f;

@@ -70,8 +70,8 @@ struct ScanOnCircle {
 // ScanOnHelix(Cx, Cy, Cz, Sx, Sy, Sz, i, j, k, delta, sfa, StepW, pitch) (spec 1.5 on): as
 // ScanOnCircle, rising by pitch mm along normal per turn; sfa 90 or 270 (a plane) is refused.
 struct ScanOnHelix {
-  Point3 center{};
-  Point3 start{};
+  Point3 center{};  // a point of the helix's axis (along normal)
+  Point3 start{};   // where the scan starts, off the axis: its distance from the axis is the radius
   Vector3 normal;
   double delta = 0, sfa = 0, step = 0;
   double pitch = 0;  // mm per 360 degrees along normal (negative: against it)
