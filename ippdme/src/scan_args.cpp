@@ -78,12 +78,6 @@ bool read_count(double n, int& out) {
   return true;
 }
 
-// The plane of a 1.4.0 unknown-contour scan (no plane normal given): through the start, spanned
-// by the start's surface direction and the way to the direction point.
-Vector3 plane_through(const Vector3& start_normal, const Point3& start, const Point3& direction) {
-  return cross(start_normal, from_to(start, direction));
-}
-
 // ---- hints ----------------------------------------------------------------------------------
 
 Fault read_two_hints(const Value& call, double& a, double& b) {
@@ -209,14 +203,15 @@ void read_plane_start(Numbers& n, T& c, bool with_plane) {
   c.direction = n.point();
   c.step = n.next();
 }
-
-// The plane normal of the 1.4.0 form, derived: none when the direction point lies along the
-// start's surface direction.
 template <class T>
-Fault derive_plane(T& c, bool with_plane) {
-  if (with_plane) return std::nullopt;
-  c.plane_normal = plane_through(c.start_normal, c.start, c.direction);
-  if (without_norm(c.plane_normal)) return ErrorCode::BadArgument;
+const Vector3* given_plane(const T& c) {
+  return c.plane_normal ? &*c.plane_normal : nullptr;
+}
+
+// The 1.4.0 form's plane (start_normal and the way to the direction point) must exist.
+template <class T>
+Fault check_plane(const T& c) {
+  if (!c.plane_normal && without_norm(scan_plane_normal(c))) return ErrorCode::BadArgument;
   return std::nullopt;
 }
 
@@ -231,10 +226,10 @@ Fault read_plane_end_sphere(const Value& call, Checked& out) {
   c.diameter = n.next();
   const double times = v143 ? n.next() : 1;
   c.end_normal = n.vector();
-  if (auto f = first_without_norm({&c.start_normal, v143 ? &c.plane_normal : nullptr, &c.end_normal})) return f;
+  if (auto f = first_without_norm({&c.start_normal, given_plane(c), &c.end_normal})) return f;
   if (auto f = unknown_contour_domain(c.start, c.direction, c.step, times, c.count)) return f;
   if (!(c.diameter > 0)) return ErrorCode::BadArgument;
-  if (auto f = derive_plane(c, v143)) return f;
+  if (auto f = check_plane(c)) return f;
   out.built = c;
   return std::nullopt;
 }
@@ -250,9 +245,9 @@ Fault read_plane_end_plane(const Value& call, Checked& out) {
   c.stop_normal = n.vector();
   const double times = n.next();
   c.end_normal = n.vector();
-  if (auto f = first_without_norm({&c.start_normal, v143 ? &c.plane_normal : nullptr, &c.stop_normal, &c.end_normal})) return f;
+  if (auto f = first_without_norm({&c.start_normal, given_plane(c), &c.stop_normal, &c.end_normal})) return f;
   if (auto f = unknown_contour_domain(c.start, c.direction, c.step, times, c.count)) return f;
-  if (auto f = derive_plane(c, v143)) return f;
+  if (auto f = check_plane(c)) return f;
   out.built = c;
   return std::nullopt;
 }
@@ -269,10 +264,10 @@ Fault read_plane_end_cyl(const Value& call, Checked& out) {
   c.diameter = n.next();
   const double times = n.next();
   c.end_normal = n.vector();
-  if (auto f = first_without_norm({&c.start_normal, v143 ? &c.plane_normal : nullptr, &c.axis, &c.end_normal})) return f;
+  if (auto f = first_without_norm({&c.start_normal, given_plane(c), &c.axis, &c.end_normal})) return f;
   if (auto f = unknown_contour_domain(c.start, c.direction, c.step, times, c.count)) return f;
   if (!(c.diameter > 0)) return ErrorCode::BadArgument;
-  if (auto f = derive_plane(c, v143)) return f;
+  if (auto f = check_plane(c)) return f;
   out.built = c;
   return std::nullopt;
 }
@@ -391,17 +386,27 @@ std::vector<Value> scan_args(const ScanOnHelix& c) {
 std::vector<Value> scan_args(const ScanOnLine& c) {
   return Writer().point(c.start).point(c.end).vector(c.normal).number(c.step).done();
 }
+// A plane scan without plane normal is written in its 1.4.0 form (the sphere's without n).
 std::vector<Value> scan_args(const ScanInPlaneEndIsSphere& c) {
-  return Writer().point(c.start).vector(c.start_normal).vector(c.plane_normal).point(c.direction).number(c.step)
-      .point(c.end_center).number(c.diameter).number(c.count).vector(c.end_normal).done();
+  Writer w;
+  w.point(c.start).vector(c.start_normal);
+  if (c.plane_normal) w.vector(*c.plane_normal);
+  w.point(c.direction).number(c.step).point(c.end_center).number(c.diameter);
+  if (c.plane_normal) w.number(c.count);
+  return w.vector(c.end_normal).done();
 }
 std::vector<Value> scan_args(const ScanInPlaneEndIsPlane& c) {
-  return Writer().point(c.start).vector(c.start_normal).vector(c.plane_normal).point(c.direction).number(c.step)
-      .point(c.stop_point).vector(c.stop_normal).number(c.count).vector(c.end_normal).done();
+  Writer w;
+  w.point(c.start).vector(c.start_normal);
+  if (c.plane_normal) w.vector(*c.plane_normal);
+  return w.point(c.direction).number(c.step).point(c.stop_point).vector(c.stop_normal).number(c.count).vector(c.end_normal).done();
 }
 std::vector<Value> scan_args(const ScanInPlaneEndIsCyl& c) {
-  return Writer().point(c.start).vector(c.start_normal).vector(c.plane_normal).point(c.direction).number(c.step)
-      .point(c.axis_point).vector(c.axis).number(c.diameter).number(c.count).vector(c.end_normal).done();
+  Writer w;
+  w.point(c.start).vector(c.start_normal);
+  if (c.plane_normal) w.vector(*c.plane_normal);
+  return w.point(c.direction).number(c.step).point(c.axis_point).vector(c.axis).number(c.diameter).number(c.count)
+      .vector(c.end_normal).done();
 }
 std::vector<Value> scan_args(const ScanInCylEndIsSphere& c) {
   return Writer().point(c.axis_point).vector(c.axis).point(c.start).vector(c.start_normal).point(c.direction)

@@ -14,7 +14,8 @@ namespace imess::ippdme {
 // norm, 0509 a value outside its domain), in that order.
 std::optional<ErrorCode> read_scan_args(const Value& call, Checked& out);
 
-// The arguments as a client writes them: the 1.4.3 forms, numbers in their shortest form.
+// The arguments as a client writes them, numbers in their shortest form: the 1.4.3 forms, a
+// plane scan without plane normal in its 1.4.0 form (parse_line reads back the same command).
 std::vector<Value> scan_args(const OnScanReport& c);
 std::vector<Value> scan_args(const ScanOnCircleHint& c);
 std::vector<Value> scan_args(const ScanOnLineHint& c);

@@ -96,6 +96,7 @@ class Gen {
     return r;
   }
   // p + v as the double nearest its decimals (a sum's last bit would need 17 digits to write).
+  std::optional<Vector3> plane(bool given) { return given ? std::optional<Vector3>(direction()) : std::nullopt; }
   static Point3 plus(const Point3& p, const Vector3& v) {
     auto at = [](double a, double b) { return std::round((a + b) * 1000) / 1000; };
     return {at(p[0], v.i), at(p[1], v.j), at(p[2], v.k)};
@@ -163,18 +164,25 @@ class Gen {
         const Vector3 n = direction();
         return ScanOnLine{a, plus(a, across(n)), n, positive()};
       }
+      // A plane scan in its 1.4.3 form, or the 1.4.0 one (no plane normal: the direction point
+      // off the start's surface direction; the sphere's without n: count 1).
       case command_index<ScanInPlaneEndIsSphere>(): {
         const Point3 a = point();
-        return ScanInPlaneEndIsSphere{a, direction(), direction(), plus(a, direction()), step(), point(), positive(), count(), direction()};
+        const Vector3 n = direction();
+        const bool v143 = coin();
+        return ScanInPlaneEndIsSphere{a,        n,        plane(v143), plus(a, across(n)), step(), point(), positive(),
+                                      v143 ? count() : 1, direction()};
       }
       case command_index<ScanInPlaneEndIsPlane>(): {
         const Point3 a = point();
-        return ScanInPlaneEndIsPlane{a, direction(), direction(), plus(a, direction()), step(), point(), direction(), count(), direction()};
+        const Vector3 n = direction();
+        return ScanInPlaneEndIsPlane{a, n, plane(coin()), plus(a, across(n)), step(), point(), direction(), count(), direction()};
       }
       case command_index<ScanInPlaneEndIsCyl>(): {
         const Point3 a = point();
-        return ScanInPlaneEndIsCyl{a,       direction(), direction(), plus(a, direction()), step(), point(), direction(),
-                                   positive(), count(),  direction()};
+        const Vector3 n = direction();
+        return ScanInPlaneEndIsCyl{a,       n,          plane(coin()), plus(a, across(n)), step(), point(), direction(),
+                                   positive(), count(), direction()};
       }
       case command_index<ScanInCylEndIsSphere>(): {
         const Point3 c = point();

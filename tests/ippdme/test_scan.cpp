@@ -34,8 +34,10 @@ TEST_CASE("ippdme scanning: the spec's examples (1.4.3 §11.4)") {
   CHECK(command_of("00015 ScanUnknownHint (100.0)") == Command{ScanUnknownHint{100}});
   // §11.4.2 writes ScanInPlaneEndIsSphere in its 1.4.0 form (no plane normal, no n): the plane
   // then holds the start's surface direction and the way to the direction point: x = 100.
-  CHECK(command_of("00016 ScanInPlaneEndIsSphere (100,0,0,0,0,1,100,1,0,0.2,100,100,1.5,1.0,0,0,1)") ==
-        Command{ScanInPlaneEndIsSphere{{100, 0, 0}, {0, 0, 1}, {-1, 0, 0}, {100, 1, 0}, 0.2, {100, 100, 1.5}, 1, 1, {0, 0, 1}}});
+  const Command sphere = command_of("00016 ScanInPlaneEndIsSphere (100,0,0,0,0,1,100,1,0,0.2,100,100,1.5,1.0,0,0,1)");
+  CHECK(sphere ==
+        Command{ScanInPlaneEndIsSphere{{100, 0, 0}, {0, 0, 1}, std::nullopt, {100, 1, 0}, 0.2, {100, 100, 1.5}, 1, 1, {0, 0, 1}}});
+  CHECK(scan_plane_normal(std::get<ScanInPlaneEndIsSphere>(sphere)) == Vector3{-1, 0, 0});
 }
 
 TEST_CASE("ippdme scanning: the NIST suite's scan lines parse (allCmdOK.prg and the Scan*.prg files)") {
@@ -53,13 +55,19 @@ TEST_CASE("ippdme scanning: the NIST suite's scan lines parse (allCmdOK.prg and 
   CHECK(command_of("00610 ScanOnLine(0,1,2,14,15,2,0,0,1,0.5)") == Command{ScanOnLine{{0, 1, 2}, {14, 15, 2}, {0, 0, 1}, 0.5}});
   CHECK(command_of("00620 ScanOnLineHint(20, 2.45)") == Command{ScanOnLineHint{20, 2.45}});
   CHECK(command_of("00630 ScanUnknownHint(0.1)") == Command{ScanUnknownHint{0.1}});
-  // The unknown-contour scans in their 1.4.0 form: n is 1, the plane normal derived.
-  CHECK(command_of("00580 ScanInPlaneEndIsSphere(0,0,0,0,0,1,2,0,0,0.5,9,0,0,1.4,0,0,1)") ==
-        Command{ScanInPlaneEndIsSphere{{0, 0, 0}, {0, 0, 1}, {0, 2, 0}, {2, 0, 0}, 0.5, {9, 0, 0}, 1.4, 1, {0, 0, 1}}});
-  CHECK(command_of("00570 ScanInPlaneEndIsPlane(0,0,0,0,0,1,2,0,0,0.5,9,0,0,-1,0,0,1,0,0,1)") ==
-        Command{ScanInPlaneEndIsPlane{{0, 0, 0}, {0, 0, 1}, {0, 2, 0}, {2, 0, 0}, 0.5, {9, 0, 0}, {-1, 0, 0}, 1, {0, 0, 1}}});
-  CHECK(command_of("00560 ScanInPlaneEndIsCyl(0,0,0,0,0,1,2,2,0,0.5,8,8,0,0,0,1,0.7,1,0,0,1)") ==
-        Command{ScanInPlaneEndIsCyl{{0, 0, 0}, {0, 0, 1}, {-2, 2, 0}, {2, 2, 0}, 0.5, {8, 8, 0}, {0, 0, 1}, 0.7, 1, {0, 0, 1}}});
+  // The unknown-contour scans in their 1.4.0 form: no plane normal (derived: SIJK × (D − S)), n 1.
+  const Command sphere = command_of("00580 ScanInPlaneEndIsSphere(0,0,0,0,0,1,2,0,0,0.5,9,0,0,1.4,0,0,1)");
+  CHECK(sphere ==
+        Command{ScanInPlaneEndIsSphere{{0, 0, 0}, {0, 0, 1}, std::nullopt, {2, 0, 0}, 0.5, {9, 0, 0}, 1.4, 1, {0, 0, 1}}});
+  CHECK(scan_plane_normal(std::get<ScanInPlaneEndIsSphere>(sphere)) == Vector3{0, 2, 0});
+  const Command plane = command_of("00570 ScanInPlaneEndIsPlane(0,0,0,0,0,1,2,0,0,0.5,9,0,0,-1,0,0,1,0,0,1)");
+  CHECK(plane ==
+        Command{ScanInPlaneEndIsPlane{{0, 0, 0}, {0, 0, 1}, std::nullopt, {2, 0, 0}, 0.5, {9, 0, 0}, {-1, 0, 0}, 1, {0, 0, 1}}});
+  CHECK(scan_plane_normal(std::get<ScanInPlaneEndIsPlane>(plane)) == Vector3{0, 2, 0});
+  const Command cyl = command_of("00560 ScanInPlaneEndIsCyl(0,0,0,0,0,1,2,2,0,0.5,8,8,0,0,0,1,0.7,1,0,0,1)");
+  CHECK(cyl ==
+        Command{ScanInPlaneEndIsCyl{{0, 0, 0}, {0, 0, 1}, std::nullopt, {2, 2, 0}, 0.5, {8, 8, 0}, {0, 0, 1}, 0.7, 1, {0, 0, 1}}});
+  CHECK(scan_plane_normal(std::get<ScanInPlaneEndIsCyl>(cyl)) == Vector3{-2, 2, 0});
   CHECK(command_of("00550 ScanInCylEndIsSphere(0,0,0,0,0,1,2,0,0,1,0,0,2,1,0,0.8,0,2,7,4,0,1,0)") ==
         Command{ScanInCylEndIsSphere{{0, 0, 0}, {0, 0, 1}, {2, 0, 0}, {1, 0, 0}, {2, 1, 0}, 0.8, {0, 2, 7}, 4, 1, {0, 1, 0}}});
   CHECK(command_of("00540 ScanInCylEndIsPlane(0,0,0,0,0,1,2,0,0,1,0,0,2,-1,0,0.9,0,2,7,0,0,1,1,0,-1,0)") ==
@@ -144,11 +152,16 @@ TEST_CASE("ippdme scanning: every bad form gets 0502, 0505, 1010 or 0509") {
   }
 }
 
-TEST_CASE("ippdme scanning: a 1.4.0 form reads as the 1.4.3 form it means, and is written in that form") {
-  const Command old_form = command_of("00001 ScanInCylEndIsSphere(0,0,0,0,0,1,2,0,0,1,0,0,2,1,0,0.8,0,2,7,4,0,1,0)");
-  const std::string written = format_command({TagKind::Command, 1}, old_form);
-  CHECK(written == "00001 ScanInCylEndIsSphere(0, 0, 0, 0, 0, 1, 2, 0, 0, 1, 0, 0, 2, 1, 0, 0.8, 0, 2, 7, 4, 1, 0, 1, 0)\r\n");
-  CHECK(command_of(written.substr(0, written.size() - 2)) == old_form);
+TEST_CASE("ippdme scanning: a 1.4.0 form is written back as read (a plane scan) or with its n (on a cylinder)") {
+  const Tag t1{TagKind::Command, 1};
+  const Command cyl = command_of("00001 ScanInCylEndIsSphere(0,0,0,0,0,1,2,0,0,1,0,0,2,1,0,0.8,0,2,7,4,0,1,0)");
+  const std::string cyl_line = format_command(t1, cyl);
+  CHECK(cyl_line == "00001 ScanInCylEndIsSphere(0, 0, 0, 0, 0, 1, 2, 0, 0, 1, 0, 0, 2, 1, 0, 0.8, 0, 2, 7, 4, 1, 0, 1, 0)\r\n");
+  CHECK(command_of(cyl_line.substr(0, cyl_line.size() - 2)) == cyl);
+  const Command plane = command_of("00001 ScanInPlaneEndIsSphere(0.1,0.2,0.3,0.1,0.2,0.7,2.01,0.03,0,0.5,9,0,0,1.4,0,0,1)");
+  const std::string plane_line = format_command(t1, plane);
+  CHECK(plane_line == "00001 ScanInPlaneEndIsSphere(0.1, 0.2, 0.3, 0.1, 0.2, 0.7, 2.01, 0.03, 0, 0.5, 9, 0, 0, 1.4, 0, 0, 1)\r\n");
+  CHECK(command_of(plane_line.substr(0, plane_line.size() - 2)) == plane);
 }
 
 TEST_CASE("ippdme scanning: OnScanReport's default, every report item once in the order given") {

@@ -91,11 +91,13 @@ struct ScanOnLine {
 // (Retract 0); the scan then leaves toward `direction` (a point, != start), reports a point
 // every `step` mm (0: ScanUnknownDensity's, else the server's), stops at the n-th (`count`)
 // meeting of its stop body and retracts along end_normal. In a plane: the tip centre stays in
-// the plane through the touched point with normal plane_normal (1.4.3; the 1.4.0 form without
-// it, which the NIST suite sends, gets start_normal × (direction - start)).
+// the plane through the touched point with normal plane_normal (1.4.3). The 1.4.0 form, which
+// the NIST suite sends, has none (nullopt; and ScanInPlaneEndIsSphere no n: count 1): its plane
+// holds start_normal and direction - start, scan_plane_normal() gives its normal.
 struct ScanInPlaneEndIsSphere {
   Point3 start{};
-  Vector3 start_normal, plane_normal;
+  Vector3 start_normal;
+  std::optional<Vector3> plane_normal;
   Point3 direction{};
   double step = 0;      // mm >= 0
   Point3 end_center{};  // the stop sphere: the scan stops near its centre (a local minimum of the distance)
@@ -106,7 +108,8 @@ struct ScanInPlaneEndIsSphere {
 };
 struct ScanInPlaneEndIsPlane {
   Point3 start{};
-  Vector3 start_normal, plane_normal;
+  Vector3 start_normal;
+  std::optional<Vector3> plane_normal;
   Point3 direction{};
   double step = 0;
   Point3 stop_point{};  // the stop plane: a point and its normal; checked once the scan has gone
@@ -117,7 +120,8 @@ struct ScanInPlaneEndIsPlane {
 };
 struct ScanInPlaneEndIsCyl {
   Point3 start{};
-  Vector3 start_normal, plane_normal;
+  Vector3 start_normal;
+  std::optional<Vector3> plane_normal;
   Point3 direction{};
   double step = 0;
   Point3 axis_point{};  // the stop cylinder: a point of its axis, the axis, the diameter
@@ -156,6 +160,16 @@ struct ScanInCylEndIsPlane {
   IMESS_IPPDME_EQ(ScanInCylEndIsPlane);
 };
 #undef IMESS_IPPDME_EQ
+
+// The scanning plane's normal of a scan in a plane: plane_normal, or for the 1.4.0 form
+// start_normal × (direction - start) (the parser refuses a form where that has no norm).
+template <class T>
+Vector3 scan_plane_normal(const T& c) {
+  if (c.plane_normal) return *c.plane_normal;
+  const Vector3& n = c.start_normal;
+  const double dx = c.direction[0] - c.start[0], dy = c.direction[1] - c.start[1], dz = c.direction[2] - c.start[2];
+  return {n.j * dz - n.k * dy, n.k * dx - n.i * dz, n.i * dy - n.j * dx};
+}
 
 // The scanning methods: the server answers them together (0501 until the scan is mapped).
 template <class T>
