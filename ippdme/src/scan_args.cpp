@@ -354,10 +354,11 @@ class Writer {
 }  // namespace
 }  // namespace scan_args_impl
 
-using namespace scan_args_impl;
+// Named here, no using-directive: in a unity build that would reach the next file's helpers.
+using ScanWriter = scan_args_impl::Writer;
 
 std::optional<ErrorCode> read_scan_args(const Value& call, Checked& out) {
-  for (const auto& r : kReaders)
+  for (const auto& r : scan_args_impl::kReaders)
     if (r.method == call.text) return r.read(call, out);
   return ErrorCode::IllegalCommand;  // unreachable: every ScanArgs declaration has a reader (test_ippdme)
 }
@@ -367,9 +368,9 @@ std::vector<Value> scan_args(const OnScanReport& c) {
   for (Item i : c.items) out.push_back(Value::call(item_name(i)));
   return out;
 }
-std::vector<Value> scan_args(const ScanOnCircleHint& c) { return Writer().number(c.displacement).number(c.form).done(); }
-std::vector<Value> scan_args(const ScanOnLineHint& c) { return Writer().number(c.angle).number(c.form).done(); }
-std::vector<Value> scan_args(const ScanUnknownHint& c) { return Writer().number(c.min_radius).done(); }
+std::vector<Value> scan_args(const ScanOnCircleHint& c) { return ScanWriter().number(c.displacement).number(c.form).done(); }
+std::vector<Value> scan_args(const ScanOnLineHint& c) { return ScanWriter().number(c.angle).number(c.form).done(); }
+std::vector<Value> scan_args(const ScanUnknownHint& c) { return ScanWriter().number(c.min_radius).done(); }
 std::vector<Value> scan_args(const ScanUnknownDensity& c) {
   std::vector<Value> out;
   if (c.dis) out.push_back(Value::call("Dis", {Value::of_number(*c.dis)}));
@@ -378,17 +379,18 @@ std::vector<Value> scan_args(const ScanUnknownDensity& c) {
   return out;
 }
 std::vector<Value> scan_args(const ScanOnCircle& c) {
-  return Writer().point(c.center).point(c.start).vector(c.normal).number(c.delta).number(c.sfa).number(c.step).done();
+  return ScanWriter().point(c.center).point(c.start).vector(c.normal).number(c.delta).number(c.sfa).number(c.step).done();
 }
 std::vector<Value> scan_args(const ScanOnHelix& c) {
-  return Writer().point(c.center).point(c.start).vector(c.normal).number(c.delta).number(c.sfa).number(c.step).number(c.pitch).done();
+  return ScanWriter().point(c.center).point(c.start).vector(c.normal).number(c.delta).number(c.sfa).number(c.step)
+      .number(c.pitch).done();
 }
 std::vector<Value> scan_args(const ScanOnLine& c) {
-  return Writer().point(c.start).point(c.end).vector(c.normal).number(c.step).done();
+  return ScanWriter().point(c.start).point(c.end).vector(c.normal).number(c.step).done();
 }
 // A plane scan without plane normal is written in its 1.4.0 form (the sphere's without n).
 std::vector<Value> scan_args(const ScanInPlaneEndIsSphere& c) {
-  Writer w;
+  ScanWriter w;
   w.point(c.start).vector(c.start_normal);
   if (c.plane_normal) w.vector(*c.plane_normal);
   w.point(c.direction).number(c.step).point(c.end_center).number(c.diameter);
@@ -396,24 +398,25 @@ std::vector<Value> scan_args(const ScanInPlaneEndIsSphere& c) {
   return w.vector(c.end_normal).done();
 }
 std::vector<Value> scan_args(const ScanInPlaneEndIsPlane& c) {
-  Writer w;
+  ScanWriter w;
   w.point(c.start).vector(c.start_normal);
   if (c.plane_normal) w.vector(*c.plane_normal);
-  return w.point(c.direction).number(c.step).point(c.stop_point).vector(c.stop_normal).number(c.count).vector(c.end_normal).done();
+  return w.point(c.direction).number(c.step).point(c.stop_point).vector(c.stop_normal).number(c.count)
+      .vector(c.end_normal).done();
 }
 std::vector<Value> scan_args(const ScanInPlaneEndIsCyl& c) {
-  Writer w;
+  ScanWriter w;
   w.point(c.start).vector(c.start_normal);
   if (c.plane_normal) w.vector(*c.plane_normal);
   return w.point(c.direction).number(c.step).point(c.axis_point).vector(c.axis).number(c.diameter).number(c.count)
       .vector(c.end_normal).done();
 }
 std::vector<Value> scan_args(const ScanInCylEndIsSphere& c) {
-  return Writer().point(c.axis_point).vector(c.axis).point(c.start).vector(c.start_normal).point(c.direction)
+  return ScanWriter().point(c.axis_point).vector(c.axis).point(c.start).vector(c.start_normal).point(c.direction)
       .number(c.step).point(c.end_center).number(c.diameter).number(c.count).vector(c.end_normal).done();
 }
 std::vector<Value> scan_args(const ScanInCylEndIsPlane& c) {
-  return Writer().point(c.axis_point).vector(c.axis).point(c.start).vector(c.start_normal).point(c.direction)
+  return ScanWriter().point(c.axis_point).vector(c.axis).point(c.start).vector(c.start_normal).point(c.direction)
       .number(c.step).point(c.stop_point).vector(c.stop_normal).number(c.count).vector(c.end_normal).done();
 }
 
