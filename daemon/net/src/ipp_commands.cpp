@@ -296,6 +296,7 @@ bool IppServer::execute(const Pending& p) {
                                                        Value::of_number(t.theta), Value::of_number(t.psi), Value::of_number(t.phi)})});
             return done();
           },
+          [&](const ippdme::ScanMethod auto&) { fail(tag, ErrorCode::UnsupportedCommand, name); return true; },  // scanning: not yet mapped
           [&](const auto&) {  // a fast-queue method: the parser sends none here (its tag is an event tag)
             fail(tag, ErrorCode::IllegalTag, name);
             return true;
