@@ -111,6 +111,7 @@ bool IppServer::execute(const Pending& p) {
             last_error_.reset();
             user_enabled_ = false;
             ptmeas_items_ = {Item::X, Item::Y, Item::Z};
+            scan_items_ = ippdme::kDefaultScanReport;
             if (tools_.active()) gateway_.set_param(core::ParamId::TipRadius, tools_.active()->radius);
             return done();
           },
@@ -296,7 +297,24 @@ bool IppServer::execute(const Pending& p) {
                                                        Value::of_number(t.theta), Value::of_number(t.psi), Value::of_number(t.phi)})});
             return done();
           },
-          [&](const ippdme::ScanMethod auto&) { fail(tag, ErrorCode::UnsupportedCommand, name); return true; },  // scanning: not yet mapped
+          [&](const ippdme::OnScanReport& c) {
+            scan_items_ = c.items;
+            return done();
+          },
+          // Hints only let a server slow down where it must; the contact control holds the
+          // deflection whatever the part's deviation within its reach (docs/ippdme.md).
+          [&](const ippdme::ScanOnCircleHint&) { return done(); },
+          [&](const ippdme::ScanOnLineHint&) { return done(); },
+          [&](const ippdme::ScanUnknownHint&) { return done(); },
+          [&](const ippdme::ScanUnknownDensity&) { return done(); },
+          [&](const ippdme::ScanOnLine& c) { return start_scan_line(p, c); },
+          [&](const ippdme::ScanOnCircle& c) {
+            return start_scan_circle(p, c.center, c.start, c.normal, c.delta, c.sfa, c.step, 0);
+          },
+          [&](const ippdme::ScanOnHelix& c) {
+            return start_scan_circle(p, c.center, c.start, c.normal, c.delta, c.sfa, c.step, c.pitch);
+          },
+          [&](const ippdme::ScanMethod auto&) { fail(tag, ErrorCode::UnsupportedCommand, name); return true; },  // the unknown contours
           [&](const auto&) {  // a fast-queue method: the parser sends none here (its tag is an event tag)
             fail(tag, ErrorCode::IllegalTag, name);
             return true;
