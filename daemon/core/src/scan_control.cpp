@@ -10,6 +10,18 @@ namespace {
 constexpr double kMaxCorrectionRate = 10;  // mm/s
 constexpr double kMinTau = 0.03;           // s
 constexpr double kLostContactBase = 0.05;  // s
+// An unknown contour: the slowest advance off the band (a fraction of the path speed), and
+// how far a sphere's distance must grow past its least before the scan ends there, mm.
+constexpr double kContourSlowest = 0.2;
+constexpr double kClosestMargin = 1e-3;
+// After braking at the end, the machine follows the last setpoint this long (plus twice the lead), s.
+constexpr double kEndSettleBase = 0.02;
+// The normal's rate of turn is smoothed over this, s; the deflection is this old when read
+// (beyond the setpoint lead: a streamed card's status period), s.
+constexpr double kTurnFilter = 0.01;
+constexpr double kSampleAge = 0.01;
+
+Vec3 contour_vec(const std::array<double, 3>& a) noexcept { return {a[0], a[1], a[2]}; }
 }  // namespace
 
 using planner::ScanPhase;
@@ -21,6 +33,151 @@ void ScanControl::reset() noexcept {
   contact_phase_ = false;
   phase_ = ScanPhase::None;
   lost_s_ = 0;
+  finished_ = closing_ = ending_ = ran_out_ = false;
+  meetings_ = side_ = 0;
+  contour_s_ = 0;
+}
+
+void ScanControl::begin_contour(const planner::PlannedSegment& seg) noexcept {
+  const auto& k = seg.scan.contour;
+  AxisVec start = AxisVec::Zero();
+  for (int a = 0; a < loop_.n; ++a) start[a] = seg.start[a];
+  c_ = loop_.cartesian(start) + e_;  // where the Approach left the setpoint
+  origin_ = c_;
+  t_ = contour_vec(k.direction);
+  if (k.constraint == planner::ContourConstraint::Cylinder) {
+    const Vec3 axis = contour_vec(k.axis);
+    Vec3 rho = c_ - contour_vec(k.axis_point);
+    rho -= axis * rho.dot(axis);
+    radius_ = rho.norm();
+  }
+  contour_s_ = 0;
+  meetings_ = side_ = 0;
+  closing_ = finished_ = ending_ = ran_out_ = false;
+  closest_ = 0;
+  braking_speed_ = held_s_ = 0;
+  turn_rate_ = Vec3::Zero();
+  have_turn_ = false;
+  end_normal_ = contour_vec(k.end_normal);
+  end_clearance_ = k.clearance;
+  have_point_ = false;
+  travelled_ = 0;
+  lost_s_ = 0;
+}
+
+double ScanControl::steer(const planner::ScanSpec& spec, bool contact, double speed, double dt, double tau, double lag,
+                          double error, hal::Setpoint& sp) noexcept {
+  const auto& k = spec.contour;
+  // The tangent in the constraint, orthogonal to the measured normal, continuing the last.
+  Vec3 t;
+  Vec3 axis = Vec3::UnitZ(), rho_hat = Vec3::UnitX();
+  // The normal as it will be where the machine is when this setpoint runs: the measured one
+  // turned on by its rate of turn over the lag (round an edge the measured normal lags behind).
+  Vec3 n = n_hat_ + turn_rate_.cross(n_hat_) * lag;
+  n = n.norm() > 1e-9 ? Vec3(n.normalized()) : n_hat_;
+  if (k.constraint == planner::ContourConstraint::Plane) {
+    t = contour_vec(k.plane_normal).cross(n);
+  } else {
+    axis = contour_vec(k.axis);
+    Vec3 rho = c_ - contour_vec(k.axis_point);
+    rho -= axis * rho.dot(axis);
+    if (rho.norm() > 1e-9) rho_hat = rho.normalized();
+    t = rho_hat.cross(n);
+    if (!(t.norm() > 0.05)) t = t_ - rho_hat * t_.dot(rho_hat);  // the surface is the cylinder here: on as before
+  }
+  if (!(t.norm() > 1e-9)) t = t_;
+  t.normalize();
+  if (t.dot(t_) < 0) t = -t;
+  t_ = t;
+  // Slower off the band, not at all out of contact.
+  double scale = contact ? 1.0 : 0.0;
+  if (const double off = std::fabs(error) - spec.band / 2; contact && off > 0)
+    scale = std::max(kContourSlowest, 1 - (1 - kContourSlowest) * off / (spec.band / 2));
+  Vec3 push = error * n_hat_ * std::min(1.0, dt / tau);
+  const double most = kMaxCorrectionRate * dt;
+  if (push.norm() > most) push *= most / push.norm();
+  const Vec3 before = c_;
+  const double advance = scale * speed * dt;
+  c_ += advance * t + push;
+  if (k.constraint == planner::ContourConstraint::Plane) {
+    const Vec3 pn = contour_vec(k.plane_normal);
+    c_ -= pn * (c_ - origin_).dot(pn);
+  } else {
+    const Vec3 ap = contour_vec(k.axis_point);
+    const Vec3 along = axis * (c_ - ap).dot(axis);
+    Vec3 rho = c_ - ap - along;
+    if (rho.norm() > 1e-9) c_ = ap + along + rho.normalized() * radius_;
+  }
+  contour_s_ += advance;
+  const Vec3 velocity = (c_ - before) / std::max(dt, 1e-6);
+  for (int c = 0; c < 3; ++c)
+    if (const int a = loop_.config.layout.cartesian_axis(c); a >= 0) {
+      double p = c_[c];
+      if (loop_.referenced) p = std::clamp(p, loop_.config.axes[a].travel_min, loop_.config.axes[a].travel_max);
+      sp.position[a] = p;
+      sp.velocity[a] = velocity[c];
+    }
+  return advance / std::max(dt, 1e-6);
+}
+
+// The measured surface point against the stop body: true at its count-th meeting (a sphere:
+// where, after the count-th entry, the distance to its centre is least).
+bool ScanControl::stop_body_met(const planner::ScanContour& k, const Vec3& surface) noexcept {
+  const Vec3 p = contour_vec(k.stop_point), n = contour_vec(k.stop_normal);
+  double dist = 0;
+  int side = 0;
+  switch (k.stop) {
+    case planner::StopBody::Sphere:
+      dist = (surface - p).norm();
+      side = dist < k.stop_radius ? -1 : 1;
+      break;
+    case planner::StopBody::Plane: side = sign((surface - p).dot(n)); break;
+    case planner::StopBody::Cylinder: {
+      Vec3 rho = surface - p;
+      rho -= n * rho.dot(n);
+      side = rho.norm() < k.stop_radius ? -1 : 1;
+      break;
+    }
+  }
+  if (closing_) {
+    if (side > 0 || dist > closest_ + kClosestMargin) return true;
+    closest_ = std::min(closest_, dist);
+    return false;
+  }
+  if (side == 0) return false;  // on the plane: not yet across it
+  const int was = side_;
+  side_ = side;
+  if (was == 0 || was == side || contour_s_ < k.stop_after) return false;
+  if (k.stop == planner::StopBody::Sphere && side > 0) return false;  // a sphere counts its entries
+  if (++meetings_ < k.count) return false;
+  if (k.stop != planner::StopBody::Sphere) return true;
+  closing_ = true;
+  closest_ = dist;
+  return false;
+}
+
+void ScanControl::take_point(const planner::PlannedSegment& seg, const Vec3& here, const Vec3& delta, bool contact,
+                             Nanos now) noexcept {
+  // The path travelled along the surface since the last point (the correction's motion
+  // across it does not count), with the remainder carried: points come every `step` on
+  // average, not every whole number of cycles' travel beyond it.
+  if (have_point_) {
+    const Vec3 moved = here - last_point_;
+    travelled_ += (moved - n_hat_ * moved.dot(n_hat_)).norm();
+  }
+  last_point_ = here;
+  if (!contact || (have_point_ && travelled_ < seg.scan.step)) return;
+  travelled_ = have_point_ ? std::min(travelled_ - seg.scan.step, seg.scan.step) : 0.0;
+  have_point_ = true;
+  Event ev;
+  ev.kind = EventKind::ScanPt;
+  ev.id = seg.id;
+  ev.p = here + delta - loop_.config.params.tip_radius * n_hat_;
+  ev.dir = -n_hat_;
+  ev.radius = loop_.config.params.tip_radius;
+  ev.compensated = true;
+  ev.time = now;
+  loop_.emit(ev);
 }
 
 Vec3 ScanControl::nominal_normal(const planner::ScanSpec& spec, const Vec3& p) const noexcept {
@@ -52,6 +209,7 @@ bool ScanControl::apply(const planner::PlannedSegment* seg, double fraction, hal
       }
     }
     if (phase == ScanPhase::Leave) e_leave_ = e_;
+    if (phase == ScanPhase::Contour) begin_contour(*seg);
     phase_ = phase;
   }
   contact_phase_ = true;
@@ -59,13 +217,58 @@ bool ScanControl::apply(const planner::PlannedSegment* seg, double fraction, hal
   const Vec3 delta = ms.deflection;
   const double d = delta.norm();
   const bool contact = d >= kContact;
-  n_hat_ = contact ? Vec3(delta / d) : nominal_normal(spec, here);
+  // Out of contact on an unknown contour the last measured normal stands (there is no nominal).
+  if (contact) n_hat_ = delta / d;
+  else if (phase != ScanPhase::Contour) n_hat_ = nominal_normal(spec, here);
   if (ms.probe_over_range && phase != ScanPhase::Leave) {
     why = FailReason::ScanOverRange;
     return false;
   }
   const double lead = loop_.hw.path_lead_s();
   const double tau = std::max(kMinTau, 3 * lead);
+  if (phase == ScanPhase::Contour) {
+    lost_s_ = contact ? 0 : lost_s_ + dt;
+    if (lost_s_ > kLostContactBase + 2 * lead) {
+      why = FailReason::ScanLostContact;
+      return false;
+    }
+    // The measured normal's rate of turn (rad/s about its axis), smoothed over the samples.
+    if (contact) {
+      if (have_turn_) {
+        const Vec3 raw = n_last_.cross(n_hat_) / std::max(dt, 1e-6);
+        turn_rate_ += (raw - turn_rate_) * std::min(1.0, dt / kTurnFilter);
+      }
+      n_last_ = n_hat_;
+      have_turn_ = true;
+    }
+    const double lag = lead + kSampleAge;
+    // Met its stop body: it brakes along the surface (in contact, at the segment's path
+    // acceleration), holds until the machine has followed (the setpoint lead), then ends.
+    if (ending_) {
+      braking_speed_ = std::max(0.0, braking_speed_ - std::max(seg->a, 1.0) * dt);
+      steer(spec, contact, braking_speed_, dt, tau, lag, d - spec.deflection, sp);
+      if (braking_speed_ == 0) held_s_ += dt;
+      if (held_s_ < kEndSettleBase + 2 * lead) return true;
+      finished_ = true;
+      why = FailReason::PartNotFound;  // for ran_out()
+      return false;
+    }
+    const Vec3 planned_velocity = loop_.cartesian(sp.velocity);
+    braking_speed_ = steer(spec, contact, planned_velocity.norm(), dt, tau, lag, d - spec.deflection, sp);
+    take_point(*seg, here, delta, contact, now);
+    if (contact && stop_body_met(spec.contour, here + delta - loop_.config.params.tip_radius * n_hat_)) {
+      ending_ = true;
+      held_s_ = 0;
+    }
+    // The planned length runs out before the stop body: it ends the same way (braking,
+    // holding) just before the segment does, and fails.
+    const double a = std::max(seg->a, 1.0);
+    if (!ending_ && seg->duration() * (1 - fraction) <= braking_speed_ / a + kEndSettleBase + 2 * lead + 3 * dt) {
+      ending_ = ran_out_ = true;
+      held_s_ = 0;
+    }
+    return true;
+  }
   const Vec3 before = e_;
   if (phase == ScanPhase::Leave) {
     e_ = e_leave_ * (1 - fraction);
@@ -84,27 +287,7 @@ bool ScanControl::apply(const planner::PlannedSegment* seg, double fraction, hal
       why = FailReason::ScanLostContact;
       return false;
     }
-    // The path travelled along the surface since the last point (the correction's motion
-    // across it does not count), with the remainder carried: points come every `step` on
-    // average, not every whole number of cycles' travel beyond it.
-    if (have_point_) {
-      const Vec3 moved = here - last_point_;
-      travelled_ += (moved - n_hat_ * moved.dot(n_hat_)).norm();
-    }
-    last_point_ = here;
-    if (contact && (!have_point_ || travelled_ >= spec.step)) {
-      travelled_ = have_point_ ? std::min(travelled_ - spec.step, spec.step) : 0.0;
-      have_point_ = true;
-      Event ev;
-      ev.kind = EventKind::ScanPt;
-      ev.id = seg->id;
-      ev.p = here + delta - loop_.config.params.tip_radius * n_hat_;
-      ev.dir = -n_hat_;
-      ev.radius = loop_.config.params.tip_radius;
-      ev.compensated = true;
-      ev.time = now;
-      loop_.emit(ev);
-    }
+    take_point(*seg, here, delta, contact, now);
   }
   // The correction on the setpoint, within the travel once referenced.
   const AxisVec shift = loop_.config.layout.machine(e_);
