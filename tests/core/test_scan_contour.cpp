@@ -335,3 +335,38 @@ TEST_CASE("an unknown contour with a touch-trigger probe fails NoMeasuringProbe 
   CHECK(rig.mode() == Mode::Idle);
   CHECK(rig.position().z() > 80 + kContourBall);
 }
+
+TEST_CASE("an unknown contour seeks its surface beyond a nominal start up to the clearance, else PartNotFound", "[scan]") {
+  const bool streamed = GENERATE(false, true);
+  INFO((streamed ? "streamed" : "request/reply"));
+  const Vec3 face = cube_point(0, -50, 0), n_front = cube_dir(0, -1, 0);
+  for (const double off : {1.5, 3.0}) {
+    INFO("the nominal start " << off << " mm off the front face");
+    const Vec3 start = face + off * n_front;
+    ContourRig rig(start + 8 * n_front, streamed);
+    planner::ScanContourShape c;
+    c.start = pt(start);
+    c.start_normal = pt(n_front);
+    c.plane_normal = {0, 0, 1};
+    c.direction = pt(start + cube_dir(10, 0, 0));
+    c.stop = planner::StopBody::Plane;
+    c.stop_point = pt(cube_point(10, -50, 0));
+    c.stop_normal = pt(cube_dir(1, 0, 0));
+    c.end_normal = pt(n_front);
+    rig.plan(16, c, contour_settings(5, 0.5));  // clearance 2
+    rig.run(16, 20);
+    REQUIRE(rig.end);
+    if (off < 2) {
+      CHECK(rig.end->kind == EventKind::Done);
+      CHECK(rig.points.size() >= 18);  // 10 mm of the front face
+      CHECK(rig.worst_surface_error() <= 0.001);
+    } else {
+      CHECK(rig.end->kind == EventKind::Failed);
+      CHECK(rig.end->fail == FailReason::PartNotFound);
+      CHECK(rig.points.empty());
+    }
+    rig.core_rig().run(0.5);
+    CHECK(rig.core_rig().mode() == Mode::Idle);
+    CHECK(rig.core_rig().core().machine().deflection.norm() < 1e-9);
+  }
+}

@@ -55,7 +55,8 @@ void ScanControl::begin_contour(const planner::PlannedSegment& seg) noexcept {
   meetings_ = side_ = 0;
   closing_ = finished_ = ending_ = ran_out_ = false;
   closest_ = 0;
-  braking_speed_ = held_s_ = 0;
+  speed_ = held_s_ = 0;
+  touched_ = false;
   turn_rate_ = Vec3::Zero();
   have_turn_ = false;
   end_normal_ = contour_vec(k.end_normal);
@@ -65,8 +66,8 @@ void ScanControl::begin_contour(const planner::PlannedSegment& seg) noexcept {
   lost_s_ = 0;
 }
 
-double ScanControl::steer(const planner::ScanSpec& spec, bool contact, double speed, double dt, double tau, double lag,
-                          double error, hal::Setpoint& sp) noexcept {
+double ScanControl::steer(const planner::ScanSpec& spec, bool contact, double target, double accel, double dt, double tau,
+                          double lag, double error, hal::Setpoint& sp) noexcept {
   const auto& k = spec.contour;
   // The tangent in the constraint, orthogonal to the measured normal, continuing the last.
   Vec3 t;
@@ -89,15 +90,18 @@ double ScanControl::steer(const planner::ScanSpec& spec, bool contact, double sp
   t.normalize();
   if (t.dot(t_) < 0) t = -t;
   t_ = t;
-  // Slower off the band, not at all out of contact.
+  // Slower off the band, not at all out of contact; the speed changes within the path's
+  // acceleration.
   double scale = contact ? 1.0 : 0.0;
   if (const double off = std::fabs(error) - spec.band / 2; contact && off > 0)
     scale = std::max(kContourSlowest, 1 - (1 - kContourSlowest) * off / (spec.band / 2));
+  speed_ = std::clamp(scale * target, speed_ - accel * dt, speed_ + accel * dt);
+  if (!contact) speed_ = 0;  // off the surface: no step along a tangent that is not there
   Vec3 push = error * n_hat_ * std::min(1.0, dt / tau);
   const double most = kMaxCorrectionRate * dt;
   if (push.norm() > most) push *= most / push.norm();
   const Vec3 before = c_;
-  const double advance = scale * speed * dt;
+  const double advance = speed_ * dt;
   c_ += advance * t + push;
   if (k.constraint == planner::ContourConstraint::Plane) {
     const Vec3 pn = contour_vec(k.plane_normal);
@@ -117,7 +121,7 @@ double ScanControl::steer(const planner::ScanSpec& spec, bool contact, double sp
       sp.position[a] = p;
       sp.velocity[a] = velocity[c];
     }
-  return advance / std::max(dt, 1e-6);
+  return speed_;
 }
 
 // The measured surface point against the stop body: true at its count-th meeting (a sphere:
@@ -227,7 +231,7 @@ bool ScanControl::apply(const planner::PlannedSegment* seg, double fraction, hal
   const double lead = loop_.hw.path_lead_s();
   const double tau = std::max(kMinTau, 3 * lead);
   if (phase == ScanPhase::Contour) {
-    lost_s_ = contact ? 0 : lost_s_ + dt;
+    lost_s_ = contact || !touched_ ? 0 : lost_s_ + dt;
     if (lost_s_ > kLostContactBase + 2 * lead) {
       why = FailReason::ScanLostContact;
       return false;
@@ -244,17 +248,25 @@ bool ScanControl::apply(const planner::PlannedSegment* seg, double fraction, hal
     const double lag = lead + kSampleAge;
     // Met its stop body: it brakes along the surface (in contact, at the segment's path
     // acceleration), holds until the machine has followed (the setpoint lead), then ends.
+    const double accel = std::max(seg->a, 1.0);
     if (ending_) {
-      braking_speed_ = std::max(0.0, braking_speed_ - std::max(seg->a, 1.0) * dt);
-      steer(spec, contact, braking_speed_, dt, tau, lag, d - spec.deflection, sp);
-      if (braking_speed_ == 0) held_s_ += dt;
+      if (steer(spec, contact, 0, accel, dt, tau, lag, d - spec.deflection, sp) == 0) held_s_ += dt;
       if (held_s_ < kEndSettleBase + 2 * lead) return true;
       finished_ = true;
       why = FailReason::PartNotFound;  // for ran_out()
       return false;
     }
+    // Until the surface is first touched the correction alone seeks it along the start
+    // normal, at most the clearance beyond the nominal start: else PartNotFound.
+    if (!touched_) {
+      touched_ = contact;
+      if (!touched_ && (c_ - origin_).norm() > spec.contour.clearance) {
+        why = FailReason::PartNotFound;
+        return false;
+      }
+    }
     const Vec3 planned_velocity = loop_.cartesian(sp.velocity);
-    braking_speed_ = steer(spec, contact, planned_velocity.norm(), dt, tau, lag, d - spec.deflection, sp);
+    const double speed = steer(spec, contact, planned_velocity.norm(), accel, dt, tau, lag, d - spec.deflection, sp);
     take_point(*seg, here, delta, contact, now);
     if (contact && stop_body_met(spec.contour, here + delta - loop_.config.params.tip_radius * n_hat_)) {
       ending_ = true;
@@ -262,8 +274,7 @@ bool ScanControl::apply(const planner::PlannedSegment* seg, double fraction, hal
     }
     // The planned length runs out before the stop body: it ends the same way (braking,
     // holding) just before the segment does, and fails.
-    const double a = std::max(seg->a, 1.0);
-    if (!ending_ && seg->duration() * (1 - fraction) <= braking_speed_ / a + kEndSettleBase + 2 * lead + 3 * dt) {
+    if (!ending_ && seg->duration() * (1 - fraction) <= speed / accel + kEndSettleBase + 2 * lead + 3 * dt) {
       ending_ = ran_out_ = true;
       held_s_ = 0;
     }

@@ -17,8 +17,12 @@
 // unit(radial × n̂), the cylinder's tangent orthogonal to n̂ — signed to continue the last
 // direction (first: ScanContour::direction), plus the correction along n̂ as above, and is
 // put back onto the plane or the cylinder. While the deflection is off its set-point by more
-// than the band the advance slows (to a fifth at twice the band); out of contact it stops
-// (the correction alone seeks the surface). Points every `step`; every cycle in contact the
+// than half the band the advance slows (to a fifth at the band's edge), its speed changing within
+// the segment's path acceleration; out of contact it stops (the correction alone seeks the
+// surface). The tangent is taken from the measured normal turned on by its rate of turn over
+// the lag (setpoint lead + 10 ms), so an edge is followed at speed. Before the first touch
+// the correction seeks the surface along the start normal up to the clearance beyond the
+// nominal start (then PartNotFound). Points every `step`; every cycle in contact the
 // measured surface point is checked against the stop body; at its count-th meeting the scan
 // brakes along the surface (still in contact, no more points), holds until the machine has
 // followed, and is finished(): the path follower ends it (back off along end_normal, Done as
@@ -61,9 +65,9 @@ class ScanControl {
   Vec3 nominal_normal(const planner::ScanSpec& spec, const Vec3& p) const noexcept;
   // The unknown contour: its first cycle, the setpoint of every cycle, the stop body.
   void begin_contour(const planner::PlannedSegment& seg) noexcept;
-  // Returns the speed it advanced at, mm/s.
-  double steer(const planner::ScanSpec& spec, bool contact, double speed, double dt, double tau, double lag,
-               double error, hal::Setpoint& sp) noexcept;
+  // Advances toward `target` mm/s within `accel`; returns the speed it advanced at.
+  double steer(const planner::ScanSpec& spec, bool contact, double target, double accel, double dt, double tau,
+               double lag, double error, hal::Setpoint& sp) noexcept;
   bool stop_body_met(const planner::ScanContour& k, const Vec3& surface) noexcept;
   // Takes a point when the path has gone `step` since the last (the Follow, the Contour).
   void take_point(const planner::PlannedSegment& seg, const Vec3& here, const Vec3& delta, bool contact, Nanos now) noexcept;
@@ -93,7 +97,8 @@ class ScanControl {
   bool have_turn_ = false;
   bool ran_out_ = false;          // ... because the planned length ran out
   bool ending_ = false;           // met: braking along the surface, then holding
-  double braking_speed_ = 0;      // mm/s
+  double speed_ = 0;              // mm/s along the contour now
+  bool touched_ = false;          // the surface was touched since the contour began
   double held_s_ = 0;             // s at rest after braking
   bool finished_ = false;
   Vec3 end_normal_ = Vec3::UnitZ();
