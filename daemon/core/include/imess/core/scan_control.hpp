@@ -60,10 +60,16 @@ class ScanControl {
 
   // |δ| below this is no contact, mm.
   static constexpr double kContact = 0.02;
+  // The fastest correction, mm/s; out of contact this long (plus twice the lead) is lost, s.
+  static constexpr double kMaxCorrectionRate = 10;
+  static constexpr double kLostContactBase = 0.05;
 
  private:
   Vec3 nominal_normal(const planner::ScanSpec& spec, const Vec3& p) const noexcept;
-  // The unknown contour: its first cycle, the setpoint of every cycle, the stop body.
+  // The unknown contour (scan_contour.cpp): a cycle on its segment, its first cycle, the
+  // setpoint of every cycle, the stop body.
+  bool contour_cycle(const planner::PlannedSegment& seg, double fraction, hal::Setpoint& sp, double dt, Nanos now,
+                     double lead, double tau, FailReason& why) noexcept;
   void begin_contour(const planner::PlannedSegment& seg) noexcept;
   // Advances toward `target` mm/s within `accel`; returns the speed it advanced at.
   double steer(const planner::ScanSpec& spec, bool contact, double target, double accel, double dt, double tau,
