@@ -301,6 +301,13 @@ void IppServer::segment_end(const core::Event& e) {
     step_failed(error_of(e.fail));
     return;
   }
+  if (step_ == Step::Scan && e.id == wait_id_) {
+    // An unknown contour ended where the loop backed off (its Done says where): the next plan
+    // starts where the machine stands.
+    if (e.probe_end && gateway_.ids_queued() == 0) gateway_.set_planning(false);
+    step_done();
+    return;
+  }
   if (e.id != wait_id_) return;  // PtMeas: the move to the approach point
   if (step_ == Step::PtMeas) {
     rest_ = gateway_.pose_of(e.end);  // where the retract from the hit ended

@@ -100,3 +100,86 @@ void IppServer::flush_scan_points() {
 }
 
 }  // namespace imess::net
+
+namespace imess::net {
+
+namespace {
+using ippdme::Vector3;
+constexpr double kNoStop = 0;
+
+// What the five unknown-contour methods have in common, in machine coordinates.
+struct ContourIn {
+  Point3 start{}, start_normal{}, direction{}, end_normal{};
+  double step = 0;
+  int count = 1;
+};
+
+template <class T>
+ContourIn common(const T& c, const ippdme::CsyChain& csy) {
+  return {csy.to_machine(c.start), csy.vector_to_machine(from_vector(c.start_normal)), csy.to_machine(c.direction),
+          csy.vector_to_machine(from_vector(c.end_normal)), c.step, c.count};
+}
+
+void stop_at_sphere(planner::ScanContourShape& s, const Point3& centre, double diameter, const ippdme::CsyChain& csy) {
+  s.stop = planner::StopBody::Sphere;
+  s.stop_point = csy.to_machine(centre);
+  s.stop_diameter = diameter;
+  s.stop_after = kNoStop;
+}
+// A stop plane or cylinder counts once the scan has gone |direction − start| (docs/ippdme.md).
+void stop_at_plane(planner::ScanContourShape& s, const Point3& point, const Vector3& normal, const ippdme::CsyChain& csy) {
+  s.stop = planner::StopBody::Plane;
+  s.stop_point = csy.to_machine(point);
+  s.stop_normal = csy.vector_to_machine(from_vector(normal));
+  s.stop_after = distance(s.start, s.direction);
+}
+void stop_at_cylinder(planner::ScanContourShape& s, const Point3& point, const Vector3& axis, double diameter,
+                      const ippdme::CsyChain& csy) {
+  s.stop = planner::StopBody::Cylinder;
+  s.stop_point = csy.to_machine(point);
+  s.stop_normal = csy.vector_to_machine(from_vector(axis));
+  s.stop_diameter = diameter;
+  s.stop_after = distance(s.start, s.direction);
+}
+
+template <class T>
+planner::ScanContourShape contour_shape(const T& c, const ippdme::CsyChain& csy) {
+  const ContourIn in = common(c, csy);
+  planner::ScanContourShape s;
+  s.start = in.start;
+  s.start_normal = in.start_normal;
+  s.direction = in.direction;
+  s.end_normal = in.end_normal;
+  s.count = in.count;
+  if constexpr (std::is_same_v<T, ippdme::ScanInCylEndIsSphere> || std::is_same_v<T, ippdme::ScanInCylEndIsPlane>) {
+    s.constraint = planner::ContourConstraint::Cylinder;
+    s.axis_point = csy.to_machine(c.axis_point);
+    s.axis = csy.vector_to_machine(from_vector(c.axis));
+  } else {
+    s.constraint = planner::ContourConstraint::Plane;
+    s.plane_normal = csy.vector_to_machine(from_vector(ippdme::scan_plane_normal(c)));
+  }
+  if constexpr (std::is_same_v<T, ippdme::ScanInPlaneEndIsSphere> || std::is_same_v<T, ippdme::ScanInCylEndIsSphere>)
+    stop_at_sphere(s, c.end_center, c.diameter, csy);
+  else if constexpr (std::is_same_v<T, ippdme::ScanInPlaneEndIsCyl>)
+    stop_at_cylinder(s, c.axis_point, c.axis, c.diameter, csy);
+  else
+    stop_at_plane(s, c.stop_point, c.stop_normal, csy);
+  return s;
+}
+}  // namespace
+
+// StepW 0: ScanUnknownDensity's Dis, else the machine's ScanStep.
+template <class T>
+bool IppServer::start_contour(const Pending& p, const T& c) {
+  const double step = c.step > 0 ? c.step : unknown_density_.value_or(gateway_.params().scan_step);
+  return start_scan(p, contour_shape(c, csy_), step);
+}
+
+template bool IppServer::start_contour(const Pending&, const ippdme::ScanInPlaneEndIsSphere&);
+template bool IppServer::start_contour(const Pending&, const ippdme::ScanInPlaneEndIsPlane&);
+template bool IppServer::start_contour(const Pending&, const ippdme::ScanInPlaneEndIsCyl&);
+template bool IppServer::start_contour(const Pending&, const ippdme::ScanInCylEndIsSphere&);
+template bool IppServer::start_contour(const Pending&, const ippdme::ScanInCylEndIsPlane&);
+
+}  // namespace imess::net

@@ -109,6 +109,10 @@ class IppServer : public IppTransactions {
   bool start_scan_circle(const Pending& p, const ippdme::Point3& centre, const ippdme::Point3& start,
                          const ippdme::Vector3& normal, double delta, double sfa, double step_deg, double pitch);
   void flush_scan_points();                    // the points held back, as data lines of the scan's tag
+  // The unknown contours (ScanInPlaneEndIs…, ScanInCylEndIs…): the core's contour scan.
+  template <class T>
+  bool start_contour(const Pending& p, const T& c);
+  std::optional<double> unknown_density_;      // ScanUnknownDensity's Dis: the spacing when StepW is 0
   static ippdme::ErrorCode refusal_error(Planned p);  // OutOfTravel 2500, else 0511
   void end_step(std::optional<ippdme::ErrorCode> error);
   void step_failed(ippdme::ErrorCode code);
