@@ -341,6 +341,7 @@ void MotionCore::publish(Nanos now) noexcept {
   s.path_held = path_.holding();
   s.outputs = outputs_.bits();
   s.probe_armed = outputs_.probe_armed(now);
+  s.measuring_probe = loop_.ms.deflection_valid;
   s.rest_departures = rest_departures_;
   snapshot_.publish();
 }

@@ -176,10 +176,50 @@ bool IppServer::start_contour(const Pending& p, const T& c) {
   return start_scan(p, contour_shape(c, csy_), step);
 }
 
-template bool IppServer::start_contour(const Pending&, const ippdme::ScanInPlaneEndIsSphere&);
-template bool IppServer::start_contour(const Pending&, const ippdme::ScanInPlaneEndIsPlane&);
-template bool IppServer::start_contour(const Pending&, const ippdme::ScanInPlaneEndIsCyl&);
-template bool IppServer::start_contour(const Pending&, const ippdme::ScanInCylEndIsSphere&);
-template bool IppServer::start_contour(const Pending&, const ippdme::ScanInCylEndIsPlane&);
+// The whole family is an optional capability: a machine whose probe measures no deflection
+// answers every method of it 0501 (a refusal: a measuring program asking for a scan runs on,
+// as against the NIST server), its report list and hints too. On a machine that scans, the
+// hints are taken and change nothing (the contact control follows a part off its nominal by
+// up to 1 mm), OnScanReport sets the report list, ScanUnknownDensity's Dis the spacing of the
+// unknown contours whose StepW is 0.
+template <class T>
+bool IppServer::scan_method(const Pending& p, const T& c) {
+  const std::string_view name = ippdme::method_name(p.command);
+  if (!gateway_.snapshot().measuring_probe) {
+    fail(p.tag, ErrorCode::UnsupportedCommand, name);
+    return true;
+  }
+  if constexpr (std::is_same_v<T, ippdme::OnScanReport>) {
+    scan_items_ = c.items;
+  } else if constexpr (std::is_same_v<T, ippdme::ScanUnknownDensity>) {
+    if (c.dis) unknown_density_ = *c.dis;
+  } else if constexpr (std::is_same_v<T, ippdme::ScanOnLine>) {
+    return start_scan_line(p, c);
+  } else if constexpr (std::is_same_v<T, ippdme::ScanOnCircle>) {
+    return start_scan_circle(p, c.center, c.start, c.normal, c.delta, c.sfa, c.step, 0);
+  } else if constexpr (std::is_same_v<T, ippdme::ScanOnHelix>) {
+    return start_scan_circle(p, c.center, c.start, c.normal, c.delta, c.sfa, c.step, c.pitch);
+  } else if constexpr (std::is_same_v<T, ippdme::ScanInPlaneEndIsSphere> || std::is_same_v<T, ippdme::ScanInPlaneEndIsPlane> ||
+                       std::is_same_v<T, ippdme::ScanInPlaneEndIsCyl> || std::is_same_v<T, ippdme::ScanInCylEndIsSphere> ||
+                       std::is_same_v<T, ippdme::ScanInCylEndIsPlane>) {
+    return start_contour(p, c);
+  }
+  finish(p.tag);
+  return true;
+}
+
+template bool IppServer::scan_method(const Pending&, const ippdme::OnScanReport&);
+template bool IppServer::scan_method(const Pending&, const ippdme::ScanOnCircleHint&);
+template bool IppServer::scan_method(const Pending&, const ippdme::ScanOnLineHint&);
+template bool IppServer::scan_method(const Pending&, const ippdme::ScanUnknownHint&);
+template bool IppServer::scan_method(const Pending&, const ippdme::ScanUnknownDensity&);
+template bool IppServer::scan_method(const Pending&, const ippdme::ScanOnCircle&);
+template bool IppServer::scan_method(const Pending&, const ippdme::ScanOnHelix&);
+template bool IppServer::scan_method(const Pending&, const ippdme::ScanOnLine&);
+template bool IppServer::scan_method(const Pending&, const ippdme::ScanInPlaneEndIsSphere&);
+template bool IppServer::scan_method(const Pending&, const ippdme::ScanInPlaneEndIsPlane&);
+template bool IppServer::scan_method(const Pending&, const ippdme::ScanInPlaneEndIsCyl&);
+template bool IppServer::scan_method(const Pending&, const ippdme::ScanInCylEndIsSphere&);
+template bool IppServer::scan_method(const Pending&, const ippdme::ScanInCylEndIsPlane&);
 
 }  // namespace imess::net

@@ -205,6 +205,7 @@ struct Snapshot {
   bool path_held = false;             // Pause is in effect
   std::uint32_t outputs = 0;          // bit i: CoreConfig::outputs[i] is on (as last switched)
   bool probe_armed = true;            // the probe is powered and past its arming time
+  bool measuring_probe = false;       // the backend reads a measuring probe's deflection: it can scan
   std::uint64_t rest_departures = 0;  // times the position left a rest (RestWatch); each wakes the io side
 };
 

@@ -102,7 +102,11 @@ class IppServer : public IppTransactions {
   enum class Planned : unsigned char { Yes, Busy, OutOfTravel, Refused };  // Busy: the machine still moves
   Planned plan_lines(std::vector<planner::Line> lines, std::string& why);
   Planned plan_requests(const std::vector<planner::Request>& requests, std::string& why);
-  // ipp_scan.cpp: the known-contour scans (ScanOnLine, ScanOnCircle, ScanOnHelix) as a scan of
+  // ipp_scan.cpp: the scanning family — the report list, the hints, the scans (0501 on a
+  // machine whose probe measures nothing)
+  template <class T>
+  bool scan_method(const Pending& p, const T& c);
+  // the known-contour scans (ScanOnLine, ScanOnCircle, ScanOnHelix) as a scan of
   // the motion core, their points as data lines per OnScanReport
   bool start_scan(const Pending& p, const planner::ScanShape& shape, double step_mm);
   bool start_scan_line(const Pending& p, const ippdme::ScanOnLine& c);
