@@ -1,9 +1,11 @@
-// The 3-D view: the points, the newest marked, and the probe, in the machine's coordinates (Z
-// up), orbited with the mouse or a finger (three.js's OrbitControls). three.js is Debian's
+// The 3-D view: the points, the newest marked, the scans' points as a cloud of their own
+// colour, and the probe, in the machine's coordinates (Z up), orbited with the mouse or a finger (three.js's OrbitControls). three.js is Debian's
 // libjs-three, which messd serves as /three/ (docs/web.md); without it the view says so and the
 // rest of the page works. Drawn on demand, not in a loop. The container carries what the scene
-// holds (data-points, data-last, data-probe: "x y z"), which the browser test reads.
+// holds (data-points, data-last, data-probe: "x y z", data-scan-points; data-draws counts the
+// drawings), which the browser test reads.
 const kPoint = 0x1f5fbf;
+const kScan = 0xc2185b;
 const kNewest = 0xd0021b;
 const kProbe = 0x2e8b57;
 
@@ -38,20 +40,46 @@ export async function createView3d(box) {
   controls.enableDamping = false;
 
   const ball = new THREE.SphereBufferGeometry(1, 16, 12);
-  // The points: one cloud (one draw call however many there are) and the newest as a ball.
-  let capacity = 256;
-  let count = 0;
-  let positions = new Float32Array(capacity * 3);
-  const cloudGeometry = new THREE.BufferGeometry();
-  cloudGeometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-  cloudGeometry.setDrawRange(0, 0);
-  const cloud = new THREE.Points(cloudGeometry, new THREE.PointsMaterial({ color: kPoint, size: 5, sizeAttenuation: false }));
-  cloud.frustumCulled = false;
-  scene.add(cloud);
+  // The points: one cloud (one draw call however many there are) and the newest as a ball; the
+  // scans' points another cloud. Each buffer is preallocated and doubled when full, drawn up to
+  // its count (setDrawRange): tens of thousands of points are one array, no object per point.
+  function growingCloud(color, pointSize) {
+    const c = { capacity: 256, count: 0 };
+    c.positions = new Float32Array(c.capacity * 3);
+    c.geometry = new THREE.BufferGeometry();
+    c.geometry.setAttribute('position', new THREE.BufferAttribute(c.positions, 3));
+    c.geometry.setDrawRange(0, 0);
+    c.points = new THREE.Points(c.geometry, new THREE.PointsMaterial({ color, size: pointSize, sizeAttenuation: false }));
+    c.points.frustumCulled = false;
+    scene.add(c.points);
+    c.add = (x, y, z) => {
+      if (c.count === c.capacity) {  // the buffer, twice as large
+        c.capacity *= 2;
+        const grown = new Float32Array(c.capacity * 3);
+        grown.set(c.positions);
+        c.positions = grown;
+        c.geometry.setAttribute('position', new THREE.BufferAttribute(c.positions, 3));
+      }
+      c.positions[c.count * 3] = x;
+      c.positions[c.count * 3 + 1] = y;
+      c.positions[c.count * 3 + 2] = z;
+      c.count += 1;
+      c.geometry.setDrawRange(0, c.count);
+      c.geometry.attributes.position.needsUpdate = true;
+    };
+    c.clear = () => {
+      c.count = 0;
+      c.geometry.setDrawRange(0, 0);
+    };
+    return c;
+  }
+  const cloud = growingCloud(kPoint, 5);
+  const scanCloud = growingCloud(kScan, 3);
   const newest = new THREE.Mesh(ball, new THREE.MeshLambertMaterial({ color: kNewest }));
   newest.visible = false;
   scene.add(newest);
-  const bounds = new THREE.Box3();  // of every point
+  const bounds = new THREE.Box3();  // of every point, the scans' too
+  const scanPoint = new THREE.Vector3();
   const probe = new THREE.Group();  // the ball and its stem
   // See-through, so the point it has just touched shows.
   const tip = new THREE.Mesh(ball, new THREE.MeshLambertMaterial({ color: kProbe, transparent: true, opacity: 0.55 }));
@@ -77,6 +105,7 @@ export async function createView3d(box) {
   // messages and its dead-man keep-alives. Orbiting by hand draws at once.
   let due = false;
   let drawn = 0;
+  let draws = 0;
   function render() {
     if (due) return;
     due = true;
@@ -86,8 +115,11 @@ export async function createView3d(box) {
 
   function draw() {
     renderer.render(scene, camera);
-    box.dataset.points = String(count);
-    box.dataset.last = count ? fmt(newest.position) : '';
+    draws += 1;
+    box.dataset.draws = String(draws);
+    box.dataset.points = String(cloud.count);
+    box.dataset.scanPoints = String(scanCloud.count);
+    box.dataset.last = cloud.count ? fmt(newest.position) : '';
     box.dataset.probe = probe.visible ? fmt(probe.position) : '';
     box.dataset.extras = extras.children.map((o) => o.name).join(' ');
   }
@@ -138,27 +170,25 @@ export async function createView3d(box) {
   const view = {
     THREE,
     addPoint(p) {
-      if (count === capacity) {  // the cloud's buffer, twice as large
-        capacity *= 2;
-        const grown = new Float32Array(capacity * 3);
-        grown.set(positions);
-        positions = grown;
-        cloudGeometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-      }
-      positions.set([p.x, p.y, p.z], count * 3);
-      count += 1;
-      cloudGeometry.setDrawRange(0, count);
-      cloudGeometry.attributes.position.needsUpdate = true;
+      cloud.add(p.x, p.y, p.z);
       newest.position.set(p.x, p.y, p.z);
       newest.scale.setScalar(size * 1.8);
       newest.visible = true;
       bounds.expandByPoint(newest.position);
-      if (follow && (!inView(newest.position) || count <= 2)) frame();
+      if (follow && (!inView(newest.position) || cloud.count <= 2)) frame();
+      render();
+    },
+    // A scan's point: into the scans' cloud; drawn with the next drawing (at most five a second).
+    addScanPoint(p) {
+      scanCloud.add(p.x, p.y, p.z);
+      scanPoint.set(p.x, p.y, p.z);
+      bounds.expandByPoint(scanPoint);
+      if (follow && (!inView(scanPoint) || scanCloud.count <= 2)) frame();
       render();
     },
     clearPoints() {
-      count = 0;
-      cloudGeometry.setDrawRange(0, 0);
+      cloud.clear();
+      scanCloud.clear();
       newest.visible = false;
       bounds.makeEmpty();
       if (follow) frame();
