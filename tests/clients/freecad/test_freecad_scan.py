@@ -3,7 +3,7 @@
 # once and scans a quarter of the Ø 30 bore at 20 mm/s, then the same id again. The document must
 # hold a Points::Feature Scan_5 with exactly the points of the Scan lines messd sent, in order,
 # their hit numbers and outward normals, filled in batches (far fewer recomputes than points); the
-# touch stays a MeasPt of its own; the repeated id is a cloud of its own. argv: BIN_DIR SOURCE_DIR
+# touch stays a MeasPt of its own; the repeated id is a cloud of its own; the cloud fits (Ø 30). argv: BIN_DIR SOURCE_DIR
 import os
 import sys
 import time
@@ -12,6 +12,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))
 from plugin_test import Messd, Operator, check, connect_panel, finish, panel_module, pump  # noqa: E402
 
 import FreeCAD  # noqa: E402
+import imess_fit  # noqa: E402
 import imess_scan  # noqa: E402
 
 QUARTER = "ScanCirc %d 460 350 60 475 350 60 0 0 1 90 bore 20"
@@ -97,6 +98,9 @@ def scan_checks():
           "the panel counts the scanned points: %r" % panel.state.text())
     check(any("Scan_5_2: %d points (done)" % len(again) in text for _, text in panel.events.lines()),
           "the events show the scan: %s" % panel.events.lines())
+    circle = imess_fit.fit_feature(doc, "circle", [cloud])
+    check(abs(circle.Diameter - 30) < 1e-3 and circle.PointCount == n,
+          "the cloud fits as it is: a circle of its %d points, Ø %.4f" % (circle.PointCount, circle.Diameter))
     op.close()
     messd.stop()
     pump(app, 1, lambda: not s.connected())
