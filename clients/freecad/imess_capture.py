@@ -1,8 +1,8 @@
 # IMESS live capture for FreeCAD, without the GUI: reads messd's protocol lines from a
 # non-blocking socket, moves the probe marker with CurrCor and adds every measured point to the
 # document at once (with its hit's number, approach and tip radius), and a scan's points to its
-# point cloud once per poll (imess_scan). Fits (imess_fit), jogging
-# (imess_jog), plans (imess_inspect) and deviations (imess_deviation) build on it.
+# point cloud once per poll (imess_scan). Fits (imess_fit), jogging (imess_jog), plans
+# (imess_inspect) and deviations (imess_deviation) build on it.
 """IMESS capture logic for FreeCAD (testable under freecadcmd; the panel only wires it)."""
 
 import collections

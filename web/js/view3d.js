@@ -1,9 +1,10 @@
 // The 3-D view: the points, the newest marked, the scans' points as a cloud of their own
-// colour, and the probe, in the machine's coordinates (Z up), orbited with the mouse or a finger (three.js's OrbitControls). three.js is Debian's
-// libjs-three, which messd serves as /three/ (docs/web.md); without it the view says so and the
-// rest of the page works. Drawn on demand, not in a loop. The container carries what the scene
-// holds (data-points, data-last, data-probe: "x y z", data-scan-points; data-draws counts the
-// drawings), which the browser test reads.
+// colour, and the probe, in the machine's coordinates (Z up), orbited with the mouse or a finger
+// (three.js's OrbitControls). three.js is Debian's libjs-three, which messd serves as /three/
+// (docs/web.md); without it the view says so and the rest of the page works. Drawn on demand,
+// not in a loop. The container carries what the scene holds (data-points, data-last,
+// data-probe: "x y z", data-scan-points; data-draws counts the drawings), which the browser
+// test reads.
 const kPoint = 0x1f5fbf;
 const kScan = 0xc2185b;
 const kNewest = 0xd0021b;
