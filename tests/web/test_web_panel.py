@@ -263,7 +263,8 @@ def check_scan(driver, watcher):
         check(send(line) == "Ok GoTo" and watcher.until("State idle", 10) is not None, "the page moves the probe: " + line)
     check(send("Set ScanStep 0.05") == "Ok Set", "a point every 0.05 mm")
     watcher.skip()
-    draws, started = int(view("draws")), time.monotonic()
+    page_now = lambda: driver.execute_script("return performance.now()")  # noqa: E731
+    since, started = page_now(), time.monotonic()
     reply = send("ScanCirc 77 460 350 60 475 350 60 0 0 1 360 bore 20")
     check(reply == "Ok ScanCirc", "the page queues a full turn of the bore: %s" % reply)
     end = watcher.until(("Done 77", "Failed 77"), 30)
@@ -275,12 +276,16 @@ def check_scan(driver, watcher):
     n = len(scanned)
     check(wait_for(lambda: view("scan-points") == str(n), 5),
           "the page's cloud holds exactly the %d Scan lines messd sent (%s)" % (n, view("scan-points")))
-    drawn = int(view("draws")) - draws
+    until = page_now()
+    times = [t for t in driver.execute_script("return window.imessView3d.drawTimes()") if since <= t <= until]
+    gaps = [b - a for a, b in zip(times, times[1:])]
     span = arrived[-1][0] - arrived[0][0] if n > 1 else 0
     print("figures: %d scan points in %.2f s on 1066 (%.0f a second), %d drawings of the 3-D view in the %.2f s "
-          "from ScanCirc to Done" % (n, span, (n - 1) / span if span else 0, drawn, elapsed), flush=True)
-    check(n > 500 and drawn <= 5 * elapsed + 2, "at most five drawings a second while the points come (%d in %.2f s)"
-          % (drawn, elapsed))
+          "from ScanCirc to all points in the page, at least %.0f ms apart" % (
+              n, span, (n - 1) / span if span else 0, len(times), (until - since) / 1000, min(gaps or [0])), flush=True)
+    check(n > 500 and len(times) >= 2 and min(gaps) >= 199.5,
+          "at most five drawings a second while the points come: %d, none closer than 200 ms to the one before"
+          % len(times))
     line = wait_for(lambda: driver.find_element(By.CSS_SELECTOR, "#scans li[data-id='77']"), 5)
     summary = wait_for(lambda: line.get_attribute("data-points") == str(n) and "done" in line.text and line.text, 5)
     first, last = scanned[0].split()[1], scanned[-1].split()[1]

@@ -3,8 +3,8 @@
 // (three.js's OrbitControls). three.js is Debian's libjs-three, which messd serves as /three/
 // (docs/web.md); without it the view says so and the rest of the page works. Drawn on demand,
 // not in a loop. The container carries what the scene holds (data-points, data-last,
-// data-probe: "x y z", data-scan-points; data-draws counts the drawings), which the browser
-// test reads.
+// data-probe: "x y z", data-scan-points), which the browser test reads, and drawTimes() when
+// the latest drawings were.
 const kPoint = 0x1f5fbf;
 const kScan = 0xc2185b;
 const kNewest = 0xd0021b;
@@ -98,6 +98,7 @@ export async function createView3d(box) {
   let size = 2;        // a point's radius in mm, from the scene's extent
   let framed = null;   // the box the camera was put on (with room around it)
   let follow = true;   // the camera follows what is added until the user orbits; ⤢ again
+  let framing = false; // frame() moves the camera: its change is drawn in turn, a hand's at once
   controls.addEventListener('start', () => { follow = false; });
   const inView = (v) => framed && framed.containsPoint(v);
 
@@ -106,7 +107,7 @@ export async function createView3d(box) {
   // messages and its dead-man keep-alives. Orbiting by hand draws at once.
   let due = false;
   let drawn = 0;
-  let draws = 0;
+  const drawTimes = [];  // performance.now() of the latest 64 drawings: the browser test reads them
   function render() {
     if (due) return;
     due = true;
@@ -116,8 +117,8 @@ export async function createView3d(box) {
 
   function draw() {
     renderer.render(scene, camera);
-    draws += 1;
-    box.dataset.draws = String(draws);
+    drawTimes.push(performance.now());
+    if (drawTimes.length > 64) drawTimes.shift();
     box.dataset.points = String(cloud.count);
     box.dataset.scanPoints = String(scanCloud.count);
     box.dataset.last = cloud.count ? fmt(newest.position) : '';
@@ -147,7 +148,9 @@ export async function createView3d(box) {
     camera.near = span / 1000;
     camera.far = span * 100;
     camera.updateProjectionMatrix();
+    framing = true;  // the camera moved by the page, not by a hand: drawn within the budget
     controls.update();
+    framing = false;
     size = span / 150;
     newest.scale.setScalar(size * 1.8);
     axes.position.copy(all.min);
@@ -164,7 +167,7 @@ export async function createView3d(box) {
     stem.position.set(0, 0, length / 2 + radius);
   }
 
-  controls.addEventListener('change', draw);
+  controls.addEventListener('change', () => (framing ? render() : draw()));
   window.addEventListener('resize', resize);
   resize();
 
@@ -211,6 +214,7 @@ export async function createView3d(box) {
     },
     frame() { follow = true; frame(); render(); },
     render,
+    drawTimes: () => drawTimes.slice(),
     // The colour drawn where a point of the scene appears on the canvas: [r, g, b] (drawn and
     // read in one task: the drawing buffer is not kept after it is shown).
     pixelAt(x, y, z) {
