@@ -283,7 +283,7 @@ def check_scan(driver, watcher):
     print("figures: %d scan points in %.2f s on 1066 (%.0f a second), %d drawings of the 3-D view in the %.2f s "
           "from ScanCirc to all points in the page, at least %.0f ms apart" % (
               n, span, (n - 1) / span if span else 0, len(times), (until - since) / 1000, min(gaps or [0])), flush=True)
-    check(n > 500 and len(times) >= 2 and min(gaps) >= 199.5,
+    check(n > 500 and len(times) >= 2 and min(gaps) >= 200,
           "at most five drawings a second while the points come: %d, none closer than 200 ms to the one before"
           % len(times))
     line = wait_for(lambda: driver.find_element(By.CSS_SELECTOR, "#scans li[data-id='77']"), 5)
