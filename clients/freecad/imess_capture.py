@@ -190,8 +190,11 @@ class CaptureSession:
                 self.closed_reason = reason
                 self.pending.clear()
                 self.control = ""
-                if self.scans.close("link ended: %s" % reason):
-                    self.doc.recompute()
+                try:
+                    if self.scans.close("link ended: %s" % reason):
+                        self.doc.recompute()
+                except Exception:  # noqa: BLE001 - the document was closed under the session: nothing to keep
+                    pass
                 self.events.post("link", "link ended (%s); %d points captured%s" % (
                     reason, len(self.points), ", %d scan points" % self.scans.points if self.scans.points else ""))
 
