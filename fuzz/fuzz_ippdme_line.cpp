@@ -1,7 +1,8 @@
 // Fuzz target: I++ DME client bytes -> LineFramer -> parse_framed, as the server's session
 // reads them; every error is formatted, every request formatted and parsed back; the
 // property paths of GetProp / SetProp / EnumProp go through a ToolBox as the server's do, and a
-// SetCsyTransformation through a CsyChain (the origin and axes must stay finite). The first byte
+// SetCsyTransformation through a CsyChain (the origin and axes must stay finite), an
+// OnScanReport's items through the scan data line and back. The first byte
 // chooses the read size, so lines are split across reads at every place.
 #include <cstddef>
 #include <cstdint>
@@ -69,6 +70,19 @@ void exercise_csy(const Command& cmd, CsyChain& chain) {
     for (double v : chain.to_machine(p))
       if (!std::isfinite(v)) std::abort();
 }
+// A report list the parser accepts gives scan data lines that keep the line rules and read back
+// to as many points.
+void exercise_scan_report(const Command& cmd) {
+  const auto* r = std::get_if<OnScanReport>(&cmd);
+  if (!r) return;
+  ScanPoint points[2];
+  points[1].xyz = {-1e300, 123.45678, 0};
+  points[1].q = 1e9;
+  const std::string line = format_scan_data(kServerTag, r->items, points);
+  check_line(line);
+  const auto back = read_scan_data(std::string_view(line).substr(8, line.size() - 10), r->items);
+  if (!back || back->size() != 2) std::abort();
+}
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -99,6 +113,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (!same || !(same->command == req.command) || !(same->tag == req.tag)) std::abort();
       exercise_properties(req.command, tools);
       exercise_csy(req.command, chain);
+      exercise_scan_report(req.command);
     });
     if (framer.pending() > kFuzzLineLength) std::abort();
   }

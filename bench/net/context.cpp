@@ -11,7 +11,7 @@ namespace imess::bench {
 
 Context::Context(const Options& options, Report& report) : options_(options), report_(report), rng_(options.seed), tmp_("bench-net") {}
 
-std::unique_ptr<ServerProcess> Context::start_messd(int clients) {
+std::unique_ptr<ServerProcess> Context::start_messd(int clients, const std::string& machine) {
   ClientPool::reserve_descriptors(static_cast<std::size_t>(clients) + 16);
   if (external_messd()) return std::make_unique<ServerProcess>(options_.port, options_.pid);
   const std::string dir = tmp_.path() + "/messd-" + std::to_string(++started_);
@@ -20,7 +20,8 @@ std::unique_ptr<ServerProcess> Context::start_messd(int clients) {
   // them; idle_drop_s long enough that an owner waiting between samples is never dropped, and
   // no no_command_drop_s: the benchmark's receiving clients never send a command.
   std::ofstream(dir + "/config.json") << R"({ "server": { "max_clients": )" << clients + 16
-                                      << R"(, "ippdme_port": 0 }, "control": { "idle_drop_s": 86400, "no_command_drop_s": 0 } })" << "\n";
+                                      << R"(, "ippdme_port": 0 }, "control": { "idle_drop_s": 86400, "no_command_drop_s": 0 })"
+                                      << (machine.empty() ? "" : ", " + machine) << " }\n";
   std::vector<std::string> args{"--config", dir + "/config.json", "--journal", dir + "/journal", "--frames", dir + "/frames.json",
                                 "--port", "0", "--listen", "127.0.0.1"};
   if (!options_.realtime) args.push_back("--no-rt");

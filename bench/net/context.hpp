@@ -23,7 +23,9 @@ class Context {
   // messd serving at least `clients` connections: started here (--no-rt unless --rt, port 0,
   // a temporary config with server.max_clients, journal and frames in a temporary
   // directory), or the one of --port/--pid.
-  std::unique_ptr<ServerProcess> start_messd(int clients);
+  // machine: more members of the configuration's top level (JSON text, "" for none), e.g. a
+  // measuring probe's "sim" and "backend" sections.
+  std::unique_ptr<ServerProcess> start_messd(int clients, const std::string& machine = "");
   // bench_echo in mode echo, broadcast or timer (hz: the timer's rate).
   std::unique_ptr<ServerProcess> start_echo(const std::string& mode, double hz = 0);
   bool external_messd() const { return options_.port != 0; }

@@ -11,6 +11,7 @@ void run_jog(Context& ctx);     // jog.*, with the Status round trip as referenc
 void run_rtt(Context& ctx);     // rtt.status.*, floor.echo.*
 void run_memory(Context& ctx);  // memory.*
 void run_load(Context& ctx);    // load.*: a load generator, no goals
+void run_scan(Context& ctx);    // push.scan.100.*, floor.stamped1k.100.*: a scan's points at 1000/s
 
 // Adds p50 and p99 figures of a latency sample set (ms), with the reference's when given
 // (reference_id names the reference figure stem: "floor.broadcast.100" -> .p50/.p99), and

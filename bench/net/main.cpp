@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   const std::vector<std::pair<std::string, void (*)(Context&)>> runners{
-      {"push", run_push}, {"stream", run_stream}, {"jog", run_jog}, {"rtt", run_rtt}, {"memory", run_memory}, {"load", run_load}};
+      {"push", run_push}, {"stream", run_stream}, {"jog", run_jog}, {"rtt", run_rtt}, {"memory", run_memory}, {"load", run_load}, {"scan", run_scan}};
   int failed = 0;
   for (const auto& [name, run] : runners) {
     if (options.command != name && !(options.command == "all" && name != "load")) continue;

@@ -9,7 +9,7 @@
 namespace imess::bench {
 
 namespace {
-const std::set<std::string> kCommands{"push", "stream", "jog", "rtt", "memory", "load", "all"};
+const std::set<std::string> kCommands{"push", "stream", "jog", "rtt", "memory", "load", "scan", "all"};
 
 // The options each subcommand takes besides the common ones.
 const std::map<std::string, std::set<std::string>> kOwn{
@@ -19,6 +19,7 @@ const std::map<std::string, std::set<std::string>> kOwn{
     {"rtt", {"--samples"}},
     {"memory", {"--soak-seconds"}},
     {"load", {"--seconds", "--clients", "--lines-per-s"}},
+    {"scan", {"--samples"}},
     {"all", {"--samples", "--seconds", "--soak-seconds"}},
 };
 const std::set<std::string> kCommon{"--json", "--quick", "--messd", "--echo", "--port", "--pid", "--seed", "--rt", "--help", "-h"};
@@ -48,7 +49,8 @@ commands:
   rtt      Status round trip vs the echo round trip
   memory   messd RSS with 0, 100, 1000 clients, then clients churning for --soak-seconds
   load     a load generator: --clients idle clients, one sending --lines-per-s lines for --seconds
-  all      push stream jog rtt memory
+  scan     a scan's points (1000/s, a measuring probe) -> Scan lines at all of 100 clients
+  all      push stream jog rtt memory scan
 options (all commands):
   --json FILE        write the results as JSON
   --quick            fewer samples, shorter windows, push without 1000 clients; the same
@@ -59,7 +61,7 @@ options (all commands):
   --seed N           seed of the random phases (default 1)
   --rt               let the started messd take SCHED_FIFO and mlockall (default: --no-rt)
 options of some commands:
-  --samples N        samples per latency figure (push, jog, rtt)
+  --samples N        samples per latency figure (push, jog, rtt, scan)
   --seconds S        stream: the measuring window (default 30, quick 2); load: duration (default 10)
   --clients N        stream: clients (default 200); load: idle clients (default 100)
   --lines-per-s R    load: command lines a second from the sending client (default 10000)
@@ -69,7 +71,7 @@ options of some commands:
 
 Options parse_options(const std::vector<std::string>& args) {
   Options o;
-  if (args.empty()) throw UsageError("no command given; accepted: push stream jog rtt memory load all (--help shows the options)");
+  if (args.empty()) throw UsageError("no command given; accepted: push stream jog rtt memory load scan all (--help shows the options)");
   std::size_t i = 0;
   if (args[0] == "--help" || args[0] == "-h") {
     o.help = true;
@@ -77,7 +79,7 @@ Options parse_options(const std::vector<std::string>& args) {
   }
   o.command = args[i++];
   if (!kCommands.count(o.command))
-    throw UsageError("unknown command '" + o.command + "'; accepted: push stream jog rtt memory load all");
+    throw UsageError("unknown command '" + o.command + "'; accepted: push stream jog rtt memory load scan all");
   const auto& own = kOwn.at(o.command);
   bool seen_port = false;
   while (i < args.size()) {

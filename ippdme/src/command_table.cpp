@@ -14,6 +14,12 @@ constexpr CommandSpec plain(std::string_view name, Queue q = Queue::Normal) {
 constexpr CommandSpec not_implemented(std::string_view name) {
   return {name, Shape::NotImplemented, Queue::Normal, "...", kNoCommand, nullptr};
 }
+// A scanning method: its arguments read by scan_args.cpp into the command itself.
+template <class T>
+constexpr CommandSpec scan(std::string_view name, std::string_view usage) {
+  return {name, Shape::ScanArgs, Queue::Normal, usage, command_index<T>(),
+          [](Checked&& c) -> Command { return std::move(*c.built); }};
+}
 constexpr Queue kFast = Queue::Fast;
 constexpr Queue kNormal = Queue::Normal;
 
@@ -89,18 +95,26 @@ const std::array kCommands{
     not_implemented("TiltCenterPart"),
     not_implemented("LockAxis"),
     not_implemented("ReQualify"),
-    not_implemented("OnScanReport"),
-    not_implemented("ScanOnCircleHint"),
-    not_implemented("ScanOnCircle"),
-    not_implemented("ScanOnLineHint"),
-    not_implemented("ScanOnLine"),
-    not_implemented("ScanUnknownHint"),
-    not_implemented("ScanUnknownDensity"),
-    not_implemented("ScanInPlaneEndIsSphere"),
-    not_implemented("ScanInPlaneEndIsPlane"),
-    not_implemented("ScanInPlaneEndIsCyl"),
-    not_implemented("ScanInCylEndIsSphere"),
-    not_implemented("ScanInCylEndIsPlane"),
+    // Scanning (1.4.3 §11, ScanOnHelix from 1.5; docs/ippdme.md "Scanning"): the unknown-contour
+    // scans also in their 1.4.0 form (no plane normal, no n), which the NIST suite sends.
+    CommandSpec{"OnScanReport", Shape::PtMeasReportItems, kNormal, "X(), Y(), Z(), IJK(), ER(), Q(), ...",
+                command_index<OnScanReport>(),
+                [](Checked&& c) -> Command { return OnScanReport{std::move(c.items)}; }},
+    scan<ScanOnCircleHint>("ScanOnCircleHint", "Displacement, Form"),
+    scan<ScanOnCircle>("ScanOnCircle", "Cx, Cy, Cz, Sx, Sy, Sz, i, j, k, delta, sfa, StepW"),
+    scan<ScanOnHelix>("ScanOnHelix", "Cx, Cy, Cz, Sx, Sy, Sz, i, j, k, delta, sfa, StepW, pitch"),
+    scan<ScanOnLineHint>("ScanOnLineHint", "Angle, Form"),
+    scan<ScanOnLine>("ScanOnLine", "Sx, Sy, Sz, Ex, Ey, Ez, i, j, k, StepW"),
+    not_implemented("ScanOnCurveHint"),
+    not_implemented("ScanOnCurveDensity"),
+    not_implemented("ScanOnCurve"),
+    scan<ScanUnknownHint>("ScanUnknownHint", "MinRadiusOfCurvature"),
+    scan<ScanUnknownDensity>("ScanUnknownDensity", "Dis(d), Angle(a), AngleBaseLength(l)"),
+    scan<ScanInPlaneEndIsSphere>("ScanInPlaneEndIsSphere", "Sx, Sy, Sz, Si, Sj, Sk, Ni, Nj, Nk, Dx, Dy, Dz, StepW, Ex, Ey, Ez, Dia, n, Ei, Ej, Ek"),
+    scan<ScanInPlaneEndIsPlane>("ScanInPlaneEndIsPlane", "Sx, Sy, Sz, Si, Sj, Sk, Ni, Nj, Nk, Dx, Dy, Dz, StepW, Px, Py, Pz, Pi, Pj, Pk, n, Ei, Ej, Ek"),
+    scan<ScanInPlaneEndIsCyl>("ScanInPlaneEndIsCyl", "Sx, Sy, Sz, Si, Sj, Sk, Ni, Nj, Nk, Dx, Dy, Dz, StepW, Cx, Cy, Cz, Ci, Cj, Ck, d, n, Ei, Ej, Ek"),
+    scan<ScanInCylEndIsSphere>("ScanInCylEndIsSphere", "Cx, Cy, Cz, Ci, Cj, Ck, Sx, Sy, Sz, Si, Sj, Sk, Dx, Dy, Dz, StepW, Ex, Ey, Ez, Dia, n, Ei, Ej, Ek"),
+    scan<ScanInCylEndIsPlane>("ScanInCylEndIsPlane", "Cx, Cy, Cz, Ci, Cj, Ck, Sx, Sy, Sz, Si, Sj, Sk, Dx, Dy, Dz, StepW, Px, Py, Pz, Pi, Pj, Pk, n, Ei, Ej, Ek"),
 };
 
 }  // namespace

@@ -2,9 +2,12 @@
 // overload per struct (the std::visit does not compile without one), in the declared shape.
 #include "imess/ippdme/format.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "imess/ippdme/command_spec.hpp"
+#include "scan_args.hpp"
 
 namespace imess::ippdme {
 namespace {
@@ -104,6 +107,10 @@ std::vector<Value> args_of(const SetCsyTransformation& c) {
           Value::of_number(t.phi)};
 }
 std::vector<Value> args_of(const GetCsyTransformation& c) { return one(Value::of_word(csy_target_name(c.csy))); }
+template <ScanMethod T>
+std::vector<Value> args_of(const T& c) {  // scan_args.cpp
+  return scan_args(c);
+}
 
 }  // namespace
 
@@ -138,6 +145,77 @@ std::string format_error(const LineError& error, const TagTracker& open_tags, Ca
 
 Value command_call(const Command& cmd) {
   return Value::call(method_name(cmd), std::visit([](const auto& c) { return args_of(c); }, cmd));
+}
+
+std::size_t scan_values_per_point(const std::vector<Item>& items) {
+  std::size_t n = 0;
+  for (Item i : items) n += i == Item::IJK ? 3 : 1;
+  return n;
+}
+
+std::string format_scan_data(Tag tag, const std::vector<Item>& items, std::span<const ScanPoint> points) {
+  if (points.empty()) return {};
+  std::string payload;
+  auto put = [&](const std::string& number) {
+    if (!payload.empty()) payload += ',';
+    payload += number;
+  };
+  for (const ScanPoint& p : points)
+    for (Item i : items) {
+      switch (i) {
+        case Item::X: put(format_fixed(p.xyz[0], kScanLengthDecimals)); break;
+        case Item::Y: put(format_fixed(p.xyz[1], kScanLengthDecimals)); break;
+        case Item::Z: put(format_fixed(p.xyz[2], kScanLengthDecimals)); break;
+        case Item::IJK:
+          for (double v : {p.ijk.i, p.ijk.j, p.ijk.k}) put(format_fixed(v, kScanVectorDecimals));
+          break;
+        case Item::ER: put(format_fixed(p.er, kScanLengthDecimals)); break;
+        case Item::Q: put(std::to_string(std::isfinite(p.q) ? std::clamp(std::lround(p.q), 0L, 100L) : 100L)); break;
+        case Item::R: put(format_fixed(p.r, kScanLengthDecimals)); break;
+        case Item::ToolA: put(format_fixed(p.tool_a, kScanLengthDecimals)); break;
+        case Item::ToolB: put(format_fixed(p.tool_b, kScanLengthDecimals)); break;
+        case Item::ToolC: put(format_fixed(p.tool_c, kScanLengthDecimals)); break;
+      }
+    }
+  return format_data(tag, payload);
+}
+
+std::optional<std::vector<ScanPoint>> read_scan_data(std::string_view payload, const std::vector<Item>& items) {
+  std::vector<double> values;
+  while (true) {
+    const auto comma = payload.find(',');
+    std::string_view token = payload.substr(0, comma);
+    while (!token.empty() && token.front() == ' ') token.remove_prefix(1);
+    while (!token.empty() && token.back() == ' ') token.remove_suffix(1);
+    const auto v = parse_number_token(token);
+    if (!v) return std::nullopt;
+    values.push_back(*v);
+    if (comma == std::string_view::npos) break;
+    payload.remove_prefix(comma + 1);
+  }
+  const std::size_t width = scan_values_per_point(items);
+  if (width == 0 || values.size() % width != 0) return std::nullopt;
+  std::vector<ScanPoint> points(values.size() / width);
+  std::size_t at = 0;
+  for (ScanPoint& p : points)
+    for (Item i : items) {
+      switch (i) {
+        case Item::X: p.xyz[0] = values[at++]; break;
+        case Item::Y: p.xyz[1] = values[at++]; break;
+        case Item::Z: p.xyz[2] = values[at++]; break;
+        case Item::IJK:
+          p.ijk = {values[at], values[at + 1], values[at + 2]};
+          at += 3;
+          break;
+        case Item::ER: p.er = values[at++]; break;
+        case Item::Q: p.q = values[at++]; break;
+        case Item::R: p.r = values[at++]; break;
+        case Item::ToolA: p.tool_a = values[at++]; break;
+        case Item::ToolB: p.tool_b = values[at++]; break;
+        case Item::ToolC: p.tool_c = values[at++]; break;
+      }
+    }
+  return points;
 }
 
 std::string format_command(Tag tag, const Command& cmd) {

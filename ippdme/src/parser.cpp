@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "imess/ippdme/syntax.hpp"
+#include "scan_args.hpp"
 
 namespace imess::ippdme {
 namespace {
@@ -281,6 +282,9 @@ Step read_shape(Shape shape, const Value& call, Checked& out) {
     case Shape::CoordSystemWord: return read_coord_system(call, out);
     case Shape::CsyTransformation: return read_csy_transformation(call, out);
     case Shape::CsyWord: return read_csy_word(call, out);
+    case Shape::ScanArgs:
+      if (auto code = read_scan_args(call, out)) return Fail{*code};
+      return std::nullopt;
     case Shape::NotImplemented: return Fail{ErrorCode::UnsupportedCommand};
   }
   return Fail{ErrorCode::ProtocolError};

@@ -3,14 +3,19 @@
 #include "imess/ippdme/tools.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <stdexcept>
 
 namespace imess::ippdme {
 
 namespace {
 
-constexpr std::string_view kBlocks[] = {"GoToPar", "GoToPar", "PtMeasPar", "PtMeasPar", "PtMeasPar", "PtMeasPar", "PtMeasPar"};
-constexpr std::string_view kNames[] = {"Speed", "Accel", "Speed", "Accel", "Approach", "Search", "Retract"};
+constexpr std::string_view kBlocks[] = {"GoToPar",   "GoToPar",   "PtMeasPar", "PtMeasPar", "PtMeasPar",
+                                        "PtMeasPar", "PtMeasPar", "ScanPar",   "ScanPar",   "ScanPar"};
+constexpr std::string_view kNames[] = {"Speed",  "Accel",   "Speed", "Accel", "Approach",
+                                       "Search", "Retract", "Speed", "Accel", "Retract"};
+static_assert(std::size(kBlocks) == kParamCount && std::size(kNames) == kParamCount);
+constexpr std::string_view kBlockOrder[] = {"GoToPar", "PtMeasPar", "ScanPar"};
 constexpr std::string_view kLimits[] = {"Min", "Max", "Act", "Def"};
 
 std::vector<std::string_view> split(std::string_view path) {
@@ -29,7 +34,9 @@ std::optional<Param> param_of(std::string_view block, std::string_view name) {
   return std::nullopt;
 }
 
-bool is_block(std::string_view s) { return s == "GoToPar" || s == "PtMeasPar"; }
+bool is_block(std::string_view s) { return s == "GoToPar" || s == "PtMeasPar" || s == "ScanPar"; }
+// The blocks of a measuring tool: NoTool has none (1503).
+bool probing_block(std::string_view s) { return s == "PtMeasPar" || s == "ScanPar"; }
 
 PropertyResult error(ErrorCode code) { return {std::nullopt, code, false}; }
 
@@ -114,7 +121,7 @@ PropertyResult ToolBox::get(std::string_view path) const {
   if (parts.size() < 3 || parts.size() > 4) return error(ErrorCode::BadProperty);
   const auto p = param_of(parts[1], parts[2]);
   if (!p) return error(ErrorCode::BadProperty);
-  if (!t.measures && parts[1] == "PtMeasPar") return error(ErrorCode::ToolNotDefined);  // NoTool has no probing values
+  if (!t.measures && probing_block(parts[1])) return error(ErrorCode::ToolNotDefined);  // NoTool has no probing values
   const Range& r = t.params[static_cast<int>(*p)];
   double v = acts_[index][static_cast<int>(*p)];
   if (parts.size() == 4) {
@@ -141,7 +148,7 @@ PropertyResult ToolBox::set(std::string_view path, double value) {
     const bool limit = parts[3] == "Min" || parts[3] == "Max" || parts[3] == "Def";
     return error(limit ? ErrorCode::BadArgument : ErrorCode::BadProperty);  // a limit is read only
   }
-  if (!t.measures && parts[1] == "PtMeasPar") return error(ErrorCode::ToolNotDefined);
+  if (!t.measures && probing_block(parts[1])) return error(ErrorCode::ToolNotDefined);
   const Range& r = t.params[static_cast<int>(*p)];
   const double kept = std::clamp(value, r.min, r.max);
   acts_[index][static_cast<int>(*p)] = kept;
@@ -172,15 +179,15 @@ std::optional<std::vector<PropertyEntry>> ToolBox::enumerate(std::string_view pa
   };
   if (parts.size() == 1) {
     out.emplace_back("Name", "String");
-    for (std::string_view block : {std::string_view("GoToPar"), std::string_view("PtMeasPar")}) {
-      if (!t.measures && block == "PtMeasPar") continue;
+    for (std::string_view block : kBlockOrder) {
+      if (!t.measures && probing_block(block)) continue;
       out.emplace_back(std::string(block), "Property");
       if (recursive) block_entries(std::string(block) + ".", block);
     }
     return out;
   }
   if (!is_block(parts[1])) return std::nullopt;
-  if (!t.measures && parts[1] == "PtMeasPar") {
+  if (!t.measures && probing_block(parts[1])) {
     err = ErrorCode::ToolNotDefined;
     return std::nullopt;
   }

@@ -2,7 +2,10 @@
 #include "imess/planner/scan.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 
 namespace imess::planner {
 namespace {
@@ -30,17 +33,111 @@ Line line(std::uint32_t id, const Pose& from, const V3& to, double feed, const S
 V3 circle_normal(const ScanCircleShape& c, const V3& axis, const V3& p) {
   V3 v = p - vec(c.centre);
   v -= axis * v.dot(axis);
-  return c.radial * v.normalized() * std::sqrt(1 - c.axial * c.axial) + c.axial * axis;
+  return c.radial * v.normalized() * std::sqrt(std::max(0.0, 1 - c.axial * c.axial)) + c.axial * axis;
 }
 
 struct Ends {
   V3 start, end, n_start, n_end;  // surface points and their normals
 };
 
+// A unit vector, or why not.
+bool unit(const Point3& p, V3& out) {
+  out = vec(p);
+  if (!(out.norm() > 1e-9)) return false;
+  out.normalize();
+  return true;
+}
+
+// How far from p along unit u the line stays inside the travel box (0 when p is outside).
+double within_travel(const V3& p, const V3& u, const ScanSettings& s) {
+  double t = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    if (p[a] < s.travel_min[a] || p[a] > s.travel_max[a]) return 0;
+    if (u[a] > 1e-12) t = std::min(t, (s.travel_max[a] - p[a]) / u[a]);
+    if (u[a] < -1e-12) t = std::min(t, (s.travel_min[a] - p[a]) / u[a]);
+  }
+  return t;
+}
+
+// An unknown contour: Position and Approach as a line scan's, then one Contour segment from
+// the ball centre's contact toward the direction point, as long as max_length and the travel
+// allow (its profile is the contour's speed; the loop steers).
+ScanRequests contour_requests(std::uint32_t id, const Pose& from, const ScanContourShape& c, const ScanSettings& s) {
+  V3 n, t, pn, axis, stop_n, end_n;
+  if (!unit(c.start_normal, n)) return std::string("the start's surface normal must not be zero");
+  if (!unit(c.end_normal, end_n)) return std::string("the end normal (the back-off's direction) must not be zero");
+  if (!(c.count >= 1)) return std::string("the stop body's count must be a whole number from 1");
+  if (!(c.stop_after >= 0)) return std::string("the contour before the stop body counts must not be negative");
+  if (!(c.max_length > 0)) return std::string("the contour's longest length must be above 0");
+  const double offset = s.tip_radius - s.deflection;
+  const V3 start = vec(c.start), ball = start + offset * n, to = vec(c.direction) - start;
+  if (!(to.norm() >= 1e-3)) return std::string("the direction point must not be the start");
+  ScanContour k;
+  k.constraint = c.constraint;
+  if (c.constraint == ContourConstraint::Plane) {
+    if (!unit(c.plane_normal, pn)) return std::string("the scanning plane's normal must not be zero");
+    t = pn.cross(n);
+    if (!(t.norm() > 0.01)) return std::string("the scanning plane must not lie along the surface at the start (its normal along the start normal)");
+    k.plane_normal = arr(pn);
+  } else {
+    if (!unit(c.axis, axis)) return std::string("the cylinder's axis must not be zero");
+    V3 radial = ball - vec(c.axis_point);
+    radial -= axis * radial.dot(axis);
+    if (!(radial.norm() > 0.01)) return std::string("the start must lie off the cylinder's axis");
+    t = radial.normalized().cross(n);
+    if (!(t.norm() > 0.01)) t = to - radial.normalized() * to.dot(radial.normalized());  // the surface is the cylinder
+    k.axis_point = c.axis_point;
+    k.axis = arr(axis);
+  }
+  t -= n * t.dot(n);
+  if (!(std::fabs(t.normalized().dot(to.normalized())) > 0.01))
+    return std::string("the direction point must lie ahead along the contour, not straight across it");
+  t = t.normalized() * (t.dot(to) > 0 ? 1 : -1);
+  k.direction = arr(t);
+  k.stop = c.stop;
+  k.stop_point = c.stop_point;
+  if (c.stop == StopBody::Sphere || c.stop == StopBody::Cylinder) {
+    if (!(c.stop_diameter > 0)) return std::string("the stop body's diameter must be above 0");
+    k.stop_radius = c.stop_diameter / 2;
+  }
+  if (c.stop != StopBody::Sphere) {
+    if (!unit(c.stop_normal, stop_n))
+      return std::string(c.stop == StopBody::Plane ? "the stop plane's normal must not be zero" : "the stop cylinder's axis must not be zero");
+    k.stop_normal = arr(stop_n);
+  }
+  k.count = c.count;
+  k.stop_after = c.stop_after;
+  k.end_normal = arr(end_n);
+  k.clearance = s.clearance;
+  // The planned line: toward the direction point within the constraint, inside the travel.
+  V3 u = to;
+  if (c.constraint == ContourConstraint::Plane) u -= pn * u.dot(pn);
+  if (!(u.norm() > 1e-6)) u = t;
+  u.normalize();
+  const double length = std::min(c.max_length, within_travel(ball, u, s) - 1e-3);
+  if (!(length >= 1)) return std::string("the direction leads out of the travel within 1 mm of the start");
+  ScanSpec spec;
+  spec.deflection = s.deflection;
+  spec.band = s.band;
+  spec.step = s.step;
+  spec.normal = arr(n);
+  std::vector<Request> out;
+  ScanSpec position;
+  position.phase = ScanPhase::Position;
+  out.push_back(line(id, from, ball + s.clearance * n, s.feed, position));
+  spec.phase = ScanPhase::Approach;
+  out.push_back(line(id, from, ball, s.approach_speed, spec));
+  spec.phase = ScanPhase::Contour;
+  spec.contour = k;
+  out.push_back(line(id, from, ball + length * u, s.speed, spec));
+  return out;
+}
+
 }  // namespace
 
 ScanRequests scan_requests(std::uint32_t id, const Pose& from, const ScanShape& shape, const ScanSettings& s) {
   if (!(s.clearance > kMaxScanCorrection)) return std::string("the clearance must exceed the largest correction, 1 mm");
+  if (const auto* c = std::get_if<ScanContourShape>(&shape)) return contour_requests(id, from, *c, s);
   const double offset = s.tip_radius - s.deflection;  // surface → ball centre, along the normal
   ScanSpec spec;
   spec.deflection = s.deflection;
@@ -69,15 +166,20 @@ ScanRequests scan_requests(std::uint32_t id, const Pose& from, const ScanShape& 
     if (!(axis.norm() > 1e-9)) return std::string("the circle's axis must not be zero");
     axis.normalize();
     if (c.radial != 1 && c.radial != -1) return std::string("the surface must face away from the axis or toward it");
-    if (!(std::fabs(c.axial) < 1)) return std::string("the normal's part along the axis must lie between -1 and 1");
+    if (!(std::fabs(c.axial) <= 1)) return std::string("the normal's part along the axis must lie between -1 and 1");
     if (!(std::fabs(c.sweep) >= 1e-3)) return std::string("the sweep must not be zero");
     e.start = vec(c.start);
     V3 radial = e.start - vec(c.centre);
     radial -= axis * radial.dot(axis);
     const double r_surface = radial.norm();
     if (!(r_surface >= 1e-3)) return std::string("the start must lie off the axis");
-    const double r_ball = r_surface + c.radial * offset * std::sqrt(1 - c.axial * c.axial);
-    if (!(r_ball > 0.01)) return std::string("the circle is too small for the tip (radius " + std::to_string(r_surface) + " mm)");
+    const double r_ball = r_surface + c.radial * offset * std::sqrt(std::max(0.0, 1 - c.axial * c.axial));
+    if (!(r_ball > 0.01)) {
+      char why[160];
+      std::snprintf(why, sizeof why, "the circle (radius %.4g mm) is too small for the tip (radius %.4g mm, deflected %.4g mm)",
+                    r_surface, s.tip_radius, s.deflection);
+      return std::string(why);
+    }
     const double sweep = c.sweep * M_PI / 180;
     const Eigen::AngleAxisd turn(sweep, axis);
     e.end = vec(c.centre) + axis * (e.start - vec(c.centre)).dot(axis) + turn * radial + c.lead * axis;

@@ -306,7 +306,7 @@ TEST_CASE("bounded motion on sim-mrm-arm.json", "[long]") { run_property("sim-mr
 TEST_CASE("bounded motion on sim-servo-card-loop-time.json", "[long]") { run_property("sim-servo-card-loop-time.json", 8); }
 // The default machine with a measuring probe: its motion is the default's, but the status frames
 // are longer and come every 6 ms (docs/servo-card-link.md, "The measuring probe").
-TEST_CASE("bounded motion on sim-servo-card-scanning.json", "[long]") { run_property("sim-servo-card-scanning.json", 9, 0.2); }
+TEST_CASE("bounded motion on sim-servo-card-scanning.json", "[long]") { run_property("sim-servo-card-scanning.json", 9, 0.1); }
 
 TEST_CASE("every shipped configuration is covered by the bounded-motion property") {
   std::vector<std::string> shipped;

@@ -25,7 +25,7 @@ inline std::vector<std::string> net_push(bool quick) {
   return ids;
 }
 
-// bench_net all (push stream jog rtt memory) with stream's default 200 clients.
+// bench_net all (push stream jog rtt memory scan) with stream's default 200 clients.
 inline std::vector<std::string> net_all(bool quick) {
   std::vector<std::string> ids = net_push(quick);
   for (const char* id : {"stream.client_hz.max", "stream.reporthz.max", "floor.timer.200.rate.min", "floor.timer.200.rate.median",
@@ -39,6 +39,8 @@ inline std::vector<std::string> net_all(bool quick) {
   for (const char* prefix : {"floor.memory", "memory"})
     add_stats(ids, prefix, {"rss.0", "rss.100", "rss.1000", "rss.after", "per_client.100", "per_client.1000"});
   add_stats(ids, "memory.soak", {"start", "max", "end", "slope"});
+  add_stats(ids, "floor.stamped1k.100", {"p50", "p99"});
+  add_stats(ids, "push.scan.100", {"p50", "p99"});
   return ids;
 }
 

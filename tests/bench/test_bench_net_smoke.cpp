@@ -72,7 +72,7 @@ TEST_CASE("bench_net refuses a bad command line with what it accepts") {
   CHECK(run.err.find("--samples takes a whole number from 1 to 1000000, got '0'") != std::string::npos);
   run = run_program({client_binary("bench_net"), "fly"}, 10s);
   CHECK(run.status == 2);
-  CHECK(run.err.find("accepted: push stream jog rtt memory load all") != std::string::npos);
+  CHECK(run.err.find("accepted: push stream jog rtt memory load scan all") != std::string::npos);
   run = run_program({client_binary("bench_net"), "rtt", "--soak-seconds", "5"}, 10s);
   CHECK(run.status == 2);
   CHECK(run.err.find("'rtt' does not take '--soak-seconds'") != std::string::npos);

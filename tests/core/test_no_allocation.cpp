@@ -162,3 +162,44 @@ TEST_CASE("no motion cycle allocates while scanning: approach, contact control, 
   CHECK(allocations_over_cycles(rig, 6000) == 0);
   CHECK(rig.mode() == Mode::Idle);  // stopped, at rest (its events drained by the counter: test_scan.cpp checks them)
 }
+
+TEST_CASE("no motion cycle allocates on an unknown contour: steering round a corner, points, the stop plane, the back-off",
+          "[scan]") {
+  const bool streamed = GENERATE(false, true);
+  RigOptions o = default_options();
+  o.sim.mechanics.probe.type = imess::sim::ProbeType::Analog;
+  o.sim.mechanics.start = axes3(Vec3(510, 290, 45));
+  o.sim.streamed = streamed;
+  CoreRig rig(o);
+  rig.run(0.2);
+  planner::Machine m = planner::make_machine("XYZ", 0, 1000, 150, 1000);
+  m.axes[2].travel_max = 600;
+  planner::Planner plan(m);
+  plan.set_position({510, 290, 45});
+  planner::ScanSettings s;
+  s.step = 0.05;
+  s.speed = 5;
+  s.travel_min = {0, 0, 0};
+  s.travel_max = {1000, 1000, 600};
+  // Along the cube's front face (y ≈ 300) at z 40, round its right edge (x ≈ 520), along the
+  // right face to the plane y 315: Done, backed off along +x.
+  planner::ScanContourShape c;
+  c.start = {510, 300.05, 40};
+  c.start_normal = {0, -1, 0};
+  c.plane_normal = {0, 0, 1};
+  c.direction = {515, 300.05, 40};
+  c.stop = planner::StopBody::Plane;
+  c.stop_point = {520, 315, 40};
+  c.stop_normal = {0, 1, 0};
+  c.end_normal = {1, 0, 0};
+  const auto requests = planner::scan_requests(1, plan.position(), c, s);
+  for (const auto& r : std::get<std::vector<planner::Request>>(requests)) REQUIRE(plan.append(r).ok());
+  plan.flush();
+  planner::PlannedSegment seg;
+  while (plan.take(seg)) REQUIRE(rig.core().submit_segment({seg, rig.core().stop_ticket(), 0}));
+  CHECK(allocations_over_cycles(rig, 9000) == 0);
+  CHECK(rig.mode() == Mode::Idle);  // ended and backed off (test_scan_contour.cpp checks its events)
+  CHECK(rig.core().machine().deflection.norm() < 1e-9);
+  CHECK(rig.position().x() > 521);
+  CHECK(rig.position().y() > 314);
+}

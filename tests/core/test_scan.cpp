@@ -158,6 +158,14 @@ std::vector<Case> cases() {
   bore.sweep = 360;
   bore.radial = -1;
   out.push_back({"bore", Vec3(460, 350, 60), bore, 2 * M_PI * (15 - 1.7)});
+  // A ring on the cube's top round the bore (the surface square to the circle's axis).
+  planner::ScanCircleShape ring_on_top;
+  ring_on_top.centre = {460, 350, 80};
+  ring_on_top.start = {485, 350, 80};
+  ring_on_top.sweep = 180;
+  ring_on_top.radial = 1;
+  ring_on_top.axial = 1;
+  out.push_back({"ring on the top", Vec3(485, 350, 90), ring_on_top, M_PI * 25});
   // The cube's top, a line clear of the bore and the fillet.
   out.push_back({"top face", Vec3(430, 330, 90), planner::ScanLineShape{{430, 330, 80}, {490, 330, 80}, {0, 0, 1}}, 60});
   // The cube's right face, turned by the yaw.

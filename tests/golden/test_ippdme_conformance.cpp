@@ -74,7 +74,7 @@ TEST_CASE("I++ DME conformance: measuring programs asking for what the machine l
                                    "2> 00003 OnPtMeasReport(X(), Y(), Z(), R())\n"
                                    "2> 00004 GoTo(X(460), Y(350), Z(100))\n= 3000 ms\n"
                                    "2> 00005 GoTo(Z(40))\n= 3000 ms\n"
-                                   "2> 00006 ScanOnLine(1, 2, 3)\n"
+                                   "2> 00006 ScanOnLine(450, 335, 40, 470, 335, 40, 0, 1, 0, 1)\n"
                                    "2> 00007 GoTo(Z(40), Tool.A(90))\n"
                                    "2> 00008 PtMeas(X(475), Y(350), Z(40), IJK(-1, 0, 0))\n= 3000 ms\n"
                                    "2> 00009 PtMeas(X(460), Y(335), Z(40), IJK(0, 1, 0))\n= 3000 ms\n"

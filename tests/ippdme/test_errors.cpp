@@ -77,7 +77,7 @@ const std::vector<ErrCase> kCases{
     {"E0001 FooE()", E::IllegalCommand, kE1},
     {"00001 Foo(X(1,)", E::IllegalCommand, kT1},  // wrong arguments of an unknown method
     // 0501: known 1.4 methods not implemented
-    {"00001 ScanOnCircle(1, 2, 3)", E::UnsupportedCommand, kT1},
+    {"00001 ScanOnCurve(Closed(0))", E::UnsupportedCommand, kT1},
     {"00001 AlignTool(0, 0, 1, 0)", E::UnsupportedCommand, kT1},
     {"00001 LockAxis(C())", E::UnsupportedCommand, kT1},
     {"00001 ReQualify()", E::UnsupportedCommand, kT1},

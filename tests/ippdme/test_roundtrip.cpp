@@ -73,6 +73,35 @@ class Gen {
     return a;
   }
 
+  // Scan geometry: coordinates with 3 decimals, small whole directions (never without norm),
+  // a direction orthogonal to another (their cross product: exact in doubles).
+  double coord() { return integer(-500000, 500000) / 1000.0; }
+  double positive() { return integer(1, 100000) / 1000.0; }
+  double nonzero() { return coin() ? positive() : -positive(); }
+  double step() { return coin() ? 0.0 : positive(); }  // 0: the server's density
+  int count() { return integer(1, 5); }
+  Point3 point() { return {coord(), coord(), coord()}; }
+  Vector3 direction() {
+    Vector3 v;
+    do v = {static_cast<double>(integer(-5, 5)), static_cast<double>(integer(-5, 5)), static_cast<double>(integer(-5, 5))};
+    while (v.i == 0 && v.j == 0 && v.k == 0);
+    return v;
+  }
+  Vector3 across(const Vector3& n) {
+    Vector3 r;
+    do {
+      const Vector3 d = direction();
+      r = {n.j * d.k - n.k * d.j, n.k * d.i - n.i * d.k, n.i * d.j - n.j * d.i};
+    } while (r.i == 0 && r.j == 0 && r.k == 0);
+    return r;
+  }
+  // p + v as the double nearest its decimals (a sum's last bit would need 17 digits to write).
+  std::optional<Vector3> plane(bool given) { return given ? std::optional<Vector3>(direction()) : std::nullopt; }
+  static Point3 plus(const Point3& p, const Vector3& v) {
+    auto at = [](double a, double b) { return std::round((a + b) * 1000) / 1000; };
+    return {at(p[0], v.i), at(p[1], v.j), at(p[2], v.k)};
+  }
+
   Command command(std::size_t index) {
     switch (index) {
       case command_index<StopDaemon>(): return StopDaemon{{TagKind::Event, static_cast<std::uint32_t>(integer(1, 9999))}};
@@ -107,6 +136,66 @@ class Gen {
         return SetCsyTransformation{static_cast<CsyTarget>(integer(0, 5)),
                                     {offset(), offset(), offset(), integer(0, 180000) / 1000.0, number(), number()}};
       case command_index<GetCsyTransformation>(): return GetCsyTransformation{static_cast<CsyTarget>(integer(0, 5))};
+      case command_index<OnScanReport>(): return OnScanReport{items(true)};
+      case command_index<ScanOnCircleHint>(): return ScanOnCircleHint{coin() ? 0 : positive(), positive()};
+      case command_index<ScanOnLineHint>(): return ScanOnLineHint{positive(), coin() ? 0 : positive()};
+      case command_index<ScanUnknownHint>(): return ScanUnknownHint{positive()};
+      case command_index<ScanUnknownDensity>(): {
+        ScanUnknownDensity d;
+        do {
+          if (coin()) d.dis = positive();
+          if (coin()) d.angle = positive();
+          if (coin()) d.angle_base_length = positive();
+        } while (!d.dis && !d.angle && !d.angle_base_length);
+        return d;
+      }
+      case command_index<ScanOnCircle>(): {
+        const Point3 c = point();
+        const Vector3 n = direction();
+        return ScanOnCircle{c, plus(c, across(n)), n, nonzero(), static_cast<double>(integer(-360, 360)), nonzero()};
+      }
+      case command_index<ScanOnHelix>(): {
+        const Point3 c = point();
+        const Vector3 n = direction();
+        return ScanOnHelix{c, plus(c, across(n)), n, nonzero(), coin() ? 0.0 : 180.0, nonzero(), coord()};
+      }
+      case command_index<ScanOnLine>(): {
+        const Point3 a = point();
+        const Vector3 n = direction();
+        return ScanOnLine{a, plus(a, across(n)), n, positive()};
+      }
+      // A plane scan in its 1.4.3 form, or the 1.4.0 one (no plane normal: the direction point
+      // off the start's surface direction; the sphere's without n: count 1).
+      case command_index<ScanInPlaneEndIsSphere>(): {
+        const Point3 a = point();
+        const Vector3 n = direction();
+        const bool v143 = coin();
+        return ScanInPlaneEndIsSphere{a,        n,        plane(v143), plus(a, across(n)), step(), point(), positive(),
+                                      v143 ? count() : 1, direction()};
+      }
+      case command_index<ScanInPlaneEndIsPlane>(): {
+        const Point3 a = point();
+        const Vector3 n = direction();
+        return ScanInPlaneEndIsPlane{a, n, plane(coin()), plus(a, across(n)), step(), point(), direction(), count(), direction()};
+      }
+      case command_index<ScanInPlaneEndIsCyl>(): {
+        const Point3 a = point();
+        const Vector3 n = direction();
+        return ScanInPlaneEndIsCyl{a,       n,          plane(coin()), plus(a, across(n)), step(), point(), direction(),
+                                   positive(), count(), direction()};
+      }
+      case command_index<ScanInCylEndIsSphere>(): {
+        const Point3 c = point();
+        const Vector3 axis = direction();
+        const Point3 a = plus(c, across(axis));
+        return ScanInCylEndIsSphere{c, axis, a, direction(), plus(a, direction()), step(), point(), positive(), count(), direction()};
+      }
+      case command_index<ScanInCylEndIsPlane>(): {
+        const Point3 c = point();
+        const Vector3 axis = direction();
+        const Point3 a = plus(c, across(axis));
+        return ScanInCylEndIsPlane{c, axis, a, direction(), plus(a, direction()), step(), point(), direction(), count(), direction()};
+      }
       default: return default_of(index);
     }
   }

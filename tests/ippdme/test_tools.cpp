@@ -119,7 +119,7 @@ TEST_CASE("tools: FindTool finds BaseTool, the machine's base tool, which is nei
   ErrorCode err{};
   const auto all = box.enumerate("FoundTool", true, err);
   REQUIRE(all);
-  CHECK(all->size() == 1 + 1 + 2 * 5 + 1 + 5 * 5);
+  CHECK(all->size() == 1 + 1 + 2 * 5 + 1 + 5 * 5 + 1 + 3 * 5);  // Name, GoToPar, PtMeasPar, ScanPar
   CHECK_FALSE(box.exists("BaseTool"));
   CHECK_FALSE(box.change("BaseTool"));  // cannot be changed to: UnDefTool, as for any unknown name
   CHECK(box.active() == nullptr);
@@ -149,10 +149,51 @@ TEST_CASE("tools: EnumProp lists children, EnumAllProp every descendant with dot
   CHECK(*block == std::vector<PropertyEntry>{{"Speed", "Number"}, {"Accel", "Number"}});
   auto all = box.enumerate("Tool", true, err);
   REQUIRE(all);
-  CHECK(all->size() == 1 + 1 + 2 * 5 + 1 + 5 * 5);
+  CHECK(all->size() == 1 + 1 + 2 * 5 + 1 + 5 * 5 + 1 + 3 * 5);  // Name, GoToPar, PtMeasPar, ScanPar
   CHECK((*all)[3] == PropertyEntry{"GoToPar.Speed.Min", "Number"});
   CHECK_FALSE(box.enumerate("Tool.Speed", false, err));
   CHECK(err == ErrorCode::BadProperty);
+}
+
+TEST_CASE("tools: ScanPar (Speed, Accel, Retract) follows PtMeasPar's rules: Min/Max/Act/Def, 0504, Def on a change") {
+  ToolSpec star = tool("Star1", 1.5, 3);
+  star.params[static_cast<int>(Param::ScanSpeed)] = {0.5, 20, 4};
+  star.params[static_cast<int>(Param::ScanRetract)] = {0, 10, 2};
+  ToolBox box({tool("RefTool", 2, 5), star});
+  CHECK(block_name(Param::ScanAccel) == "ScanPar");
+  CHECK(param_name(Param::ScanRetract) == "Retract");
+  CHECK(text(box.get("Tool.ScanPar.Speed")) == "Tool.ScanPar.Speed(10)");
+  CHECK(text(box.get("Tool.ScanPar.Accel.Max")) == "Tool.ScanPar.Accel.Max(100)");
+  CHECK_FALSE(box.set("Tool.ScanPar.Retract.Act", 4).error);
+  CHECK(box.act(Param::ScanRetract) == 4);
+  CHECK(box.act(Param::Retract) == 10);  // PtMeasPar's Retract is another value
+  auto r = box.set("Tool.ScanPar.Speed", 1000);
+  CHECK(r.clamped);
+  CHECK(r.error == ErrorCode::ArgumentOutOfRange);
+  CHECK(box.act(Param::ScanSpeed) == 100);
+  CHECK(box.set("Tool.ScanPar.Speed.Def", 3).error == ErrorCode::BadArgument);
+  CHECK(box.set("Tool.ScanPar.Density", 3).error == ErrorCode::BadProperty);  // not a 1.4.3 ScanPar value
+  REQUIRE(box.change("Star1"));
+  CHECK(box.act(Param::ScanSpeed) == 4);
+  CHECK(text(box.get("Tool.ScanPar.Retract.Def")) == "Tool.ScanPar.Retract.Def(2)");
+  REQUIRE(box.change("RefTool"));
+  CHECK(box.act(Param::ScanRetract) == 10);  // back to RefTool's Def
+  REQUIRE(box.find_tool("Star1"));
+  CHECK_FALSE(box.set("FoundTool.ScanPar.Speed", 7).error);
+  CHECK(text(box.get("FoundTool.ScanPar.Speed")) == "FoundTool.ScanPar.Speed(7)");
+  ErrorCode err{};
+  const auto block = box.enumerate("Tool.ScanPar", false, err);
+  REQUIRE(block);
+  CHECK(*block == std::vector<PropertyEntry>{{"Speed", "Number"}, {"Accel", "Number"}, {"Retract", "Number"}});
+  const auto top = box.enumerate("Tool", false, err);
+  REQUIRE(top);
+  CHECK(top->back() == PropertyEntry{"ScanPar", "Property"});
+  // NoTool scans nothing: its ScanPar is not defined, as its PtMeasPar.
+  REQUIRE(box.change("NoTool"));
+  CHECK(box.get("Tool.ScanPar.Speed").error == ErrorCode::ToolNotDefined);
+  CHECK(box.set("Tool.ScanPar.Speed", 3).error == ErrorCode::ToolNotDefined);
+  CHECK_FALSE(box.enumerate("Tool.ScanPar", false, err));
+  CHECK(err == ErrorCode::ToolNotDefined);
 }
 
 TEST_CASE("tools: reserved, repeated or malformed names and ranges with Def outside Min..Max are refused") {

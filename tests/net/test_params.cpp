@@ -30,7 +30,7 @@ TEST_CASE("every core parameter has exactly one registry entry, with the core's 
     CHECK(core::param_value(defaults, p.core_id) == p.initial);
     CHECK_FALSE(p.read_only);
   }
-  CHECK(ids.size() == static_cast<std::size_t>(core::ParamId::ProbeSpeed) + 1);  // ProbeSpeed: the last ParamId
+  CHECK(ids.size() == static_cast<std::size_t>(core::ParamId::ScanSpeed) + 1);  // ScanSpeed: the last ParamId
 }
 
 TEST_CASE("net-side parameters are ordinary entries: ReportHz settable, Period, Axes, Backend read-only") {

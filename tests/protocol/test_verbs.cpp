@@ -256,7 +256,7 @@ TEST_CASE("Stats alone is since the start, Reset Interval Hist are the measuring
 TEST_CASE("the verbs that move the machine say so in their declaration (Access::Moving)") {
   // The list the daemon kept by hand before (refused while a program runs); now read from the table.
   const std::set<std::string_view> moving{"StartMv", "GoTo",  "Home",  "Free",  "Reset",  "HandMv", "ForcePt",
-                                          "MoveTo",  "ArcTo", "Dwell", "Probe", "SetOut", "JogAx"};
+                                          "MoveTo",  "ArcTo", "Dwell", "Probe", "SetOut", "JogAx", "ScanLine", "ScanCirc"};
   for (const auto& v : verb_table()) {
     INFO(v.name);
     CHECK((v.access == Access::Moving) == moving.contains(v.name));

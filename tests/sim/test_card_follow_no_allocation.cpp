@@ -1,6 +1,7 @@
 // Real-time discipline of the servo card's path following: follow(), the read_state() that
 // returns its reply, a stop and switching the probe power (set_output) allocate nothing — on the request/reply link and on the
-// stream over the byte-timed line — and the simulated analog probe's reading every step, counted by
+// stream over the byte-timed line, with a touch-trigger and a measuring probe — and the simulated
+// analog probe's reading every step, counted by
 // replacing the global allocator.
 #include <catch2/catch.hpp>
 
@@ -36,6 +37,9 @@ TEST_CASE("card follow: follow() and the cycle's read_state() allocate nothing")
 TEST_CASE("card stream: the driver's real-time calls on the stream and the byte-timed line allocate nothing") {
   RigOptions o = default_options();
   o.sim.streamed = true;
+  // With a touch-trigger probe, and with a measuring one (its deflection in every status frame).
+  const bool analog = GENERATE(false, true);
+  if (analog) o.sim.mechanics.probe.type = sim::ProbeType::Analog;
   CoreRig rig(o);
   auto& drv = rig.driver();
   hal::MachineState ms;
@@ -74,8 +78,9 @@ TEST_CASE("card stream: the driver's real-time calls on the stream and the byte-
   CHECK(g_allocations.load() == 0);
   CHECK(failures == 0);
   CHECK(!ms.faulted());
+  CHECK(ms.deflection_valid == analog);
   CHECK(drv.stream()->frames_sent() > 250);
-  CHECK(drv.stream()->status_frames() > 500);
+  CHECK(drv.stream()->status_frames() > (analog ? 450u : 500u));  // every 5 ms, 6 ms with the deflection
   CHECK(latches >= 7);  // one per probe power edge (initialise()'s and the first set_output's may be one)
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "imess/core/outputs.hpp"
 #include "imess/core/probe_cycle.hpp"
@@ -117,6 +118,8 @@ void PathFollower::run(Nanos now) noexcept {
   // Outputs switch as their segment begins. One the backend refuses fails from there: the
   // segments completed before it are Done, it and everything after it Failed Faulted.
   const std::uint32_t* refused = outputs_.switch_for(smp, now);
+  // An unknown contour whose planned length ran out before its stop body was met.
+  std::optional<std::uint32_t> contour_ran_out;
   for (int i = 0; i < smp.done_count; ++i) {
     if (refused && smp.done[i].id == *refused) break;
     // A Probe's approach ends in its search (one id, one Done or Failed); a search that ends
@@ -124,6 +127,7 @@ void PathFollower::run(Nanos now) noexcept {
     // its Leave is.
     const auto phase = smp.done[i].probe;
     const auto scan = smp.done[i].scan;
+    if (scan == planner::ScanPhase::Contour) contour_ran_out = smp.done[i].id;
     if (phase != planner::ProbePhase::Approach && (scan == planner::ScanPhase::None || scan == planner::ScanPhase::Leave)) {
       const bool missed = phase == planner::ProbePhase::Search;
       const Arrival end{smp.done[i].id, missed ? EventKind::Failed : EventKind::Done,
@@ -143,6 +147,11 @@ void PathFollower::run(Nanos now) noexcept {
     }
   }
   if (refused) return fail_and_brake(FailReason::Faulted, now);
+  if (contour_ran_out) {  // its segment is no longer held: failed here, the rest with it
+    if (scan_.ending() && !scan_.ran_out()) return contour_end(*contour_ran_out, now);  // it met its stop body just before
+    loop_.segment_event(EventKind::Failed, *contour_ran_out, FailReason::PartNotFound, now);
+    return scan_stop(FailReason::PartNotFound, now);
+  }
   if (smp.done_count == 0 && resting && held_count_ == 0) {  // nothing came: settle, then idle
     settle(now);
     return;
@@ -160,7 +169,7 @@ void PathFollower::run(Nanos now) noexcept {
   }
   // A scan's segment: the contact correction on the setpoint, and its points.
   if (FailReason why{}; !scan_.apply(sampler_.current(), sampler_.current_fraction(), sp, dt, now, why))
-    return scan_stop(why, now);
+    return scan_.finished() && !scan_.ran_out() ? contour_end(sampler_.current()->id, now) : scan_stop(why, now);
   if (sp.velocity.norm() > 1e-9) loop_.motion_dir = sp.velocity.normalized();  // for a stop's braking line
   if (!loop_.hw.follow(sp))  // this backend cannot follow a planned path (or did not answer)
     return fail_and_brake(FailReason::Faulted, now);
@@ -243,9 +252,18 @@ void PathFollower::scan_stop(FailReason why, Nanos now) noexcept {
   const Vec3 n = scan_.measured_normal();
   const double pressed = loop_.ms.deflection.norm();
   fail_queue(why, now);
-  if (why == FailReason::ScanOverRange)  // off the surface along its normal: brake, then back off
+  // Over range, or an unknown contour that ran out of its length in contact: off the surface
+  // along its normal (brake, then back off).
+  if (why == FailReason::ScanOverRange || why == FailReason::PartNotFound)
     return probe_.back_off(loop_.ms.position, -loop_.config.layout.machine(n), pressed + loop_.config.params.retract_distance, now);
   loop_.brake_to_rest(Mode::Path, now);
+}
+
+void PathFollower::contour_end(std::uint32_t id, Nanos now) noexcept {
+  const AxisVec out = loop_.config.layout.machine(scan_.end_normal());
+  const double distance = loop_.ms.deflection.norm() + scan_.end_clearance();
+  end_search(id, now);
+  probe_.finish_scan(id, loop_.ms.position, -out, distance, now);
 }
 
 void PathFollower::end_search(std::uint32_t id, Nanos now) noexcept {

@@ -72,6 +72,7 @@ void ProbeCycle::probe_hit(const AxisVec& latched, Nanos now) noexcept {
   loop_.measured(loop_.cartesian(latched) + loop_.config.params.tip_radius * cd, cd, true, now, id);
   path_.end_search(id, now);
   retracting_ = true;
+  scan_end_ = false;
   probe_id_ = id;
   loop_.approach_dir = d;
   retract_from(latched, d, now);
@@ -84,8 +85,11 @@ void ProbeCycle::close(EventKind k, FailReason why, Nanos now) noexcept {
   e.kind = k;
   e.id = probe_id_;
   e.fail = why;
-  e.p = loop_.cartesian(retract_target_);
-  e.end = retract_target_;  // Done: where the machine stands, the start of what was queued after
+  // Done: where the machine stands, the start of what was queued after. A scan's back-off
+  // moves only the axes along its end normal: the others stand where the scan left them.
+  e.end = scan_end_ ? loop_.ms.position : retract_target_;
+  e.p = loop_.cartesian(e.end);
+  scan_end_ = false;
   e.probe_end = true;
   e.time = now;
   loop_.emit(e);
@@ -94,6 +98,13 @@ void ProbeCycle::close(EventKind k, FailReason why, Nanos now) noexcept {
 void ProbeCycle::back_off(const AxisVec& from, const AxisVec& dir, double distance, Nanos now) noexcept {
   loop_.approach_dir = dir;
   retract_by(from, dir, distance, now);
+}
+
+void ProbeCycle::finish_scan(std::uint32_t id, const AxisVec& from, const AxisVec& dir, double distance, Nanos now) noexcept {
+  retracting_ = true;
+  scan_end_ = true;
+  probe_id_ = id;
+  back_off(from, dir, distance, now);
 }
 
 void ProbeCycle::retract_from(const AxisVec& latched, const AxisVec& dir, Nanos now) noexcept {

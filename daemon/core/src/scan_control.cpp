@@ -7,9 +7,7 @@
 namespace imess::core {
 
 namespace {
-constexpr double kMaxCorrectionRate = 10;  // mm/s
 constexpr double kMinTau = 0.03;           // s
-constexpr double kLostContactBase = 0.05;  // s
 }  // namespace
 
 using planner::ScanPhase;
@@ -21,6 +19,33 @@ void ScanControl::reset() noexcept {
   contact_phase_ = false;
   phase_ = ScanPhase::None;
   lost_s_ = 0;
+  finished_ = closing_ = ending_ = ran_out_ = false;
+  meetings_ = side_ = 0;
+  contour_s_ = 0;
+}
+
+void ScanControl::take_point(const planner::PlannedSegment& seg, const Vec3& here, const Vec3& delta, bool contact,
+                             Nanos now) noexcept {
+  // The path travelled along the surface since the last point (the correction's motion
+  // across it does not count), with the remainder carried: points come every `step` on
+  // average, not every whole number of cycles' travel beyond it.
+  if (have_point_) {
+    const Vec3 moved = here - last_point_;
+    travelled_ += (moved - n_hat_ * moved.dot(n_hat_)).norm();
+  }
+  last_point_ = here;
+  if (!contact || (have_point_ && travelled_ < seg.scan.step)) return;
+  travelled_ = have_point_ ? std::min(travelled_ - seg.scan.step, seg.scan.step) : 0.0;
+  have_point_ = true;
+  Event ev;
+  ev.kind = EventKind::ScanPt;
+  ev.id = seg.id;
+  ev.p = here + delta - loop_.config.params.tip_radius * n_hat_;
+  ev.dir = -n_hat_;
+  ev.radius = loop_.config.params.tip_radius;
+  ev.compensated = true;
+  ev.time = now;
+  loop_.emit(ev);
 }
 
 Vec3 ScanControl::nominal_normal(const planner::ScanSpec& spec, const Vec3& p) const noexcept {
@@ -52,6 +77,7 @@ bool ScanControl::apply(const planner::PlannedSegment* seg, double fraction, hal
       }
     }
     if (phase == ScanPhase::Leave) e_leave_ = e_;
+    if (phase == ScanPhase::Contour) begin_contour(*seg);
     phase_ = phase;
   }
   contact_phase_ = true;
@@ -59,13 +85,16 @@ bool ScanControl::apply(const planner::PlannedSegment* seg, double fraction, hal
   const Vec3 delta = ms.deflection;
   const double d = delta.norm();
   const bool contact = d >= kContact;
-  n_hat_ = contact ? Vec3(delta / d) : nominal_normal(spec, here);
+  // Out of contact on an unknown contour the last measured normal stands (there is no nominal).
+  if (contact) n_hat_ = delta / d;
+  else if (phase != ScanPhase::Contour) n_hat_ = nominal_normal(spec, here);
   if (ms.probe_over_range && phase != ScanPhase::Leave) {
     why = FailReason::ScanOverRange;
     return false;
   }
   const double lead = loop_.hw.path_lead_s();
   const double tau = std::max(kMinTau, 3 * lead);
+  if (phase == ScanPhase::Contour) return contour_cycle(*seg, fraction, sp, dt, now, lead, tau, why);
   const Vec3 before = e_;
   if (phase == ScanPhase::Leave) {
     e_ = e_leave_ * (1 - fraction);
@@ -84,27 +113,7 @@ bool ScanControl::apply(const planner::PlannedSegment* seg, double fraction, hal
       why = FailReason::ScanLostContact;
       return false;
     }
-    // The path travelled along the surface since the last point (the correction's motion
-    // across it does not count), with the remainder carried: points come every `step` on
-    // average, not every whole number of cycles' travel beyond it.
-    if (have_point_) {
-      const Vec3 moved = here - last_point_;
-      travelled_ += (moved - n_hat_ * moved.dot(n_hat_)).norm();
-    }
-    last_point_ = here;
-    if (contact && (!have_point_ || travelled_ >= spec.step)) {
-      travelled_ = have_point_ ? std::min(travelled_ - spec.step, spec.step) : 0.0;
-      have_point_ = true;
-      Event ev;
-      ev.kind = EventKind::ScanPt;
-      ev.id = seg->id;
-      ev.p = here + delta - loop_.config.params.tip_radius * n_hat_;
-      ev.dir = -n_hat_;
-      ev.radius = loop_.config.params.tip_radius;
-      ev.compensated = true;
-      ev.time = now;
-      loop_.emit(ev);
-    }
+    take_point(*seg, here, delta, contact, now);
   }
   // The correction on the setpoint, within the travel once referenced.
   const AxisVec shift = loop_.config.layout.machine(e_);

@@ -29,6 +29,11 @@ planner::ScanSettings MotionGateway::scan_settings(std::optional<double> speed) 
   s.approach_speed = p.probe_speed;
   s.clearance = std::max(p.prehit_distance, 2.0);
   s.feed = p.goto_speed * p.speed_level;
+  const auto& m = planner_.machine();  // an unknown contour's line stays in the travel
+  for (int a = 0; a < 3 && a < m.count; ++a) {
+    s.travel_min[a] = m.axes[a].travel_min;
+    s.travel_max[a] = m.axes[a].travel_max;
+  }
   return s;
 }
 

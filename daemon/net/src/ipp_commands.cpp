@@ -111,6 +111,8 @@ bool IppServer::execute(const Pending& p) {
             last_error_.reset();
             user_enabled_ = false;
             ptmeas_items_ = {Item::X, Item::Y, Item::Z};
+            scan_items_ = ippdme::kDefaultScanReport;
+            unknown_density_.reset();
             if (tools_.active()) gateway_.set_param(core::ParamId::TipRadius, tools_.active()->radius);
             return done();
           },
@@ -296,6 +298,31 @@ bool IppServer::execute(const Pending& p) {
                                                        Value::of_number(t.theta), Value::of_number(t.psi), Value::of_number(t.phi)})});
             return done();
           },
+          [&](const ippdme::OnScanReport& c) {
+            scan_items_ = c.items;
+            return done();
+          },
+          // Hints only let a server slow down where it must; the contact control holds the
+          // deflection whatever the part's deviation within its reach (docs/ippdme.md).
+          [&](const ippdme::ScanOnCircleHint&) { return done(); },
+          [&](const ippdme::ScanOnLineHint&) { return done(); },
+          [&](const ippdme::ScanUnknownHint&) { return done(); },
+          [&](const ippdme::ScanUnknownDensity& c) {
+            if (c.dis) unknown_density_ = *c.dis;
+            return done();
+          },
+          [&](const ippdme::ScanOnLine& c) { return start_scan_line(p, c); },
+          [&](const ippdme::ScanOnCircle& c) {
+            return start_scan_circle(p, c.center, c.start, c.normal, c.delta, c.sfa, c.step, 0);
+          },
+          [&](const ippdme::ScanOnHelix& c) {
+            return start_scan_circle(p, c.center, c.start, c.normal, c.delta, c.sfa, c.step, c.pitch);
+          },
+          [&](const ippdme::ScanInPlaneEndIsSphere& c) { return start_contour(p, c); },
+          [&](const ippdme::ScanInPlaneEndIsPlane& c) { return start_contour(p, c); },
+          [&](const ippdme::ScanInPlaneEndIsCyl& c) { return start_contour(p, c); },
+          [&](const ippdme::ScanInCylEndIsSphere& c) { return start_contour(p, c); },
+          [&](const ippdme::ScanInCylEndIsPlane& c) { return start_contour(p, c); },
           [&](const auto&) {  // a fast-queue method: the parser sends none here (its tag is an event tag)
             fail(tag, ErrorCode::IllegalTag, name);
             return true;

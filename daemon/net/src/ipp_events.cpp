@@ -23,6 +23,8 @@ bool IppEvents::core_reply(const core::Event& e) {
 
 void IppEvents::hit(const core::Event& point, const JournaledHit&) { ipp_.hit(point); }
 
+void IppEvents::scanned(const core::Event& point, const JournaledHit&) { ipp_.scanned(point); }
+
 void IppEvents::state(core::Mode) { ipp_.retry(); }
 
 void IppEvents::warning(const core::Event& e) {

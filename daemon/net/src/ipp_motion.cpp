@@ -83,6 +83,10 @@ planner::Pose IppServer::pose_at(const Point3& xyz) const {
 // The lines planned from where the last step left the machine, all or none (a dry run
 // first), flushed to end at rest and fed to the loop.
 IppServer::Planned IppServer::plan_lines(std::vector<planner::Line> lines, std::string& why) {
+  return plan_requests(std::vector<planner::Request>(lines.begin(), lines.end()), why);
+}
+
+IppServer::Planned IppServer::plan_requests(const std::vector<planner::Request>& lines, std::string& why) {
   MotionGateway& s = gateway_;
   if (!s.planning()) {
     const auto& snap = s.snapshot();
@@ -292,8 +296,16 @@ void IppServer::end_step(std::optional<ErrorCode> error) {
 void IppServer::segment_end(const core::Event& e) {
   if (step_ == Step::None || step_ == Step::Home || step_ == Step::Reset || step_ == Step::Wait || e.id < first_id_ || e.id > wait_id_)
     return;  // a step ended before
+  if (step_ == Step::Scan) flush_scan_points();  // every point taken goes out before the end
   if (e.kind == core::EventKind::Failed) {
     step_failed(error_of(e.fail));
+    return;
+  }
+  if (step_ == Step::Scan && e.id == wait_id_) {
+    // An unknown contour ended where the loop backed off (its Done says where): the next plan
+    // starts where the machine stands.
+    if (e.probe_end && gateway_.ids_queued() == 0) gateway_.set_planning(false);
+    step_done();
     return;
   }
   if (e.id != wait_id_) return;  // PtMeas: the move to the approach point
@@ -334,6 +346,7 @@ void IppServer::dropped(core::FailReason why) {
   rest_.reset();
   if (step_ == Step::None || step_ == Step::Home || step_ == Step::Reset || step_ == Step::Wait) return;
   if (gateway_.in_loop_between(first_id_, wait_id_)) return;  // its own Failed will come
+  if (step_ == Step::Scan) flush_scan_points();
   step_failed(error_of(why));
 }
 

@@ -88,6 +88,9 @@ IppServer::IppServer(asio::io_context& io, IppServices services, IppConfig confi
             {0.1, 100, std::clamp(p.prehit_distance, 0.1, 100.0)},        // Approach
             {0.1, 100, std::clamp(p.search_distance, 0.1, 100.0)},        // Search
             {-1, 100, std::clamp(p.retract_distance, 0.0, 100.0)},        // Retract (< 0: back to the approach point)
+            {0.1, std::min(100.0, vmax), std::min(p.scan_speed * p.speed_level, vmax)},  // ScanPar.Speed (the scan's speed range)
+            {std::min(1.0, amax), amax, amax},                            // ScanPar.Accel
+            {0, 100, std::max(p.prehit_distance, 2.0)},                   // ScanPar.Retract: off the surface at the end (at least 2 mm)
         };
         return make_tools(config_, p.tip_radius, ranges);
       }()) {}

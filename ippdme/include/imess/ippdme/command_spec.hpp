@@ -25,7 +25,7 @@ enum class Shape : unsigned char {
   ErrorNumber,        // GetErrorInfo(502): a whole number 0..9999
   EventTag,           // StopDaemon(E0005)
   GetItems,           // Get(X(), Y(), Z(), R(), Tool.A(), ...)
-  PtMeasReportItems,  // OnPtMeasReport(X(), Y(), Z(), IJK(), ER(), Q(), ...)
+  PtMeasReportItems,  // OnPtMeasReport / OnScanReport(X(), Y(), Z(), IJK(), ER(), Q(), ...)
   MoveReport,         // OnMoveReportE(Time(0.5), Dis(1), X(), Y(), Z(), ...)
   GoToTargets,        // GoTo(X(1), Y(2), Z(3), Tool.A(90), ...)
   PtMeasArgs,         // PtMeas(X(1), Y(2), Z(3), IJK(0, 0, 1))
@@ -36,6 +36,7 @@ enum class Shape : unsigned char {
   CoordSystemWord,    // SetCoordSystem(PartCsy)
   CsyTransformation,  // SetCsyTransformation(PartCsy, x0, y0, z0, theta, psi, phi)
   CsyWord,            // GetCsyTransformation(PartCsy)
+  ScanArgs,           // the scanning methods: ScanOnCircle(100, 0, -3, 120, 0, -3, 0, 0, 1, 360, 180, 0.5) ...
   NotImplemented,     // a 1.4 method this library knows by name only: UnsupportedCommand
 };
 
@@ -53,6 +54,7 @@ struct Checked {
   CoordSystem coord_system = CoordSystem::MachineCsy;
   CsyTarget csy = CsyTarget::PartCsy;
   CsyTransformation transform;
+  std::optional<Command> built;  // ScanArgs: the command itself
 };
 
 inline constexpr std::size_t kNoCommand = static_cast<std::size_t>(-1);

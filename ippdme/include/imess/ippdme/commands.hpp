@@ -1,22 +1,16 @@
 // Typed I++ DME commands: one struct per method the library reads (IPPDME.md §7 and the §11
-// "must" list). Their declarations (name, argument shape, queue) are in command_table.cpp.
+// "must" list; the scanning methods in scan_commands.hpp). Their declarations (name, argument
+// shape, queue) are in command_table.cpp.
 #pragma once
 #include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "imess/ippdme/scan_commands.hpp"
 #include "imess/ippdme/tag.hpp"
 
 namespace imess::ippdme {
-
-// Items of Get, OnPtMeasReport and OnMoveReportE: X(), Tool.A(), IJK() ...
-enum class Item : unsigned char { X, Y, Z, R, ToolA, ToolB, ToolC, IJK, ER, Q };
-
-struct Vector3 {
-  double i = 0, j = 0, k = 0;
-  friend bool operator==(const Vector3&, const Vector3&) = default;
-};
 
 // Targets of GoTo (X, Y, Z, Tool.A/B/C) and nominals of PtMeas (X, Y, Z); absent = stay put.
 struct Axes {
@@ -94,7 +88,11 @@ using Command =
                  GetProp, GetPropE, SetProp, SetPropE, EnumProp, EnumAllProp, GetDMEVersion, Home, IsHomed,
                  EnableUser, DisableUser, IsUserEnabled, OnPtMeasReport, OnMoveReportE, GetMachineClass,
                  GetErrStatusE, GetXtdErrStatus, Get, GoTo, PtMeas, EnumTools, ChangeTool, SetTool, FindTool,
-                 GetChangeToolAction, SetCoordSystem, GetCoordSystem, SetCsyTransformation, GetCsyTransformation>;
+                 GetChangeToolAction, SetCoordSystem, GetCoordSystem, SetCsyTransformation, GetCsyTransformation,
+                 // Scanning (scan_commands.hpp)
+                 OnScanReport, ScanOnCircleHint, ScanOnLineHint, ScanUnknownHint, ScanUnknownDensity, ScanOnCircle,
+                 ScanOnHelix, ScanOnLine, ScanInPlaneEndIsSphere, ScanInPlaneEndIsPlane, ScanInPlaneEndIsCyl,
+                 ScanInCylEndIsSphere, ScanInCylEndIsPlane>;
 
 // Wire names of the enums ("Tool.A", "PartCsy").
 std::string_view item_name(Item item);

@@ -10,7 +10,7 @@
 
 namespace imess::ippdme {
 
-using Point3 = std::array<double, 3>;
+// Point3: x, y, z (scan_commands.hpp).
 
 // One link: the rotation and offset of a SetCsyTransformation.
 class CsyLink {

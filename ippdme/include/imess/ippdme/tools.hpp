@@ -1,6 +1,6 @@
 // Tools and their properties (IPPDME.md §10): the tools a server offers, the active one
-// (`Tool`), the last found (`FoundTool`), and the GoToPar / PtMeasPar blocks whose values
-// each have Min, Max, Act and Def. Pure: the server feeds the machine's limits in.
+// (`Tool`), the last found (`FoundTool`), and the GoToPar / PtMeasPar / ScanPar blocks whose
+// values each have Min, Max, Act and Def. Pure: the server feeds the machine's limits in.
 #pragma once
 #include <array>
 #include <optional>
@@ -19,15 +19,21 @@ struct Range {
   double min = 0, max = 0, def = 0;
 };
 
-// The values of the two blocks, in the order EnumProp lists them.
-enum class Param : unsigned char { GoToSpeed, GoToAccel, PtMeasSpeed, PtMeasAccel, Approach, Search, Retract };
-inline constexpr int kParamCount = 7;
+// The values of the three blocks, in the order EnumProp lists them: GoToPar (Speed, Accel),
+// PtMeasPar (Speed, Accel, Approach, Search, Retract), ScanPar (Speed, Accel, Retract: 1.4.3
+// §6.3.15).
+enum class Param : unsigned char {
+  GoToSpeed, GoToAccel,
+  PtMeasSpeed, PtMeasAccel, Approach, Search, Retract,
+  ScanSpeed, ScanAccel, ScanRetract,
+};
+inline constexpr int kParamCount = 10;
 
 struct ToolSpec {
   std::string name;     // as EnumTools lists it
   double radius = 0;    // mm, the ball's radius (ER, and the hit's compensation)
   Range params[kParamCount]{};
-  bool measures = true;  // false: NoTool (moves, but PtMeas and PtMeasPar are refused)
+  bool measures = true;  // false: NoTool (moves, but PtMeas, scans, PtMeasPar and ScanPar are refused)
 };
 
 // Reserved names (IPPDME.md §10): NoTool is always offered; UnDefTool is the state after a
@@ -94,7 +100,7 @@ class ToolBox {
   int found_ = -1;     // FoundTool, -1: UnDefTool
 };
 
-// The block and value name of a parameter ("PtMeasPar", "Speed").
+// The block and value name of a parameter ("PtMeasPar", "Speed"; "ScanPar", "Retract").
 std::string_view block_name(Param p);
 std::string_view param_name(Param p);
 

@@ -25,8 +25,38 @@ enum class ProbePhase : std::uint8_t { None, Approach, Search };
 // hit), Approach (toward the surface at the approach speed), Follow (the nominal path in
 // contact, the motion loop holding the deflection at its set-point and taking points), Leave
 // (away from the surface; the loop's correction fades to zero along it, so the scan ends
-// exactly at its planned end). Only the Leave's end is answered `Done id`.
-enum class ScanPhase : std::uint8_t { None, Position, Approach, Follow, Leave };
+// exactly at its planned end). Only the Leave's end is answered `Done id`. Contour (an
+// unknown contour, after Position and Approach, the scan's last segment): the loop steers the
+// ball centre along the surface it finds (ScanContour); the segment's line only gives the
+// speed. The loop ends it at its stop body, backs off and answers `Done id` as a Probe's
+// (probe_end, where the machine stands).
+enum class ScanPhase : std::uint8_t { None, Position, Approach, Follow, Leave, Contour };
+
+// An unknown contour's steering and end (ScanPhase::Contour; planner/scan.hpp
+// ScanContourShape): the ball centre stays in a plane (through the touched start, normal
+// `plane_normal`) or on a cylinder (about the axis through `axis_point` along `axis`, through
+// the touched start), moving along the surface's tangent in it, first along `direction`; the
+// scan ends when the measured surface point meets the stop body the `count`-th time: a sphere
+// (centre `stop_point`, radius `stop_radius`) on its count-th entry, where the distance to its
+// centre is least; a plane (through `stop_point`, normal `stop_normal`) or a cylinder (axis
+// through `stop_point` along `stop_normal`, radius `stop_radius`) on its count-th crossing.
+// Meetings count once `stop_after` mm of contour lie behind. Then the machine backs off
+// `clearance` (plus the deflection) along `end_normal`. Unit vectors; machine X Y Z, mm.
+enum class ContourConstraint : std::uint8_t { Plane, Cylinder };
+enum class StopBody : std::uint8_t { Sphere, Plane, Cylinder };
+struct ScanContour {
+  ContourConstraint constraint = ContourConstraint::Plane;
+  std::array<double, 3> plane_normal{};            // Plane
+  std::array<double, 3> axis_point{}, axis{};      // Cylinder
+  std::array<double, 3> direction{};               // the first tangent
+  StopBody stop = StopBody::Sphere;
+  std::array<double, 3> stop_point{}, stop_normal{};
+  double stop_radius = 0;
+  std::int32_t count = 1;
+  double stop_after = 0;
+  std::array<double, 3> end_normal{};
+  double clearance = 2;
+};
 
 // What the motion loop needs to hold contact on a scan segment: the nominal surface's outward
 // normal (X Y Z) — constant on a line; on a circle, at a pose p, radial · unit(p − centre,
@@ -39,6 +69,7 @@ struct ScanSpec {
   std::int8_t radial = 0;  // 0 a line; +1 the surface faces away from the axis (a boss, a sphere), -1 toward it (a bore)
   double axial = 0;        // the normal's component along the axis (a cone or a sphere off its equator)
   double deflection = 0.3, band = 0.1, step = 0.1;
+  ScanContour contour{};  // phase Contour
 };
 
 // The largest correction the motion loop makes off a scan's nominal path, mm: a part further

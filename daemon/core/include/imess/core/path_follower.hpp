@@ -62,9 +62,14 @@ class PathFollower {
                     planner::ScanPhase scan = planner::ScanPhase::None) noexcept;
   void fail_and_brake(FailReason why, Nanos now) noexcept;  // the whole queue, then brake to rest
   void sampler_to_machine() noexcept;  // the sampler set to where the machine stands
-  // A scan stopped (lost contact, over range, no measuring probe): the queue fails; over
-  // range backs the probe off along the measured normal, anything else brakes to rest.
+  // A scan stopped (lost contact, over range, no measuring probe, an unknown contour's length
+  // run out): the queue fails; over range and a run-out contour back the probe off along the
+  // measured normal, anything else brakes to rest.
   void scan_stop(FailReason why, Nanos now) noexcept;
+  // An unknown contour met its stop body: it ends as a Probe's search does (the ring emptied
+  // of other ids), then brakes and backs off along its end normal; the retract's end closes
+  // the id Done with where the machine stands (ProbeCycle::finish_scan).
+  void contour_end(std::uint32_t id, Nanos now) noexcept;
 
   LoopContext& loop_;
   Outputs& outputs_;

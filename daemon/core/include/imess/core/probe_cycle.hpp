@@ -31,6 +31,9 @@ class ProbeCycle {
   // Brakes, then backs the probe off `distance` from `from` against `dir` (the direction it
   // pressed in), in Retract like after a hit (a scan pressed over range).
   void back_off(const AxisVec& from, const AxisVec& dir, double distance, Nanos now) noexcept;
+  // An unknown contour scan `id` met its stop body: back_off, and the retract's end closes the
+  // id as a Probe's (Done, probe_end, `end` = where the machine stands).
+  void finish_scan(std::uint32_t id, const AxisVec& from, const AxisVec& dir, double distance, Nanos now) noexcept;
 
  private:
   // A probe edge in a Probe's search: the hit (with the Probe's id), then the retract from it.
@@ -46,8 +49,9 @@ class ProbeCycle {
   PathFollower& path_;
   HandMode& hand_;
   Outputs& outputs_;
-  bool retracting_ = false;  // a Probe hit: its Done follows the retract
-  std::uint32_t probe_id_ = 0;  // that Probe's id
+  bool retracting_ = false;  // a Probe hit (or an unknown contour's end): its Done follows the retract
+  std::uint32_t probe_id_ = 0;  // that Probe's (scan's) id
+  bool scan_end_ = false;       // it is an unknown contour's end: its Done says where the machine stands
   AxisVec retract_target_ = AxisVec::Zero();  // where the last retract ends
 };
 

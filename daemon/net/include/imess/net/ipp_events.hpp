@@ -19,6 +19,7 @@ class IppEvents : public MotionObserver {
   void segment_end(const core::Event& e) override;
   bool core_reply(const core::Event& e) override;      // to the session's client number
   void hit(const core::Event& point, const JournaledHit& journaled) override;
+  void scanned(const core::Event& point, const JournaledHit& journaled) override;
   void state(core::Mode mode) override;                // a move waiting for the machine to stand
   void warning(const core::Event& e) override;         // HomingFailed
   void fault(const core::Event& e) override;

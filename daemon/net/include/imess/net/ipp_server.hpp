@@ -60,6 +60,7 @@ class IppServer : public IppTransactions {
   // The machine's events, from the observer fan-out (IppEvents, ipp_events.hpp; io thread).
   void segment_end(const core::Event& e);      // Done / Failed of an own id
   void hit(const core::Event& e);              // every measured point, after the journal
+  void scanned(const core::Event& e);          // a scan's point, after the journal (ipp_scan.cpp)
   void core_reply(const core::Event& e);       // the loop's answer to the session's Home
   void homed();
   void home_failed();                          // Warn HomingFailed, a fault while homing
@@ -100,6 +101,18 @@ class IppServer : public IppTransactions {
   bool start_reset(const Pending& p);           // ClearAllErrors on a faulted machine: the core's Reset
   enum class Planned : unsigned char { Yes, Busy, OutOfTravel, Refused };  // Busy: the machine still moves
   Planned plan_lines(std::vector<planner::Line> lines, std::string& why);
+  Planned plan_requests(const std::vector<planner::Request>& requests, std::string& why);
+  // ipp_scan.cpp: the known-contour scans (ScanOnLine, ScanOnCircle, ScanOnHelix) as a scan of
+  // the motion core, their points as data lines per OnScanReport
+  bool start_scan(const Pending& p, const planner::ScanShape& shape, double step_mm);
+  bool start_scan_line(const Pending& p, const ippdme::ScanOnLine& c);
+  bool start_scan_circle(const Pending& p, const ippdme::Point3& centre, const ippdme::Point3& start,
+                         const ippdme::Vector3& normal, double delta, double sfa, double step_deg, double pitch);
+  void flush_scan_points();                    // the points held back, as data lines of the scan's tag
+  // The unknown contours (ScanInPlaneEndIs…, ScanInCylEndIs…): the core's contour scan.
+  template <class T>
+  bool start_contour(const Pending& p, const T& c);
+  std::optional<double> unknown_density_;      // ScanUnknownDensity's Dis: the spacing when StepW is 0
   static ippdme::ErrorCode refusal_error(Planned p);  // OutOfTravel 2500, else 0511
   void end_step(std::optional<ippdme::ErrorCode> error);
   void step_failed(ippdme::ErrorCode code);
@@ -117,6 +130,8 @@ class IppServer : public IppTransactions {
   const ProgramRunner& programs_;
   bool user_enabled_ = false;
   std::vector<ippdme::Item> ptmeas_items_{ippdme::Item::X, ippdme::Item::Y, ippdme::Item::Z};
+  std::vector<ippdme::Item> scan_items_ = ippdme::kDefaultScanReport;  // OnScanReport
+  std::vector<ippdme::ScanPoint> scan_points_;  // the running scan's points not yet sent (< kScanPointsPerLine)
   std::optional<MoveDaemon> daemon_;
   ippdme::ToolBox tools_;
   ippdme::CsyChain csy_;

@@ -46,7 +46,7 @@ class IppTransactions {
     // with this error in its turn (docs/ippdme.md, "Lines the library refuses").
     std::optional<std::pair<ippdme::ErrorCode, std::string>> refused;
   };
-  enum class Step : unsigned char { None, Wait, GoTo, PtMeas, Retract, Home, Reset };
+  enum class Step : unsigned char { None, Wait, GoTo, PtMeas, Retract, Home, Reset, Scan };
 
   // What the server does with a command: answered at once (true) or started (false: a motion
   // step); a fast one (event tags); the session's end (EndSession, the connection gone).
