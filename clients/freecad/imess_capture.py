@@ -1,7 +1,8 @@
 # IMESS live capture for FreeCAD, without the GUI: reads messd's protocol lines from a
 # non-blocking socket, moves the probe marker with CurrCor and adds every measured point to the
-# document at once (with its hit's number, approach and tip radius). Fits (imess_fit), jogging
-# (imess_jog), plans (imess_inspect) and deviations (imess_deviation) build on it.
+# document at once (with its hit's number, approach and tip radius), and a scan's points to its
+# point cloud once per poll (imess_scan). Fits (imess_fit), jogging (imess_jog), plans
+# (imess_inspect) and deviations (imess_deviation) build on it.
 """IMESS capture logic for FreeCAD (testable under freecadcmd; the panel only wires it)."""
 
 import collections
@@ -15,6 +16,7 @@ import FreeCAD
 import Part
 
 from imess_events import EventLog
+from imess_scan import ScanClouds, parse_scan
 
 DEFAULT_HOST = "localhost"
 DEFAULT_PORT = 1066
@@ -137,6 +139,7 @@ class CaptureSession:
         self.pending = collections.deque()  # verbs sent and not yet answered (messd answers in order)
         self.last_sent = None               # clock() when the last line (or keep-alive) went out
         self.observers = []                 # observer(line, answered_verb) for every line received
+        self.scans = ScanClouds(doc, self.events)  # the scans' point clouds
         if self.sock is not None:
             self.sock.setblocking(False)
 
@@ -187,7 +190,13 @@ class CaptureSession:
                 self.closed_reason = reason
                 self.pending.clear()
                 self.control = ""
-                self.events.post("link", "link ended (%s); %d points captured" % (reason, len(self.points)))
+                try:
+                    if self.scans.close("link ended: %s" % reason):
+                        self.doc.recompute()
+                except Exception:  # noqa: BLE001 - the document was closed under the session: nothing to keep
+                    pass
+                self.events.post("link", "link ended (%s); %d points captured%s" % (
+                    reason, len(self.points), ", %d scan points" % self.scans.points if self.scans.points else ""))
 
     def poll(self):
         """Handles every complete line available now; returns how many were handled."""
@@ -215,6 +224,7 @@ class CaptureSession:
             handled += 1
         if len(self.buffer) > MAX_LINE:
             self.buffer = b""
+        changed |= self.scans.flush()  # the poll's scan points at once: one recompute, not one per point
         if changed:
             self.doc.recompute()
         return handled
@@ -238,6 +248,14 @@ class CaptureSession:
             self.last_hit = parse_hit(args)
             if self.last_hit is not None and self.last_hit["radius"] > 0:
                 self.set_tip_radius(self.last_hit["radius"])
+        elif verb == "Scan":
+            scan = parse_scan(args)
+            if scan is not None:
+                self.scans.add(scan)
+        elif verb in ("Done", "Failed"):
+            words = args.split()
+            if words and words[0].isdigit():
+                self.scans.end(int(words[0]), "done" if verb == "Done" else "failed: " + " ".join(words[1:2]))
         elif verb == "CurrCor":
             p = parse_xyz(args)
             if p is not None:

@@ -1,5 +1,6 @@
 # IMESS capture panel for FreeCAD: a dock panel that connects to messd, shows the live probe,
-# puts every measured point into the active document as it arrives, jogs the machine (press and
+# puts every measured point into the active document as it arrives, a scan's points into a point
+# cloud per scan, jogs the machine (press and
 # hold), fits and relates features with messcap, inspects against a plan and colours points by
 # deviation. Its layout never changes size while it runs. All logic is in the imess_*.py modules.
 """The IMESS dock panel (opened by the IMESS workbench, InitGui.py)."""
@@ -254,14 +255,15 @@ class CapturePanel(QtGui.QDockWidget):
         s = self.session
         if s is not None and s.position is not None:
             self.position.setText("X %10.3f   Y %10.3f   Z %10.3f" % (s.position.x, s.position.y, s.position.z))
+        scanned = ", %d scanned" % s.scans.points if s is not None and s.scans.points else ""
         if s is None:
             text = "not connected"
         elif not s.connected():
-            text = "not connected; %d points captured" % len(s.points)
+            text = "not connected; %d points captured%s" % (len(s.points), scanned)
         else:
             holder = s.control.split(" ")[0] if s.control not in ("", "none") else ""
             control = "control: this panel" if s.holds_control() else ("control: %s" % holder if holder else "control free")
-            text = "%s   %d points   %s" % (s.state or "connected", len(s.points), control)
+            text = "%s   %d points%s   %s" % (s.state or "connected", len(s.points), scanned, control)
         self.state.setText(text)
         self.state.setToolTip(text)
         self.show_events()
@@ -294,7 +296,7 @@ class CapturePanel(QtGui.QDockWidget):
 
     def follow_view(self):
         s = self.session
-        if self.follower.update(self.gui_view(), s.position, s.points, s.tip_radius):
+        if self.follower.update(self.gui_view(), s.position, s.points, s.tip_radius, s.scans.extent):
             FreeCADGui.updateGui()
         if self.follow_box.isChecked() != self.follower.following:
             self.follow_box.blockSignals(True)

@@ -1,5 +1,5 @@
-# IMESS view following for FreeCAD: the 3-D view is fitted to the probe and the points as they
-# come, at least a part's size across, until the user moves the view; the box logic runs without
+# IMESS view following for FreeCAD: the 3-D view is fitted to the probe and the points (the scans'
+# too) as they come, at least a part's size across, until the user moves the view; the box logic runs without
 # the GUI, the camera part only in a real FreeCAD window.
 """Keeping the probe and the measured points in view."""
 
@@ -77,12 +77,15 @@ class ViewFollower:
         if on:
             self.events.clear("view")
 
-    def update(self, view, position, points, tip_radius):
-        """Called from the panel's timer with the probe position and the point objects (each
-        with `Measured`, new ones appended); True when the view was fitted."""
+    def update(self, view, position, points, tip_radius, scanned=None):
+        """Called from the panel's timer with the probe position, the point objects (each
+        with `Measured`, new ones appended) and the scans' (low, high) extent; True when the view
+        was fitted."""
         for o in points[self.seen:]:
             self.extent = extend(self.extent, o.Measured)
         self.seen = len(points)
+        if scanned is not None:
+            self.extent = extend(extend(self.extent, scanned[0]), scanned[1])
         if not self.following or view is None:
             return False
         if view is not self.view:

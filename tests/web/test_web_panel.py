@@ -3,7 +3,8 @@
 a real messd: the page loads and shows the position, Load/Run of a shipped program shows its
 progress to ProgEnd, press-and-hold -Z touches the cube and the hit appears in the list and the
 views, 40 ForcePt points reach the page's list (the delay after the line protocol's push is
-printed as figures), a reloaded page lists the journal's newest hits, releasing a jog button stops, closing the tab mid-jog stops the machine, and a browser
+printed as figures), a reloaded page lists the journal's newest hits, a scan's points are the 3-D
+view's cloud and its summary line, drawn at most five times a second, releasing a jog button stops, closing the tab mid-jog stops the machine, and a browser
 from a host that may not control watches but cannot move. Screenshots of each state go to
 OUT_DIR (docs/web/ holds one set). Usage: test_web_panel.py BIN_DIR SOURCE_DIR OUT_DIR"""
 import json
@@ -108,6 +109,11 @@ class Line:
                 if left <= 0:
                     return None
                 self.cond.wait(left)
+
+    def skip(self):
+        """Reads on from the newest line: until() finds only what comes after."""
+        with self.cond:
+            self.cursor = len(self.lines)
 
     def find(self, prefix):
         """The first line with prefix seen so far, read or not: (arrival, text)."""
@@ -229,8 +235,78 @@ def check_inspection(driver):
     shot(driver, "panel-inspection")
 
 
+def scanning_config():
+    """tests/e2e/fast-cmm.json (the default CMM, brisk, in loop time at speed 4) with the measuring
+    probe of config/sim-servo-card-scanning.json: the scanning machine, as fast as the rest. On the
+    card's request-reply link, whose deflection comes every 1 ms cycle (the streamed line's status
+    frames come every few ms), so a scan brings well over a thousand points a second."""
+    with open(os.path.join(SRC, "tests", "e2e", "fast-cmm.json")) as f:
+        config = json.load(f)
+    with open(os.path.join(SRC, "config", "sim-servo-card-scanning.json")) as f:
+        config["sim"]["probe"] = json.load(f)["sim"]["probe"]
+    config["backend"] = {"type": "sim-servo-card", "link": "request-reply"}
+    path = os.path.join(tempfile.mkdtemp(prefix="imess-web-config-"), "scanning.json")
+    with open(path, "w") as f:
+        json.dump(config, f)
+    return path
+
+
+def check_scan(driver, watcher):
+    """A scan of the bore, a full turn at 20 mm/s with a point every 0.05 mm (400 a second of the
+    machine's time, some 1 600 a second of wall time at sim speed 4 when the host keeps up): the page's
+    cloud holds exactly the Scan lines messd sent, its line in the points panel says how many, the
+    view drew at most five times a second meanwhile, and framing everything shows the cloud."""
+    view = lambda key: driver.find_element(By.ID, "view3d").get_attribute("data-" + key)
+    send = lambda line: driver.execute_script("return window.imess.line(arguments[0]).then((r) => r.line)", line)
+    for line in ("GoTo 460 350 100", "GoTo 460 350 60"):
+        watcher.skip()
+        check(send(line) == "Ok GoTo" and watcher.until("State idle", 10) is not None, "the page moves the probe: " + line)
+    check(send("Set ScanStep 0.05") == "Ok Set", "a point every 0.05 mm")
+    watcher.skip()
+    page_now = lambda: driver.execute_script("return performance.now()")  # noqa: E731
+    since, started = page_now(), time.monotonic()
+    reply = send("ScanCirc 77 460 350 60 475 350 60 0 0 1 360 bore 20")
+    check(reply == "Ok ScanCirc", "the page queues a full turn of the bore: %s" % reply)
+    end = watcher.until(("Done 77", "Failed 77"), 30)
+    elapsed = time.monotonic() - started
+    check(end == "Done 77", "the scan ends: %s" % end)
+    with watcher.cond:
+        arrived = [(at, t) for at, t in watcher.lines if t and t.startswith("Scan ") and t.split()[2] == "77"]
+    scanned = [t for _, t in arrived]
+    n = len(scanned)
+    check(wait_for(lambda: view("scan-points") == str(n), 5),
+          "the page's cloud holds exactly the %d Scan lines messd sent (%s)" % (n, view("scan-points")))
+    until = page_now()
+    times = [t for t in driver.execute_script("return window.imessView3d.drawTimes()") if since <= t <= until]
+    gaps = [b - a for a, b in zip(times, times[1:])]
+    span = arrived[-1][0] - arrived[0][0] if n > 1 else 0
+    print("figures: %d scan points in %.2f s on 1066 (%.0f a second), %d drawings of the 3-D view in the %.2f s "
+          "from ScanCirc to all points in the page, at least %.0f ms apart" % (
+              n, span, (n - 1) / span if span else 0, len(times), (until - since) / 1000, min(gaps or [0])), flush=True)
+    check(n > 500 and len(times) >= 2 and min(gaps) >= 200,
+          "at most five drawings a second while the points come: %d, none closer than 200 ms to the one before"
+          % len(times))
+    line = wait_for(lambda: driver.find_element(By.CSS_SELECTOR, "#scans li[data-id='77']"), 5)
+    summary = wait_for(lambda: line.get_attribute("data-points") == str(n) and "done" in line.text and line.text, 5)
+    first, last = scanned[0].split()[1], scanned[-1].split()[1]
+    check(summary == "scan 77: %d points (%s–%s) done" % (n, first, last), "the points panel says so in one line: %r" % summary)
+    check(len(driver.find_elements(By.CSS_SELECTOR, "#scans li")) == 1 and
+          len(driver.find_elements(By.CSS_SELECTOR, "#points tbody tr")) == 20, "one line for the scan, no row per point")
+    fit = driver.find_element(By.ID, "view-fit")
+    driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", fit)
+    fit.click()
+    far = [float(v) for v in scanned[n // 2].split()[3:6]]  # across the bore from the start
+    rgb = driver.execute_script("return window.imessView3d.pixelAt(...arguments)", *far)
+    check(rgb and rgb[0] > 120 and rgb[0] > 2 * rgb[1] and rgb[2] > rgb[1],
+          "framed, the cloud is drawn in the scans' magenta where its point %s is: rgb %s" % (far, rgb))
+    shot(driver, "panel-scan")
+    watcher.skip()
+    check(send("Set ScanStep 0.1") == "Ok Set" and send("GoTo 460 350 100") == "Ok GoTo" and
+          watcher.until("State idle", 10) is not None, "out of the bore again")
+
+
 def main():
-    messd = Messd(["--config", os.path.join(SRC, "tests", "e2e", "fast-cmm.json")])
+    messd = Messd(["--config", scanning_config()])
     watcher = Line(messd.port)
     driver = browser()
     try:
@@ -339,6 +415,7 @@ def main():
             "return [...document.querySelectorAll('#points tbody tr')].map(r => Number(r.dataset.seq));"), 10)
         check(listed == list(range(newest, newest - 20, -1)), "a reloaded page lists the journal's newest 20 hits: %s" % listed)
         wait_for(lambda: position(driver) != "– – –" and text(driver, "link") == "online", 5)
+        check_scan(driver, watcher)
 
         # Releasing a held button stops the machine.
         wait_for(lambda: text(driver, "state") == "idle", 5)

@@ -1,5 +1,7 @@
-// The points as they arrive: the list, the 3-D view with the probe, downloads.
+// The points as they arrive: the list, the 3-D view with the probe, downloads; the scans' points
+// as a cloud in the view and a line per scan (scans.js).
 import { createView3d } from './view3d.js';
+import { createScanList } from './scans.js';
 
 export function setupPoints(messd) {
   const points = [];
@@ -8,10 +10,16 @@ export function setupPoints(messd) {
   let view = null;    // the 3-D view, once three.js has loaded
   const body = document.querySelector('#points tbody');
   const count = document.getElementById('points-count');
+  const scanList = createScanList(document.getElementById('scans'));
+  let scanWaiting = [];  // scan points that came before the view: drawn once it is there
+  let loading = true;    // three.js not loaded yet (without it, no view: nothing waits)
   const ready = createView3d(document.getElementById('view3d')).then((v) => {
     view = v;
-    if (!view) return null;
+    loading = false;
+    if (!view) { scanWaiting = []; return null; }
     for (const p of points) view.addPoint(p);
+    for (const p of scanWaiting) view.addScanPoint(p);
+    scanWaiting = [];
     if (probe) view.setProbe(probe, tipRadius);
     document.getElementById('view-fit').onclick = () => view.frame();
     window.imessView3d = view;  // for the browser tests
@@ -40,6 +48,17 @@ export function setupPoints(messd) {
     if (e.r > 0) tipRadius = e.r;
     if (view) view.addPoint(e);
   });
+  // A scan's point: into the view's cloud and its scan's line, not into the list (which holds
+  // hits). The hit numbers are shared: a point replayed and live is counted once.
+  messd.on('Scan', (e) => {
+    if (known.has(e.seq)) return;
+    known.add(e.seq);
+    scanList.add(e);
+    if (view) view.addScanPoint(e);
+    else if (loading) scanWaiting.push({ x: e.x, y: e.y, z: e.z });
+  });
+  messd.on('Done', (e) => scanList.end(e.id, 'done'));
+  messd.on('Failed', (e) => scanList.end(e.id, `failed: ${e.reason}`));
   messd.on('CurrCor', (e) => {
     probe = e;
     if (view) view.setProbe(e, tipRadius);
@@ -59,6 +78,8 @@ export function setupPoints(messd) {
     known.clear();
     body.replaceChildren();
     count.textContent = '0';
+    scanList.clear();
+    scanWaiting = [];
     if (view) view.clearPoints();
   };
   // The selected points, oldest first (all when none is selected), as the page got them.

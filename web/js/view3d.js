@@ -1,9 +1,12 @@
-// The 3-D view: the points, the newest marked, and the probe, in the machine's coordinates (Z
-// up), orbited with the mouse or a finger (three.js's OrbitControls). three.js is Debian's
-// libjs-three, which messd serves as /three/ (docs/web.md); without it the view says so and the
-// rest of the page works. Drawn on demand, not in a loop. The container carries what the scene
-// holds (data-points, data-last, data-probe: "x y z"), which the browser test reads.
+// The 3-D view: the points, the newest marked, the scans' points as a cloud of their own
+// colour, and the probe, in the machine's coordinates (Z up), orbited with the mouse or a finger
+// (three.js's OrbitControls). three.js is Debian's libjs-three, which messd serves as /three/
+// (docs/web.md); without it the view says so and the rest of the page works. Drawn on demand,
+// not in a loop. The container carries what the scene holds (data-points, data-last,
+// data-probe: "x y z", data-scan-points), which the browser test reads, and drawTimes() when
+// the latest drawings were.
 const kPoint = 0x1f5fbf;
+const kScan = 0xc2185b;
 const kNewest = 0xd0021b;
 const kProbe = 0x2e8b57;
 
@@ -38,20 +41,46 @@ export async function createView3d(box) {
   controls.enableDamping = false;
 
   const ball = new THREE.SphereBufferGeometry(1, 16, 12);
-  // The points: one cloud (one draw call however many there are) and the newest as a ball.
-  let capacity = 256;
-  let count = 0;
-  let positions = new Float32Array(capacity * 3);
-  const cloudGeometry = new THREE.BufferGeometry();
-  cloudGeometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-  cloudGeometry.setDrawRange(0, 0);
-  const cloud = new THREE.Points(cloudGeometry, new THREE.PointsMaterial({ color: kPoint, size: 5, sizeAttenuation: false }));
-  cloud.frustumCulled = false;
-  scene.add(cloud);
+  // The points: one cloud (one draw call however many there are) and the newest as a ball; the
+  // scans' points another cloud. Each buffer is preallocated and doubled when full, drawn up to
+  // its count (setDrawRange): tens of thousands of points are one array, no object per point.
+  function growingCloud(color, pointSize) {
+    const c = { capacity: 256, count: 0 };
+    c.positions = new Float32Array(c.capacity * 3);
+    c.geometry = new THREE.BufferGeometry();
+    c.geometry.setAttribute('position', new THREE.BufferAttribute(c.positions, 3));
+    c.geometry.setDrawRange(0, 0);
+    c.points = new THREE.Points(c.geometry, new THREE.PointsMaterial({ color, size: pointSize, sizeAttenuation: false }));
+    c.points.frustumCulled = false;
+    scene.add(c.points);
+    c.add = (x, y, z) => {
+      if (c.count === c.capacity) {  // the buffer, twice as large
+        c.capacity *= 2;
+        const grown = new Float32Array(c.capacity * 3);
+        grown.set(c.positions);
+        c.positions = grown;
+        c.geometry.setAttribute('position', new THREE.BufferAttribute(c.positions, 3));
+      }
+      c.positions[c.count * 3] = x;
+      c.positions[c.count * 3 + 1] = y;
+      c.positions[c.count * 3 + 2] = z;
+      c.count += 1;
+      c.geometry.setDrawRange(0, c.count);
+      c.geometry.attributes.position.needsUpdate = true;
+    };
+    c.clear = () => {
+      c.count = 0;
+      c.geometry.setDrawRange(0, 0);
+    };
+    return c;
+  }
+  const cloud = growingCloud(kPoint, 5);
+  const scanCloud = growingCloud(kScan, 3);
   const newest = new THREE.Mesh(ball, new THREE.MeshLambertMaterial({ color: kNewest }));
   newest.visible = false;
   scene.add(newest);
-  const bounds = new THREE.Box3();  // of every point
+  const bounds = new THREE.Box3();  // of every point, the scans' too
+  const scanPoint = new THREE.Vector3();
   const probe = new THREE.Group();  // the ball and its stem
   // See-through, so the point it has just touched shows.
   const tip = new THREE.Mesh(ball, new THREE.MeshLambertMaterial({ color: kProbe, transparent: true, opacity: 0.55 }));
@@ -69,6 +98,7 @@ export async function createView3d(box) {
   let size = 2;        // a point's radius in mm, from the scene's extent
   let framed = null;   // the box the camera was put on (with room around it)
   let follow = true;   // the camera follows what is added until the user orbits; ⤢ again
+  let framing = false; // frame() moves the camera: its change is drawn in turn, a hand's at once
   controls.addEventListener('start', () => { follow = false; });
   const inView = (v) => framed && framed.containsPoint(v);
 
@@ -77,17 +107,27 @@ export async function createView3d(box) {
   // messages and its dead-man keep-alives. Orbiting by hand draws at once.
   let due = false;
   let drawn = 0;
+  const drawTimes = [];  // performance.now() of the latest 64 drawings: the browser test reads them
   function render() {
     if (due) return;
     due = true;
-    setTimeout(() => requestAnimationFrame(() => { due = false; drawn = performance.now(); draw(); }),
-      Math.max(0, drawn + 200 - performance.now()));
+    const later = () => setTimeout(() => requestAnimationFrame(() => {
+      const now = performance.now();
+      if (now < drawn + 200) { later(); return; }  // a timer that fired early: the budget holds
+      due = false;
+      drawn = now;
+      draw(now);
+    }), Math.max(0, drawn + 200 - performance.now()));
+    later();
   }
 
-  function draw() {
+  function draw(now = performance.now()) {
+    drawTimes.push(now);
+    if (drawTimes.length > 64) drawTimes.shift();
     renderer.render(scene, camera);
-    box.dataset.points = String(count);
-    box.dataset.last = count ? fmt(newest.position) : '';
+    box.dataset.points = String(cloud.count);
+    box.dataset.scanPoints = String(scanCloud.count);
+    box.dataset.last = cloud.count ? fmt(newest.position) : '';
     box.dataset.probe = probe.visible ? fmt(probe.position) : '';
     box.dataset.extras = extras.children.map((o) => o.name).join(' ');
   }
@@ -114,7 +154,9 @@ export async function createView3d(box) {
     camera.near = span / 1000;
     camera.far = span * 100;
     camera.updateProjectionMatrix();
+    framing = true;  // the camera moved by the page, not by a hand: drawn within the budget
     controls.update();
+    framing = false;
     size = span / 150;
     newest.scale.setScalar(size * 1.8);
     axes.position.copy(all.min);
@@ -131,34 +173,32 @@ export async function createView3d(box) {
     stem.position.set(0, 0, length / 2 + radius);
   }
 
-  controls.addEventListener('change', draw);
+  controls.addEventListener('change', () => (framing ? render() : draw()));
   window.addEventListener('resize', resize);
   resize();
 
   const view = {
     THREE,
     addPoint(p) {
-      if (count === capacity) {  // the cloud's buffer, twice as large
-        capacity *= 2;
-        const grown = new Float32Array(capacity * 3);
-        grown.set(positions);
-        positions = grown;
-        cloudGeometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-      }
-      positions.set([p.x, p.y, p.z], count * 3);
-      count += 1;
-      cloudGeometry.setDrawRange(0, count);
-      cloudGeometry.attributes.position.needsUpdate = true;
+      cloud.add(p.x, p.y, p.z);
       newest.position.set(p.x, p.y, p.z);
       newest.scale.setScalar(size * 1.8);
       newest.visible = true;
       bounds.expandByPoint(newest.position);
-      if (follow && (!inView(newest.position) || count <= 2)) frame();
+      if (follow && (!inView(newest.position) || cloud.count <= 2)) frame();
+      render();
+    },
+    // A scan's point: into the scans' cloud; drawn with the next drawing (at most five a second).
+    addScanPoint(p) {
+      scanCloud.add(p.x, p.y, p.z);
+      scanPoint.set(p.x, p.y, p.z);
+      bounds.expandByPoint(scanPoint);
+      if (follow && (!inView(scanPoint) || scanCloud.count <= 2)) frame();
       render();
     },
     clearPoints() {
-      count = 0;
-      cloudGeometry.setDrawRange(0, 0);
+      cloud.clear();
+      scanCloud.clear();
       newest.visible = false;
       bounds.makeEmpty();
       if (follow) frame();
@@ -180,6 +220,7 @@ export async function createView3d(box) {
     },
     frame() { follow = true; frame(); render(); },
     render,
+    drawTimes: () => drawTimes.slice(),
     // The colour drawn where a point of the scene appears on the canvas: [r, g, b] (drawn and
     // read in one task: the drawing buffer is not kept after it is shown).
     pixelAt(x, y, z) {

@@ -32,16 +32,21 @@ class Messd:
     """A real messd (the simulated CMM with brisk speeds, tests/e2e/fast-cmm.json) on a free
     loopback port, its journal and frames in a directory of its own. Its clock runs at that
     file's sim.speed (4: measuring in a quarter of the time); a test that reads speeds off the
-    wall clock (a jog's mm/s) gives real_speed=True for the same machine at 1."""
+    wall clock (a jog's mm/s) gives real_speed=True for the same machine at 1; scanning=True gives
+    it the measuring probe of config/sim-servo-card-scanning.json."""
 
-    def __init__(self, real_speed=False):
+    def __init__(self, real_speed=False, scanning=False):
         self.dir = tempfile.mkdtemp(prefix="imess-freecad-messd-")
         config = os.path.join(SOURCE_DIR, "tests", "e2e", "fast-cmm.json")
-        if real_speed:
+        if real_speed or scanning:
             with open(config) as f:
                 settings = json.load(f)
-            settings["sim"]["speed"] = 1
-            config = os.path.join(self.dir, "fast-cmm-wall-speed.json")
+            if real_speed:
+                settings["sim"]["speed"] = 1
+            if scanning:
+                with open(os.path.join(SOURCE_DIR, "config", "sim-servo-card-scanning.json")) as f:
+                    settings["sim"]["probe"] = json.load(f)["sim"]["probe"]
+            config = os.path.join(self.dir, "fast-cmm-derived.json")
             with open(config, "w") as f:
                 json.dump(settings, f)
         self.proc = subprocess.Popen([os.path.join(BIN_DIR, "messd"), "--port", "0", "--listen", "127.0.0.1", "--no-rt",
