@@ -214,6 +214,8 @@ TEST_CASE("messcap killed (SIGKILL) in the middle of a 16 000-point scan and sta
         const auto t = std::chrono::steady_clock::now();
         cap->signal(SIGKILL);
         REQUIRE(cap->wait() == 128 + SIGKILL);
+        // As if the kill had come in the middle of a write: a line without its end.
+        std::ofstream(file, std::ios::app) << "474.998 350.0";
         cap = capture(messd.port(), {"-o", file, "--append"});
         away = std::chrono::steady_clock::now() - t;
       },
@@ -225,7 +227,8 @@ TEST_CASE("messcap killed (SIGKILL) in the middle of a 16 000-point scan and sta
   REQUIRE(file_gets(file, "# hit " + std::to_string(seqs.back()) + " scan 3"));
   cap->signal(SIGINT);
   CHECK(cap->wait() == 0);
-  CHECK_THAT(cap->err(), Catch::Contains("continuing after hit"));
+  CHECK_THAT(cap->err(), Catch::Contains("continuing after hit") &&
+                            Catch::Contains("cut the unfinished last line off " + file + " ('474.998 350.0'"));
   const auto n = numbers_in(read_file(file));
   CHECK(n.seqs.size() == seqs.size());
   CHECK(n.seqs == seqs);  // every number once, in order
