@@ -1,6 +1,8 @@
-// The capture loop: connect, Hello, take Hit (or MeasPt from a messd without a journal) until N
-// points, Ctrl-C or the link closes (--reconnect: Replay after each reconnect; hits messd cannot
-// give are reported); the optional fit. The file before the screen; .hits takes only Hit lines.
+// The capture loop: connect, Hello, take Hit and Scan lines (or MeasPt from a messd without a
+// journal) until N points, Ctrl-C or the link closes (--reconnect: Replay after each reconnect;
+// hits messd cannot give are reported); the optional fit. The points of one read from the
+// connection go to the file together (one fdatasync), then to the screen; .hits takes only
+// Hit and Scan lines.
 #include "capture_command.hpp"
 
 #include <csignal>
@@ -46,6 +48,9 @@ bool open_output(const CaptureOptions& options, CaptureOutput& output) {
     base.frame = options.out.frame.value_or("");
     base.outer = options.out.outer;
     if (options.out.output) output.file = std::make_unique<PointFile>(*options.out.output, options.out.mode, base);
+    if (output.file && !output.file->cut_line().empty())
+      std::cerr << "messcap: cut the unfinished last line off " << output.file->path() << " ('"
+                << output.file->cut_line() << "': a capture ended while writing it)\n";
   } catch (const std::exception& e) {
     std::cerr << "messcap: " << e.what() << "\n";
     return false;
@@ -122,7 +127,7 @@ class Capture {
 
   bool done() const { return refused_ || (options_.count && received_ >= *options_.count); }
 
-  // The file holds hits with their approach and tip radius (.hits): only Hit lines can fill it.
+  // The file holds hits with their approach and tip radius (.hits): only Hit and Scan lines can fill it.
   bool wants_approach() const { return output_.file && output_.file->needs_approach(); }
 
   // Reads lines until N points, Ctrl-C or (without --reconnect) the link closes; reconnects
@@ -145,6 +150,7 @@ class Capture {
       auto status = link_.connection() ? link_.connection()->poll_lines(std::chrono::milliseconds{200},
                                                                         [this](std::string_view line) { on_line(line); })
                                        : client::ReadStatus::Closed;
+      flush_taken();
       for (const auto& note : sequencer_.take_notes()) std::cerr << "messcap: " << note << "\n";
       if (status == client::ReadStatus::Closed && !on_closed()) return;
     }
@@ -227,20 +233,20 @@ class Capture {
       hit.approach = to_vector(h.dir);
       if (hit.has_approach()) hit.approach.normalize();  // 6 decimals on the wire
       hit.radius = h.radius;
-      take(hit.surface, hit, h.seq);
+      take(hit.surface, hit, PointNumber{h.seq, h.scan ? std::optional<std::uint64_t>(h.id) : std::nullopt});
     }
   }
 
-  // One point (with the approach and tip radius of its hit when it came as a Hit): to disk
-  // first, then kept for --fit, then on the screen.
-  void take(Eigen::Vector3d p, std::optional<metrology::ProbedPoint> hit, std::optional<std::uint64_t> seq) {
+  // One point (with the approach and tip radius of its hit when it came as a Hit or Scan line):
+  // for the file and --fit; flush_taken() puts it on disk, then on the screen.
+  void take(Eigen::Vector3d p, std::optional<metrology::ProbedPoint> hit, std::optional<PointNumber> number) {
     if (done()) return;  // N reached: later points in the same read are not ours to take
     ++received_;
     if (output_.frame) {
       p = output_.frame->point_from_parent(p);
       if (hit) hit = hit_from_parent(*output_.frame, *hit);
     }
-    if (output_.file) hit ? output_.file->append(*hit, seq) : output_.file->append(p, seq);
+    if (output_.file) hit ? output_.file->append(*hit, number) : output_.file->append(p, number);
     if (options_.out.fit) {
       kept_.push_back(p);
       if (hit) kept_hits_.push_back(*hit);
@@ -250,9 +256,20 @@ class Capture {
       text.push_back(' ');
       protocol::append_mm(text, v);
     }
-    if (seq) text += " (hit " + std::to_string(*seq) + ")";  // its number for Align, Replay
-    std::printf("%s\n", text.c_str());
+    if (number) {  // its number for Align, Replay
+      text += " (hit " + std::to_string(number->seq);
+      text += number->scan ? " of scan " + std::to_string(*number->scan) + ")" : std::string(")");
+    }
+    screen_ += text + "\n";
+  }
+
+  // The points taken since the last call: into the file (synced), then on the screen.
+  void flush_taken() {
+    if (output_.file) output_.file->flush();
+    if (screen_.empty()) return;
+    std::fwrite(screen_.data(), 1, screen_.size(), stdout);
     std::fflush(stdout);
+    screen_.clear();
   }
 
   void report_received() const {
@@ -305,6 +322,7 @@ class Capture {
   bool hit_mode_ = false;  // a Hit line was seen: MeasPt lines are the same points again
   client::Reconnector link_;
   int received_ = 0;
+  std::string screen_;  // the taken points' lines, shown once they are on disk
   std::vector<Eigen::Vector3d> kept_;            // for --fit
   std::vector<metrology::ProbedPoint> kept_hits_;  // for --fit into .hits (all points came as Hit)
   bool refused_ = false;  // a .hits capture from a messd without Hit

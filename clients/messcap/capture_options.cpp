@@ -126,11 +126,11 @@ std::string capture_usage() {
          "                   (SIGINT/SIGTERM) or until messd closes the connection\n"
          "  -o, --output FILE  the format follows the extension (millimetres):\n" +
          formats +
-         "                   .csv/.xyz/.asc/.hits grow by one line per point; the others are\n"
-         "                   rewritten whole (temporary file + rename) per point\n"
+         "                   .csv/.xyz/.asc/.hits grow by the points of each read; the others\n"
+         "                   are rewritten whole (temporary file + rename) per read\n"
          "  --append         continue an existing .csv/.xyz/.asc/.hits (default: refuse to\n"
          "                   touch it): first fetch (Replay) every hit after the file's\n"
-         "                   last (a .csv needs its 'hit' column: header hit,x,y,z)\n"
+         "                   last (a .csv needs its 'hit' column: header hit,x,y,z,scan)\n"
          "  --reconnect      when messd goes away, wait for it and fetch what was missed\n"
          "                   (without: exit status 4 when messd goes away)\n"
          "  --force          replace an existing FILE\n"

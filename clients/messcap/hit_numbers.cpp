@@ -1,5 +1,5 @@
-// Reading and writing the hit numbers of capture files: the `hit` column of .csv, the
-// "# hit N" comments of .xyz/.asc/.hits.
+// Reading and writing the hit numbers of capture files: the `hit` and `scan` columns of .csv,
+// the "# hit N [scan S]" comments of .xyz/.asc/.hits.
 #include "hit_numbers.hpp"
 
 #include <algorithm>
@@ -37,15 +37,34 @@ bool keeps_hit_numbers(const std::string& path) {
   return ext == ".csv" || ext == ".xyz" || ext == ".asc" || ext == ".hits";
 }
 
-std::string hit_comment(std::uint64_t seq) { return " # hit " + std::to_string(seq); }
-
-std::string capture_header(const std::string& path, const std::string& format_header) {
-  return is_csv(path) ? "hit,x,y,z\n" : format_header;
+std::string hit_comment(const PointNumber& number) {
+  return " # hit " + std::to_string(number.seq) + (number.scan ? " scan " + std::to_string(*number.scan) : std::string());
 }
 
-std::string with_hit_number(const std::string& path, std::string line, std::optional<std::uint64_t> seq) {
-  if (is_csv(path)) return (seq ? std::to_string(*seq) : std::string()) + "," + line;
-  if (seq && keeps_hit_numbers(path)) line.insert(line.size() - 1, hit_comment(*seq));
+std::string capture_header(const std::string& path, const std::string& format_header) {
+  return is_csv(path) ? "hit,x,y,z,scan\n" : format_header;
+}
+
+bool csv_has_scan_column(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    line = trimmed(line);
+    if (line.empty() || line[0] == '#') continue;
+    return line.size() >= 5 && line.compare(line.size() - 5, 5, ",scan") == 0;
+  }
+  return false;
+}
+
+std::string with_hit_number(const std::string& path, std::string line, const std::optional<PointNumber>& number,
+                            bool scan_column) {
+  if (is_csv(path)) {
+    std::string row = (number ? std::to_string(number->seq) : std::string()) + "," + line;
+    if (scan_column)
+      row.insert(row.size() - 1, "," + (number && number->scan ? std::to_string(*number->scan) : std::string()));
+    return row;
+  }
+  if (number && keeps_hit_numbers(path)) line.insert(line.size() - 1, hit_comment(*number));
   return line;
 }
 
@@ -69,8 +88,8 @@ std::optional<std::uint64_t> last_hit_number(const std::string& path) {
           throw std::runtime_error(
               "'" + path + "' has no 'hit' column (its header is '" + line +
               "': written by messcap convert or an older messcap), so a capture cannot continue it without losing "
-              "the points measured since; capture into a new .csv (its header is 'hit,x,y,z'), or continue a file "
-              "that keeps hit numbers: a .csv with the header 'hit,x,y,z', .xyz, .asc or .hits");
+              "the points measured since; capture into a new .csv (its header is 'hit,x,y,z,scan'), or continue a "
+              "file that keeps hit numbers: a .csv with the header 'hit,x,y,z,scan' or 'hit,x,y,z', .xyz, .asc or .hits");
         continue;
       }
       if (auto n = protocol::parse_sequence_number(std::string_view(line).substr(0, line.find(','))))
@@ -79,7 +98,8 @@ std::optional<std::uint64_t> last_hit_number(const std::string& path) {
     }
     auto at = line.rfind("# hit ");
     if (at == std::string::npos) continue;
-    if (auto n = protocol::parse_sequence_number(std::string_view(line).substr(at + 6)))
+    const std::string_view number = std::string_view(line).substr(at + 6);  // "17" or "17 scan 5"
+    if (auto n = protocol::parse_sequence_number(number.substr(0, number.find(' '))))
       last = std::max(last.value_or(0), *n);
   }
   return last;

@@ -1,5 +1,6 @@
 // The live measurement of an inspection plan over messd's protocol (MachineLink: one command
-// at a time, MoveTo / Probe each waited for until its Done, Hit lines collected by Probe id).
+// at a time, MoveTo / Probe / ScanCirc / ScanLine each waited for until its Done, Hit and Scan
+// lines collected by id).
 #include "inspect_session.hpp"
 
 #include <algorithm>
@@ -29,21 +30,35 @@ class Session {
     if (plan_.probing.search) link_.request("Set SearchDist " + std::to_string(*plan_.probing.search));
     tip_radius_ = plan_.probing.tip_radius ? *plan_.probing.tip_radius : link_.status_number("TipRadius");
     feed_ = options_.feed.value_or(plan_.probing.feed);
+    if (has_scans()) {  // put back when the plan is done: a scan's step is the plan's, not the machine's
+      machine_scan_step_ = scan_step_ = link_.get_number("ScanStep");
+      machine_scan_speed_ = link_.get_number("ScanSpeed");
+    }
     log_ << "messcap: measuring " << plan_.part << " on " << options_.endpoint.to_string() << " (tip radius "
          << tip_radius_ << " mm, feed " << feed_ << " mm/s)\n";
 
     // Up to the safe height where the machine stands, before anything moves sideways.
     move_z(frame_.point_to_parent(Vector3d(0, 0, plan_.probing.safe_z)).z());
     const auto order = measuring_order(plan_);
-    for (std::size_t k = 0; k < order.size(); ++k) {
-      measure_feature(*order[k]);
-      if (plan_.alignment && k == 2) align();
+    try {
+      for (std::size_t k = 0; k < order.size(); ++k) {
+        measure_feature(*order[k]);
+        if (plan_.alignment && k == 2) align();
+      }
+    } catch (...) {
+      put_back_scan_step();
+      throw;
     }
+    if (has_scans()) set_scan_step(machine_scan_step_);
     release();
     return points_;
   }
 
  private:
+  bool has_scans() const {
+    return std::any_of(plan_.features.begin(), plan_.features.end(), [](const PlanFeature& f) { return !f.scans.empty(); });
+  }
+
   // --- moves ---
   std::string feed_word() const {
     char buf[32];
@@ -66,7 +81,9 @@ class Session {
   Vector3d target_of(const metrology::ProbeTarget& t) const { return t.point - tip_radius_ * t.approach; }
 
   void measure_feature(const PlanFeature& f) {
-    if (f.probes.empty()) throw MachineError("feature '" + f.name + "' has no probe points to measure");
+    if (f.probes.empty() && f.scans.empty())
+      throw MachineError("feature '" + f.name + "' has no probe points or scans to measure");
+    const std::size_t before = points_.size();
     for (std::size_t i = 0; i < f.probes.size(); ++i) {
       const Vector3d start = start_of(f.probes[i]);
       if (i == 0 || f.lift_between) {
@@ -79,7 +96,83 @@ class Session {
       move_to(start);
       if (f.lift_between || i + 1 == f.probes.size()) move_to(above(start));
     }
-    log_ << "messcap: " << f.name << ": " << f.probes.size() << (f.probes.size() == 1 ? " point\n" : " points\n");
+    for (const auto& s : f.scans) scan(f, s);
+    const std::size_t n = points_.size() - before;
+    log_ << "messcap: " << f.name << ": " << n << (n == 1 ? " point" : " points");
+    if (!f.scans.empty()) log_ << " (" << f.scans.size() << (f.scans.size() == 1 ? " scan)" : " scans)");
+    log_ << "\n";
+  }
+
+  // One scan: over its start at the safe height, down to the clearance off the surface there,
+  // the scan (ScanCirc or ScanLine, its points collected), out to the clearance where it ends
+  // and up. The points are surface points with the measured direction toward the surface and
+  // the tip radius, as a Hit's are: fitted probe-compensated like hits.
+  void scan(const PlanFeature& f, const metrology::ScanPath& s) {
+    const double off = tip_radius_ + plan_.probing.clearance;
+    const Vector3d start = s.start + off * s.normal_at_start();
+    const Vector3d end = s.end_point() + off * s.normal_at_end();
+    move_to(above(start));
+    move_to(start);
+    set_scan_step(s.step.value_or(machine_scan_step_));
+    const metrology::Frame& m = frame_;
+    const Eigen::Matrix3d& rot = m.rotation();
+    std::string verb, words;
+    char buf[256];
+    if (s.kind == metrology::ScanPath::Kind::Circle) {
+      const Vector3d c = m.point_to_parent(s.center), p = m.point_to_parent(s.start), a = rot * s.axis;
+      std::snprintf(buf, sizeof buf, "%.4f %.4f %.4f %.4f %.4f %.4f %.9f %.9f %.9f %.4f %s", c.x(), c.y(), c.z(), p.x(), p.y(),
+                    p.z(), a.x(), a.y(), a.z(), s.sweep_deg, s.bore ? "bore" : "boss");
+      verb = "ScanCirc";
+    } else {
+      const Vector3d p = m.point_to_parent(s.start), q = m.point_to_parent(s.end), n = rot * s.normal;
+      std::snprintf(buf, sizeof buf, "%.4f %.4f %.4f %.4f %.4f %.4f %.9f %.9f %.9f", p.x(), p.y(), p.z(), q.x(), q.y(), q.z(),
+                    n.x(), n.y(), n.z());
+      verb = "ScanLine";
+    }
+    words = buf;
+    if (s.speed) {
+      std::snprintf(buf, sizeof buf, " %.4f", *s.speed);
+      words += buf;
+    }
+    // Time for the path at its speed (the machine's when the plan names none), plus the moves.
+    const double speed = s.speed.value_or(machine_scan_speed_);
+    const auto timeout = std::chrono::seconds{120 + static_cast<long>(2 * s.length() / std::max(speed, 0.1))};
+    std::vector<protocol::HitMsg> taken;
+    try {
+      taken = link_.scan(verb, words, timeout);
+    } catch (const MoveFailed& e) {
+      if (e.reason() == "NoMeasuringProbe")
+        throw MachineError("feature '" + f.name + "': " + e.what() +
+                           ": a scan needs a measuring (analog) probe; measure the feature with probe points instead");
+      throw MachineError("feature '" + f.name + "': " + e.what());
+    } catch (const MachineError& e) {
+      throw MachineError("feature '" + f.name + "': " + e.what());
+    }
+    for (const auto& h : taken) {
+      metrology::MeasuredPoint p;
+      p.feature = f.name;
+      p.point = {h.p.x, h.p.y, h.p.z};
+      p.approach = Vector3d(h.dir.x, h.dir.y, h.dir.z).normalized();
+      p.radius = h.radius;
+      points_.push_back(p);
+    }
+    move_to(end);
+    move_to(above(end));
+  }
+
+  // After a failure, as far as messd still listens: its ScanStep as it was.
+  void put_back_scan_step() noexcept {
+    try {
+      if (has_scans()) set_scan_step(machine_scan_step_);
+    } catch (const std::exception&) {
+    }
+  }
+
+  // Sends Set ScanStep when it differs from what messd has now.
+  void set_scan_step(double step) {
+    if (std::abs(step - scan_step_) < 1e-9) return;
+    link_.request("Set ScanStep " + std::to_string(step));
+    scan_step_ = step;
   }
 
   void probe(const PlanFeature& f, const metrology::ProbeTarget& t) {
@@ -133,6 +226,7 @@ class Session {
   Frame frame_;
   MachineLink link_;
   double tip_radius_ = 0, feed_ = 0;
+  double machine_scan_step_ = 0, scan_step_ = 0, machine_scan_speed_ = 0;  // messd's ScanStep, ScanSpeed
   std::vector<metrology::MeasuredPoint> points_;
 };
 

@@ -10,7 +10,6 @@ namespace imess::messcap {
 namespace {
 
 constexpr auto kReplyTimeout = std::chrono::seconds{10};
-constexpr auto kMoveTimeout = std::chrono::seconds{120};
 
 bool starts_with(std::string_view line, std::string_view prefix) { return line.substr(0, prefix.size()) == prefix; }
 
@@ -91,11 +90,11 @@ void MachineLink::on_line(std::string_view line) {
   if (on_event) on_event(line);
 }
 
-std::uint64_t MachineLink::queued(const std::string& verb, const std::string& words) {
+std::uint64_t MachineLink::queued(const std::string& verb, const std::string& words, std::chrono::seconds timeout) {
   const std::uint64_t id = next_id_++;
   const std::string line = verb + " " + std::to_string(id) + " " + words;
   request(line);
-  read_until([&] { return ended_.count(id) > 0; }, kMoveTimeout, "the end of '" + line + "'");
+  read_until([&] { return ended_.count(id) > 0; }, timeout, "the end of '" + line + "'");
   const std::string end = ended_[id];
   if (!starts_with(end, "Done ")) {
     std::istringstream w(end);
@@ -114,6 +113,20 @@ protocol::HitMsg MachineLink::probe(const std::string& words) {
     throw MachineError("Probe " + std::to_string(id) + " " + words + " ended with " + std::to_string(count) +
                        " hits (expected 1)");
   return it->second.front();
+}
+
+std::vector<protocol::HitMsg> MachineLink::scan(const std::string& verb, const std::string& words,
+                                                std::chrono::seconds timeout) {
+  const std::uint64_t id = queued(verb, words, timeout);
+  std::vector<protocol::HitMsg> points;
+  if (auto it = hits_.find(id); it != hits_.end()) {
+    for (auto& h : it->second)
+      if (h.scan) points.push_back(h);
+    hits_.erase(it);
+  }
+  if (points.empty())
+    throw MachineError(verb + " " + std::to_string(id) + " " + words + " ended with no Scan points");
+  return points;
 }
 
 double MachineLink::get_number(const std::string& name) {

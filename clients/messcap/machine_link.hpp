@@ -1,6 +1,7 @@
 // MachineLink: a measuring client's conversation with messd, one command at a time — a request
-// answered Ok or Err, a queued move (MoveTo, Probe) waited for until its Done, the Hit of a
-// Probe collected by its id. Shared by `messcap inspect` and `messcap qualify`.
+// answered Ok or Err, a queued move (MoveTo, Probe, ScanCirc, ScanLine) waited for until its
+// Done, the Hit of a Probe and the Scan points of a scan collected by its id. Shared by
+// `messcap inspect` and `messcap qualify`.
 #pragma once
 
 #include <chrono>
@@ -50,11 +51,15 @@ class MachineLink {
   // The same, the reply returned whichever it is (for commands an older messd may not know).
   std::string try_request(const std::string& line);
 
-  // A queued command ("MoveTo", "X.. F..") under the next id: Ok, then its Done. Returns the id.
-  // Throws MoveFailed when it ends Failed.
-  std::uint64_t queued(const std::string& verb, const std::string& words);
+  // A queued command ("MoveTo", "X.. F..") under the next id: Ok, then its Done within
+  // `timeout`. Returns the id. Throws MoveFailed when it ends Failed.
+  std::uint64_t queued(const std::string& verb, const std::string& words,
+                       std::chrono::seconds timeout = std::chrono::seconds{120});
   // A Probe toward `words` that must give exactly one Hit; returns it.
   protocol::HitMsg probe(const std::string& words);
+  // A scan ("ScanCirc" or "ScanLine" and its words after the id) that must give Scan points;
+  // returns them in the order taken.
+  std::vector<protocol::HitMsg> scan(const std::string& verb, const std::string& words, std::chrono::seconds timeout);
 
   // `Get name` as a number; `Status`'s value after `word` (TipRadius, Pos: the first number).
   double get_number(const std::string& name);

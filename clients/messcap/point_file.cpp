@@ -1,5 +1,5 @@
 // PointFile: O_APPEND line writes plus fdatasync for line formats, whole-file atomic rewrites
-// (temporary file, fdatasync, rename) for the others.
+// (temporary file, fdatasync, rename) for the others — once per flush.
 #include "point_file.hpp"
 
 #include "hit_numbers.hpp"
@@ -10,6 +10,8 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 
 namespace imess::messcap {
@@ -73,12 +75,27 @@ PointFile::PointFile(std::string path, OpenMode mode, exchange::ExportData base)
   }
   created_ = !existed;
   if (format_->appendable()) {
+    if (::lseek(fd_, 0, SEEK_END) > 0) cut_unfinished_line();
     if (::lseek(fd_, 0, SEEK_END) == 0) append_text(capture_header(path_, format_->header()));
+    else scan_column_ = csv_has_scan_column(path_);  // continued in the layout it has
   } else {
     ::close(fd_);  // the name is claimed; from now on the file is replaced whole
     fd_ = -1;
     rewrite();
   }
+}
+
+// A capture killed while writing may leave its last line unfinished (no "\n"): that point was
+// never complete, and the capture continuing the file fetches it again by its number.
+void PointFile::cut_unfinished_line() {
+  std::ifstream in(path_, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.eof() && in.fail()) throw std::runtime_error("cannot read '" + path_ + "': " + std::strerror(errno));
+  if (text.empty() || text.back() == '\n') return;
+  const auto keep = text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1;
+  if (::ftruncate(fd_, static_cast<off_t>(keep)) != 0)
+    throw std::runtime_error("cannot cut the unfinished last line of '" + path_ + "': " + std::strerror(errno));
+  cut_line_ = text.substr(keep);
 }
 
 PointFile::~PointFile() {
@@ -91,24 +108,36 @@ void PointFile::append_text(const std::string& text) {
 
 void PointFile::rewrite() { write_file_atomically(path_, format_->write(data_)); }
 
-void PointFile::append(const Eigen::Vector3d& p, std::optional<std::uint64_t> hit) {
+void PointFile::append(const Eigen::Vector3d& p, const std::optional<PointNumber>& number) {
   if (needs_approach())
     throw std::logic_error("'" + path_ + "' holds hits with approach direction and tip radius; a point without them "
                            "cannot be written to it");
-  add(p, nullptr, hit);
+  add(p, nullptr, number);
 }
 
-void PointFile::append(const metrology::ProbedPoint& h, std::optional<std::uint64_t> hit) { add(h.surface, &h, hit); }
+void PointFile::append(const metrology::ProbedPoint& h, const std::optional<PointNumber>& number) {
+  add(h.surface, &h, number);
+}
 
-void PointFile::add(const Eigen::Vector3d& p, const metrology::ProbedPoint* h, std::optional<std::uint64_t> hit) {
+void PointFile::add(const Eigen::Vector3d& p, const metrology::ProbedPoint* h, const std::optional<PointNumber>& number) {
   if (format_->appendable()) {
     std::string line = needs_approach() ? format_->hit_line(*h, data_.decimals) : format_->point_line(p, data_.decimals);
-    append_text(with_hit_number(path_, std::move(line), hit));
+    pending_ += with_hit_number(path_, std::move(line), number, scan_column_);
   } else {
     data_.points.push_back(p);
-    rewrite();
+    rewrite_due_ = true;
   }
   ++points_;
+}
+
+void PointFile::flush() {
+  if (format_->appendable()) {
+    append_text(pending_);
+    pending_.clear();
+  } else if (rewrite_due_) {
+    rewrite();
+    rewrite_due_ = false;
+  }
 }
 
 void PointFile::set_fit(const exchange::FitReport& fit) {

@@ -3,6 +3,7 @@
 #include "imess/metrology/inspection_plan.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <initializer_list>
 #include <set>
 
@@ -126,17 +127,17 @@ Geometry read_geometry(const Reader& r, const json& f, const std::string& path, 
   switch (kind) {
     case FeatureKind::Point:
     case FeatureKind::Plane:
-      r.only_keys(f, path, {"name", "type", "point", "normal", "probe", "moves"});
+      r.only_keys(f, path, {"name", "type", "point", "normal", "probe", "scan", "moves"});
       g.point = r.vector(r.required(f, path, "point", "[x, y, z]"), Reader::join(path, "point"));
       g.direction = r.direction(r.required(f, path, "normal", "the outward normal [i, j, k]"), Reader::join(path, "normal"));
       break;
     case FeatureKind::Line:
-      r.only_keys(f, path, {"name", "type", "point", "direction", "probe", "moves"});
+      r.only_keys(f, path, {"name", "type", "point", "direction", "probe", "scan", "moves"});
       g.point = r.vector(r.required(f, path, "point", "[x, y, z]"), Reader::join(path, "point"));
       g.direction = r.direction(r.required(f, path, "direction", "[i, j, k]"), Reader::join(path, "direction"));
       break;
     case FeatureKind::Circle:
-      r.only_keys(f, path, {"name", "type", "center", "normal", "diameter", "inner", "probe", "moves"});
+      r.only_keys(f, path, {"name", "type", "center", "normal", "diameter", "inner", "probe", "scan", "moves"});
       g.point = r.vector(r.required(f, path, "center", "[x, y, z]"), Reader::join(path, "center"));
       g.direction = r.direction(r.required(f, path, "normal", "the normal of the circle's plane [i, j, k]"),
                                 Reader::join(path, "normal"));
@@ -144,7 +145,7 @@ Geometry read_geometry(const Reader& r, const json& f, const std::string& path, 
       inner();
       break;
     case FeatureKind::Sphere:
-      r.only_keys(f, path, {"name", "type", "center", "diameter", "inner", "probe", "moves"});
+      r.only_keys(f, path, {"name", "type", "center", "diameter", "inner", "probe", "scan", "moves"});
       g.point = r.vector(r.required(f, path, "center", "[x, y, z]"), Reader::join(path, "center"));
       g.diameter = r.positive(r.required(f, path, "diameter", "a number above 0"), Reader::join(path, "diameter"));
       inner();
@@ -152,9 +153,9 @@ Geometry read_geometry(const Reader& r, const json& f, const std::string& path, 
     case FeatureKind::Cylinder:
     case FeatureKind::Cone:
       if (kind == FeatureKind::Cylinder)
-        r.only_keys(f, path, {"name", "type", "point", "axis", "diameter", "inner", "probe", "moves"});
+        r.only_keys(f, path, {"name", "type", "point", "axis", "diameter", "inner", "probe", "scan", "moves"});
       else
-        r.only_keys(f, path, {"name", "type", "point", "axis", "diameter", "apex_angle_deg", "inner", "probe", "moves"});
+        r.only_keys(f, path, {"name", "type", "point", "axis", "diameter", "apex_angle_deg", "inner", "probe", "scan", "moves"});
       g.point = r.vector(r.required(f, path, "point", "a point on the axis [x, y, z]"), Reader::join(path, "point"));
       g.direction = r.direction(r.required(f, path, "axis", "the axis direction [i, j, k]"), Reader::join(path, "axis"));
       g.diameter = r.positive(r.required(f, path, "diameter", "a number above 0"), Reader::join(path, "diameter"));
@@ -187,6 +188,89 @@ ProbeTarget read_probe(const Reader& r, const json& v, const std::string& path) 
   return t;
 }
 
+std::string plan_number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// A number in [lo, hi], the range messd accepts for the same parameter.
+double in_range(const Reader& r, const json& v, const std::string& path, double lo, double hi, const char* unit) {
+  const double d = r.number(v, path);
+  if (!(d >= lo && d <= hi))
+    r.fail(path, "expected " + plan_number_text(lo) + " … " + plan_number_text(hi) + " " + unit);
+  return d;
+}
+
+bool is_round(FeatureKind k) {
+  return k == FeatureKind::Circle || k == FeatureKind::Sphere || k == FeatureKind::Cylinder || k == FeatureKind::Cone;
+}
+
+// `"circle": {center, axis, start, sweep, surface}`: the centre, axis and side default to a
+// round feature's own.
+void read_scan_circle(const Reader& r, const json& c, const std::string& path, const Geometry& g, ScanPath& s) {
+  if (!c.is_object()) r.fail(path, "expected {\"start\": [x, y, z], \"center\", \"axis\", \"sweep\", \"surface\"}");
+  r.only_keys(c, path, {"center", "axis", "start", "sweep", "surface"});
+  s.kind = ScanPath::Kind::Circle;
+  const bool round = is_round(g.kind);
+  const bool has_axis = g.kind == FeatureKind::Circle || g.kind == FeatureKind::Cylinder || g.kind == FeatureKind::Cone;
+  if (auto it = c.find("center"); it != c.end()) s.center = r.vector(*it, Reader::join(path, "center"));
+  else if (round) s.center = g.point;
+  else r.fail(Reader::join(path, "center"), "missing (expected a point on the scan's axis [x, y, z]; only a circle, sphere, cylinder or cone gives its own)");
+  if (auto it = c.find("axis"); it != c.end()) s.axis = r.direction(*it, Reader::join(path, "axis"));
+  else if (has_axis) s.axis = g.direction;
+  else r.fail(Reader::join(path, "axis"), "missing (expected the axis [i, j, k] the scan goes round; only a circle, cylinder or cone gives its own)");
+  s.start = r.vector(r.required(c, path, "start", "the surface point the scan starts at [x, y, z]"), Reader::join(path, "start"));
+  const Eigen::Vector3d off = s.start - s.center;
+  if (!((off - off.dot(s.axis) * s.axis).norm() > 1e-6))
+    r.fail(Reader::join(path, "start"), "the start lies on the scan's axis; expected a surface point off it (its distance from the axis is the scan's radius)");
+  if (auto it = c.find("sweep"); it != c.end()) {
+    s.sweep_deg = in_range(r, *it, Reader::join(path, "sweep"), -36000, 36000, "degrees (right hand about the axis)");
+    if (s.sweep_deg == 0) r.fail(Reader::join(path, "sweep"), "expected a sweep other than 0 degrees");
+  }
+  if (auto it = c.find("surface"); it != c.end()) {
+    const std::string side = r.text(*it, Reader::join(path, "surface"));
+    if (side != "bore" && side != "boss")
+      r.fail(Reader::join(path, "surface"), "expected \"bore\" (the surface faces the axis) or \"boss\" (it faces away)");
+    s.bore = side == "bore";
+  } else if (round) {
+    s.bore = g.inner;
+  } else {
+    r.fail(Reader::join(path, "surface"), "missing (expected \"bore\" or \"boss\"; a circle, sphere, cylinder or cone gives its own by inner)");
+  }
+}
+
+// `"line": {from, to, normal}`: the normal defaults to a plane's or point's own.
+void read_scan_line(const Reader& r, const json& l, const std::string& path, const Geometry& g, ScanPath& s) {
+  if (!l.is_object()) r.fail(path, "expected {\"from\": [x, y, z], \"to\": [x, y, z], \"normal\": [i, j, k]}");
+  r.only_keys(l, path, {"from", "to", "normal"});
+  s.kind = ScanPath::Kind::Line;
+  s.start = r.vector(r.required(l, path, "from", "the surface point the scan starts at [x, y, z]"), Reader::join(path, "from"));
+  s.end = r.vector(r.required(l, path, "to", "the surface point the scan ends at [x, y, z]"), Reader::join(path, "to"));
+  if (!((s.end - s.start).norm() > 1e-6)) r.fail(Reader::join(path, "to"), "expected an end other than the start");
+  if (auto it = l.find("normal"); it != l.end()) s.normal = r.direction(*it, Reader::join(path, "normal"));
+  else if (g.kind == FeatureKind::Plane || g.kind == FeatureKind::Point) s.normal = g.direction;
+  else r.fail(Reader::join(path, "normal"), "missing (expected the surface's outward normal [i, j, k]; only a plane or point gives its own)");
+  const Eigen::Vector3d along = (s.end - s.start).normalized();
+  const Eigen::Vector3d across = s.normal - s.normal.dot(along) * along;
+  if (!(across.norm() > 1e-6)) r.fail(Reader::join(path, "normal"), "the normal runs along the line; expected the outward normal of the surface the line lies on");
+  s.normal = across.normalized();
+}
+
+ScanPath read_scan(const Reader& r, const json& v, const std::string& path, const Geometry& g) {
+  const char* expected = "expected {\"circle\": {…}} or {\"line\": {…}}, with optional \"step\" and \"speed\"";
+  if (!v.is_object()) r.fail(path, expected);
+  r.only_keys(v, path, {"circle", "line", "step", "speed"});
+  ScanPath s;
+  const auto circle = v.find("circle"), line = v.find("line");
+  if ((circle == v.end()) == (line == v.end())) r.fail(path, std::string(expected) + " (one of circle and line)");
+  if (circle != v.end()) read_scan_circle(r, *circle, Reader::join(path, "circle"), g, s);
+  else read_scan_line(r, *line, Reader::join(path, "line"), g, s);
+  if (auto it = v.find("step"); it != v.end()) s.step = in_range(r, *it, Reader::join(path, "step"), 0.001, 100, "mm between points");
+  if (auto it = v.find("speed"); it != v.end()) s.speed = in_range(r, *it, Reader::join(path, "speed"), 0.1, 100, "mm/s");
+  return s;
+}
+
 PlanFeature read_feature(const Reader& r, const json& f, const std::string& path) {
   if (!f.is_object()) r.fail(path, "expected an object with name, type and the feature's geometry");
   PlanFeature out;
@@ -201,6 +285,15 @@ PlanFeature read_feature(const Reader& r, const json& f, const std::string& path
     const std::string p = Reader::join(path, "probe");
     if (!it->is_array()) r.fail(p, "expected an array of probe points");
     for (std::size_t i = 0; i < it->size(); ++i) out.probes.push_back(read_probe(r, (*it)[i], Reader::index(p, i)));
+  }
+  if (auto it = f.find("scan"); it != f.end()) {
+    const std::string p = Reader::join(path, "scan");
+    if (it->is_array()) {
+      if (it->empty()) r.fail(p, "expected a scan or a non-empty array of scans");
+      for (std::size_t i = 0; i < it->size(); ++i) out.scans.push_back(read_scan(r, (*it)[i], Reader::index(p, i), out.nominal));
+    } else {
+      out.scans.push_back(read_scan(r, *it, p, out.nominal));
+    }
   }
   if (auto it = f.find("moves"); it != f.end()) {
     const std::string m = r.text(*it, Reader::join(path, "moves"));

@@ -89,7 +89,7 @@ TEST_CASE("messcap -n 3 -o x.csv: exactly the first three points, amid noise") {
   auto status = cap.wait();
   REQUIRE(status);
   CHECK(*status == 0);
-  CHECK(read_file(csv) == "hit,x,y,z\n,10.250,0.000,0.000\n,-1.500,20.000,3.125\n,0.000,0.000,-7.000\n");  // MeasPt: no number
+  CHECK(read_file(csv) == "hit,x,y,z,scan\n,10.250,0.000,0.000,\n,-1.500,20.000,3.125,\n,0.000,0.000,-7.000,\n");  // MeasPt: no number
   CHECK(cap.out() ==
         "point 1: 10.250 0.000 0.000\npoint 2: -1.500 20.000 3.125\npoint 3: 0.000 0.000 -7.000\n");
   CHECK(daemon.wait_for_line("Hello messcap"));
@@ -137,8 +137,8 @@ TEST_CASE("messcap without -n: Ctrl-C (SIGINT) ends the capture, every point wri
   REQUIRE(status);
   CHECK(*status == 0);
   CHECK(read_file(csv) ==
-        "hit,x,y,z\n,10.250,0.000,0.000\n,-1.500,20.000,3.125\n,0.000,0.000,-7.000\n,99.000,99.000,99.000\n"
-        ",5.000,5.000,5.000\n");
+        "hit,x,y,z,scan\n,10.250,0.000,0.000,\n,-1.500,20.000,3.125,\n,0.000,0.000,-7.000,\n,99.000,99.000,99.000,\n"
+        ",5.000,5.000,5.000,\n");
   CHECK_THAT(cap.err(), Catch::Contains("5 points written") && Catch::Contains("interrupted"));
 }
 
@@ -150,8 +150,8 @@ TEST_CASE("messcap -n: stopped early keeps the points and exits 3") {
   REQUIRE(cap.wait_for_output("point 4:"));
   cap.signal(SIGINT);
   CHECK(cap.wait() == 3);
-  CHECK(read_file(csv) == "hit,x,y,z\n,10.250,0.000,0.000\n,-1.500,20.000,3.125\n,0.000,0.000,-7.000\n"
-                          ",99.000,99.000,99.000\n");
+  CHECK(read_file(csv) == "hit,x,y,z,scan\n,10.250,0.000,0.000,\n,-1.500,20.000,3.125,\n,0.000,0.000,-7.000,\n"
+                          ",99.000,99.000,99.000,\n");
   CHECK_THAT(cap.err(), Catch::Contains("before all 10 points"));
 }
 
@@ -165,10 +165,10 @@ TEST_CASE("messcap: never overwrites a capture unless told - --append continues 
   CHECK_THAT(again.err, Catch::Contains("exists") && Catch::Contains("--append"));
   CHECK(imess::test::run_program(args({daemon.address().c_str(), "-n", "1", "-o", csv.c_str(), "--append"}))
             .status == 0);
-  CHECK(read_file(csv) == "hit,x,y,z\n,1.000,1.000,1.000\n,1.000,1.000,1.000\n");  // one header
+  CHECK(read_file(csv) == "hit,x,y,z,scan\n,1.000,1.000,1.000,\n,1.000,1.000,1.000,\n");  // one header
   CHECK(imess::test::run_program(args({daemon.address().c_str(), "-n", "1", "-o", csv.c_str(), "--force"}))
             .status == 0);
-  CHECK(read_file(csv) == "hit,x,y,z\n,1.000,1.000,1.000\n");
+  CHECK(read_file(csv) == "hit,x,y,z,scan\n,1.000,1.000,1.000,\n");
 }
 
 namespace {

@@ -48,7 +48,7 @@ TEST_CASE("messcap -o FILE.csv writes a hit column, and --append resumes after i
   auto first = run_program({client_binary("messcap"), daemon.address(), "-n", "2", "-o", csv});
   INFO(first.err);
   REQUIRE(first.status == 0);
-  CHECK(read_file(csv) == "hit,x,y,z\n1,0.000,0.000,80.000\n2,0.000,10.000,80.000\n");
+  CHECK(read_file(csv) == "hit,x,y,z,scan\n1,0.000,0.000,80.000,\n2,0.000,10.000,80.000,\n");
 
   auto again = run_program({client_binary("messcap"), daemon.address(), "-n", "2", "-o", csv, "--append"});
   INFO(again.err);
@@ -57,7 +57,7 @@ TEST_CASE("messcap -o FILE.csv writes a hit column, and --append resumes after i
   CHECK_THAT(again.err, Catch::Contains("hit 4 is missing: its record in messd's journal is damaged or missing"));
   CHECK_THAT(again.err, Catch::Contains("2 points written") && Catch::Contains("hit 4 missing"));
   CHECK(read_file(csv) ==
-        "hit,x,y,z\n1,0.000,0.000,80.000\n2,0.000,10.000,80.000\n3,10.000,0.000,80.000\n5,10.000,10.000,80.000\n");
+        "hit,x,y,z,scan\n1,0.000,0.000,80.000,\n2,0.000,10.000,80.000,\n3,10.000,0.000,80.000,\n5,10.000,10.000,80.000,\n");
 
   // The readers of CSV take the hit column as what it is, not as x.
   auto fit = run_program({client_binary("messcap"), "fit", "plane", csv});

@@ -142,11 +142,13 @@ TEST_CASE("PointFile .hits in a frame: the point moved and turned, the approach 
     PointFile file(path, OpenMode::New, base);
     REQUIRE(file.needs_approach());
     std::uint64_t seq = 10;
-    for (const auto& touch : touches) file.append(hit_from_parent(frame, {touch.reported(), touch.approach, touch.tip}), seq++);
-    file.append(hit_from_parent(frame, ProbedPoint{{430, 330, 82.5}, Vector3d::Zero(), 0}), seq++);  // a ForcePt
+    for (const auto& touch : touches)
+      file.append(hit_from_parent(frame, {touch.reported(), touch.approach, touch.tip}), PointNumber{seq++, {}});
+    file.append(hit_from_parent(frame, ProbedPoint{{430, 330, 82.5}, Vector3d::Zero(), 0}), PointNumber{seq++, {}});  // a ForcePt
     // A point without its approach never goes into a hits file.
-    CHECK_THROWS_AS(file.append(Vector3d(1, 2, 3), seq), std::logic_error);
+    CHECK_THROWS_AS(file.append(Vector3d(1, 2, 3), PointNumber{seq, {}}), std::logic_error);
     CHECK(file.points() == static_cast<int>(touches.size()) + 1);
+    file.flush();
   }
   const std::string text = read_file(path);
   const auto back = imess::metrology::parse_probed_points(text, path);
@@ -229,8 +231,9 @@ TEST_CASE("messcap --append to a .hits file continues after its last hit, a Forc
     imess::exchange::ExportData base;
     base.decimals = imess::exchange::kHitDecimals;
     PointFile file(path, OpenMode::New, base);
-    file.append(ProbedPoint{touches[0].reported(), touches[0].approach, 2.0}, 4);
-    file.append(ProbedPoint{touches[1].reported(), touches[1].approach, 2.0}, 5);
+    file.append(ProbedPoint{touches[0].reported(), touches[0].approach, 2.0}, PointNumber{4, {}});
+    file.append(ProbedPoint{touches[1].reported(), touches[1].approach, 2.0}, PointNumber{5, {}});
+    file.flush();
   }
   const std::string before = read_file(path);
   const Vector3d forced(430, 330, 82.5);

@@ -302,7 +302,7 @@ TEST_CASE("messcap -o FILE.csv killed with SIGKILL and started again with --appe
   std::vector<std::string> lines;
   for (std::string l; std::getline(in, l);) lines.push_back(l);
   REQUIRE(lines.size() == 11);
-  CHECK(lines[0] == "hit,x,y,z");
+  CHECK(lines[0] == "hit,x,y,z,scan");
   for (int i = 1; i <= 10; ++i) CHECK(lines[i].rfind(std::to_string(i) + ",430.000,330.000,", 0) == 0);
 }
 

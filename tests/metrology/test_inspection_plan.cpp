@@ -71,7 +71,7 @@ TEST_CASE("inspection plan: bad plans name the key and what was expected", "[ins
   CHECK(error_of(plan_with(R"({"name": "a", "type": "circle", "center": [0, 0, 0], "normal": [0, 0, 1], "diameter": -1})", "")) ==
         "t.json: features[0].diameter: expected a number above 0");
   CHECK(error_of(plan_with(R"({"name": "a", "type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "diameter": 3})", "")) ==
-        "t.json: features[0].diameter: unknown key; accepted here: name, type, point, normal, probe, moves");
+        "t.json: features[0].diameter: unknown key; accepted here: name, type, point, normal, probe, scan, moves");
   CHECK(error_of(plan_with(R"({"name": "a", "type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "probe": [[1, 2, 3]]})", "")) ==
         "t.json: features[0].probe[0]: expected [x, y, z, i, j, k] (surface point and approach) or {\"point\", \"approach\"}");
   CHECK(error_of(plan_with(kPlane + "," + kPlane, "")) == "t.json: features[1].name: 'a' is used twice");

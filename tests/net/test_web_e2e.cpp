@@ -76,7 +76,7 @@ TEST_CASE("web panel: the WebSocket is a MESSD client in JSON — position, repl
   web.send_text(json{{"export", "csv"}, {"id", 1}, {"hits", json::array({point})}}.dump());
   auto file = web.until_type("Export", 3.0);
   REQUIRE(file);
-  CHECK((*file)["text"] == "hit,x,y,z\n" + std::to_string((*hit)["seq"].get<int>()) + ",430.000,330.000,80.000\n");
+  CHECK((*file)["text"] == "hit,x,y,z,scan\n" + std::to_string((*hit)["seq"].get<int>()) + ",430.000,330.000,80.000,\n");
   // The loaded program's path: none loaded yet, then the check's 20 segments of the bore's program.
   web.send_text(R"({"path":"loaded","id":2})");
   auto none = web.until_type("Path", 3.0);

@@ -65,8 +65,9 @@ std::string messcap_file(const json& hits, const std::string& ext) {
       p.surface = Eigen::Vector3d(h["x"].get<double>(), h["y"].get<double>(), h["z"].get<double>());
       p.approach = Eigen::Vector3d(h["i"].get<double>(), h["j"].get<double>(), h["k"].get<double>()).normalized();
       p.radius = h["r"].get<double>();
-      file.append(p, h["seq"].get<std::uint64_t>());
+      file.append(p, imess::messcap::PointNumber{h["seq"].get<std::uint64_t>(), {}});
     }
+    file.flush();
   }
   std::string text = read(path);
   fs::remove_all(dir);
@@ -95,7 +96,7 @@ TEST_CASE("web points: CSV, XYZ and .hits are what messcap's capture writes for 
     CHECK(reply["text"].get<std::string>() == messcap_file(hits, ext));
   }
   const std::string csv = ask({{"export", "csv"}, {"hits", hits}})["text"];
-  CHECK(csv.rfind("hit,x,y,z\n101,450.000,330.000,60.000\n", 0) == 0);
+  CHECK(csv.rfind("hit,x,y,z,scan\n101,450.000,330.000,60.000,\n", 0) == 0);
   const std::string xyz = ask({{"export", "xyz"}, {"hits", hits}})["text"];
   CHECK(xyz.rfind("450.000 330.000 60.000 # hit 101\n", 0) == 0);
 }

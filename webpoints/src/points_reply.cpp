@@ -34,7 +34,7 @@ bool all_probed(const std::vector<PageHit>& hits) {
 
 // The line formats carry the hit number as messcap's capture writes it (hit_numbers.hpp there).
 std::string line_with_number(std::string_view format, std::string line, std::uint64_t seq) {
-  if (format == "csv") return std::to_string(seq) + "," + line;
+  if (format == "csv") return std::to_string(seq) + "," + line.insert(line.size() - 1, ",");  // the scan column empty
   line.insert(line.size() - 1, " # hit " + std::to_string(seq));
   return line;
 }
@@ -45,7 +45,7 @@ std::string export_text(const PointsRequest& r, const std::string& name) {
     const bool hits = format.needs_approach();
     if (hits && !all_probed(r.hits))
       throw std::invalid_argument("a .hits file needs every hit's approach (i j k) and one tip radius (r)");
-    std::string out = r.what == "csv" ? "hit,x,y,z\n" : format.header();
+    std::string out = r.what == "csv" ? "hit,x,y,z,scan\n" : format.header();
     for (const auto& h : r.hits)
       out += line_with_number(r.what, hits ? format.hit_line(h.hit, exchange::kHitDecimals)
                                            : format.point_line(h.hit.surface, 3), h.seq);

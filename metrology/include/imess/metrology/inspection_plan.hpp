@@ -48,10 +48,35 @@ struct ProbeTarget {
   Eigen::Vector3d approach;  // unit
 };
 
+// One scan of a feature with a measuring probe (messd's ScanCirc or ScanLine), part coordinates.
+struct ScanPath {
+  enum class Kind { Circle, Line };
+  Kind kind = Kind::Circle;
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();   // the surface point the scan starts at
+  // Circle: round `axis` (unit) through `center`, `sweep_deg` degrees (right hand about the
+  // axis; beyond 360 it goes round again), the surface facing the axis (`bore`) or away.
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  double sweep_deg = 360.0;
+  bool bore = false;
+  // Line: from `start` to the surface point `end`, on a surface whose outward normal is `normal` (unit).
+  Eigen::Vector3d end = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  std::optional<double> step;   // mm between points (messd's ScanStep); none: the machine's
+  std::optional<double> speed;  // mm/s along the surface; none: the machine's ScanSpeed
+
+  // The surface's outward unit normal where the scan starts and where it ends, and that end.
+  Eigen::Vector3d normal_at_start() const;
+  Eigen::Vector3d end_point() const;
+  Eigen::Vector3d normal_at_end() const;
+  double length() const;  // mm along the surface
+};
+
 struct PlanFeature {
   std::string name;
   Geometry nominal;
   std::vector<ProbeTarget> probes;  // may be empty when points come from a file
+  std::vector<ScanPath> scans;      // measured after the probe points
   bool lift_between = false;        // "moves": "lift": to the safe height between its points
 };
 

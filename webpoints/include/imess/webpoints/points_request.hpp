@@ -4,7 +4,7 @@
 // fits are messcap's, byte for byte. No line protocol is involved: the machine is not asked.
 //
 //   {"export":"csv"|"xyz"|"dmi"|"hits","id":N,"hits":[{"seq":17,"x":…,"y":…,"z":…,"i":…,"j":…,"k":…,"r":…},…]}
-//     -> {"type":"Export","id":N,"format":"csv","name":"points.csv","text":"hit,x,y,z\n17,…"}
+//     -> {"type":"Export","id":N,"format":"csv","name":"points.csv","text":"hit,x,y,z,scan\n17,…"}
 //   {"fit":"plane"|"circle"|"sphere"|"cylinder"|… ,"id":N,"hits":[…]}
 //     -> {"type":"Fit","id":N,"kind":"circle","n":8,"result":{…},"text":"{…}"} (`messcap fit`'s line)
 //   a refusal or a failed fit -> the same type with "error": what was wrong and what is accepted.
