@@ -152,8 +152,11 @@ class Session {
       metrology::MeasuredPoint p;
       p.feature = f.name;
       p.point = {h.p.x, h.p.y, h.p.z};
-      p.approach = Vector3d(h.dir.x, h.dir.y, h.dir.z).normalized();
-      p.radius = h.radius;
+      const Vector3d dir(h.dir.x, h.dir.y, h.dir.z);
+      if (dir.norm() > 0) {  // always, from messd; without one the point is taken as it is
+        p.approach = dir.normalized();
+        p.radius = h.radius;
+      }
       points_.push_back(p);
     }
     move_to(end);
