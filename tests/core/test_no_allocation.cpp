@@ -7,7 +7,7 @@
 #include "imess/core/event_fd.hpp"
 #include "imess/core/interval_stats.hpp"
 #include "imess/planner/probe.hpp"
-#include "imess/planner/scan.hpp"
+#include "scan_rig.hpp"
 
 #include "allocation_counter.hpp"
 
@@ -139,43 +139,21 @@ TEST_CASE("the loop's interval statistics record and restart without allocating"
 
 TEST_CASE("no motion cycle allocates while scanning: approach, contact control, points, leave — and a lost contact",
           "[scan]") {
-  const bool streamed = GENERATE(false, true);
-  RigOptions o = default_options();
-  o.sim.mechanics.probe.type = imess::sim::ProbeType::Analog;
-  o.sim.mechanics.start = axes3(Vec3(470, 330, 90));
-  o.sim.streamed = streamed;
-  CoreRig rig(o);
+  CoreRig rig(analog_options(Vec3(470, 330, 90), GENERATE(false, true)));
   rig.run(0.2);
-  planner::Machine m = planner::make_machine("XYZ", 0, 1000, 150, 1000);
-  m.axes[2].travel_max = 600;
-  planner::Planner plan(m);
-  plan.set_position({470, 330, 90});
   planner::ScanSettings s;
   s.step = 0.05;
   s.speed = 20;
   // Along the top, then off its right edge: points, then Failed ScanLostContact and a stop.
-  const auto requests = planner::scan_requests(1, plan.position(), planner::ScanLineShape{{470, 330, 80}, {540, 330, 80}, {0, 0, 1}}, s);
-  for (const auto& r : std::get<std::vector<planner::Request>>(requests)) REQUIRE(plan.append(r).ok());
-  plan.flush();
-  planner::PlannedSegment seg;
-  while (plan.take(seg)) REQUIRE(rig.core().submit_segment({seg, rig.core().stop_ticket(), 0}));
+  queue_scan(rig, 1, planner::ScanLineShape{{470, 330, 80}, {540, 330, 80}, {0, 0, 1}}, s);
   CHECK(allocations_over_cycles(rig, 6000) == 0);
   CHECK(rig.mode() == Mode::Idle);  // stopped, at rest (its events drained by the counter: test_scan.cpp checks them)
 }
 
 TEST_CASE("no motion cycle allocates on an unknown contour: steering round a corner, points, the stop plane, the back-off",
           "[scan]") {
-  const bool streamed = GENERATE(false, true);
-  RigOptions o = default_options();
-  o.sim.mechanics.probe.type = imess::sim::ProbeType::Analog;
-  o.sim.mechanics.start = axes3(Vec3(510, 290, 45));
-  o.sim.streamed = streamed;
-  CoreRig rig(o);
+  CoreRig rig(analog_options(Vec3(510, 290, 45), GENERATE(false, true)));
   rig.run(0.2);
-  planner::Machine m = planner::make_machine("XYZ", 0, 1000, 150, 1000);
-  m.axes[2].travel_max = 600;
-  planner::Planner plan(m);
-  plan.set_position({510, 290, 45});
   planner::ScanSettings s;
   s.step = 0.05;
   s.speed = 5;
@@ -192,11 +170,7 @@ TEST_CASE("no motion cycle allocates on an unknown contour: steering round a cor
   c.stop_point = {520, 315, 40};
   c.stop_normal = {0, 1, 0};
   c.end_normal = {1, 0, 0};
-  const auto requests = planner::scan_requests(1, plan.position(), c, s);
-  for (const auto& r : std::get<std::vector<planner::Request>>(requests)) REQUIRE(plan.append(r).ok());
-  plan.flush();
-  planner::PlannedSegment seg;
-  while (plan.take(seg)) REQUIRE(rig.core().submit_segment({seg, rig.core().stop_ticket(), 0}));
+  queue_scan(rig, 1, c, s);
   CHECK(allocations_over_cycles(rig, 9000) == 0);
   CHECK(rig.mode() == Mode::Idle);  // ended and backed off (test_scan_contour.cpp checks its events)
   CHECK(rig.core().machine().deflection.norm() < 1e-9);

@@ -9,10 +9,8 @@
 #include <optional>
 #include <vector>
 
-#include "core_rig.hpp"
-#include "imess/planner/planner.hpp"
-#include "imess/planner/scan.hpp"
 #include "imess/sim/analog_probe.hpp"
+#include "scan_rig.hpp"
 
 using namespace imess;
 using namespace imess::test;
@@ -21,95 +19,9 @@ using core::FailReason;
 namespace {
 
 constexpr double kBall = 2.0;
-constexpr double kRange = 1.0;
 // The streamed card's status frames with a measuring probe: a fresh sample this often, s
 // (docs/servo-card-link.md, "The measuring probe").
 constexpr double kStreamSamplePeriod = 0.006;
-
-RigOptions analog_options(const Vec3& start, bool streamed) {
-  RigOptions o = default_options();
-  o.sim.mechanics.probe.ball_radius = kBall;
-  o.sim.mechanics.probe.type = sim::ProbeType::Analog;
-  o.sim.mechanics.probe.analog.range = kRange;
-  o.sim.mechanics.probe.analog.noise = 0;
-  o.sim.mechanics.start = axes3(start);
-  o.sim.streamed = streamed;
-  return o;
-}
-
-// The core on the simulated CMM, a planner feeding it like the io side does, and what a scan
-// leaves: its points, the deflection while following, its end.
-class ScanRig {
- public:
-  ScanRig(const Vec3& start, bool streamed) : rig_(analog_options(start, streamed)) {
-    machine_ = planner::make_machine("XYZ", 0, 1000, 150, 1000);
-    machine_.axes[2].travel_max = 600;
-    planner_.emplace(machine_);
-    rig_.run(0.2);  // the link set up, the probe armed
-  }
-
-  // Plans the scan from where the machine stands; the shape's refusal fails the test.
-  void plan(std::uint32_t id, const planner::ScanShape& shape, const planner::ScanSettings& s) {
-    planner::Pose here{};
-    for (int a = 0; a < 3; ++a) here[a] = rig_.position()[a];
-    planner_->set_position(here);
-    const auto requests = planner::scan_requests(id, here, shape, s);
-    REQUIRE(std::holds_alternative<std::vector<planner::Request>>(requests));
-    for (const auto& r : std::get<std::vector<planner::Request>>(requests)) {
-      const auto res = planner_->append(r);
-      INFO(planner::describe(res, machine_));
-      REQUIRE(res.ok());
-    }
-    planner_->flush();
-  }
-
-  // Runs until the scan's id ends (Done or Failed) or max_s passes; records the deflection on
-  // every cycle of the Follow (the sampler's segment is not visible: the cycles between the
-  // first and the last point).
-  void run(std::uint32_t id, double max_s) {
-    for (long i = 0; i < static_cast<long>(max_s * 1000); ++i) {
-      planner::PlannedSegment seg;
-      while (rig_.core().segment_room() > 0 && planner_->take(seg))
-        REQUIRE(rig_.core().submit_segment({seg, rig_.core().stop_ticket(), 0}));
-      rig_.step();
-      const auto& ms = rig_.core().machine();
-      for (const auto& e : rig_.events()) {
-        if (e.kind == EventKind::ScanPt) points.push_back(e);
-        if ((e.kind == EventKind::Done || e.kind == EventKind::Failed) && e.id == id) end = e;
-      }
-      deflections.push_back(ms.deflection.norm());
-      point_counts.push_back(points.size());
-      over_range = over_range || ms.probe_over_range;
-      rig_.clear_events();
-      if (end) break;
-    }
-    rig_.run(0.05);
-  }
-
-  // The deflections from the first point to the last, less the settling after each corner.
-  std::vector<double> following(std::size_t skip) const {
-    std::vector<double> out;
-    std::size_t first = 0, last = 0;
-    for (std::size_t i = 0; i < point_counts.size(); ++i) {
-      if (point_counts[i] == 0) first = i + 1;
-      if (point_counts[i] < points.size()) last = i;
-    }
-    for (std::size_t i = first + skip; i <= last && i < deflections.size(); ++i) out.push_back(deflections[i]);
-    return out;
-  }
-
-  CoreRig& core_rig() { return rig_; }
-  std::vector<Event> points;
-  std::vector<double> deflections;
-  std::vector<std::size_t> point_counts;
-  std::optional<Event> end;
-  bool over_range = false;
-
- private:
-  CoreRig rig_;
-  planner::Machine machine_;
-  std::optional<planner::Planner> planner_;
-};
 
 planner::ScanSettings settings(double speed, double step) {
   planner::ScanSettings s;
@@ -119,14 +31,6 @@ planner::ScanSettings settings(double speed, double step) {
   s.approach_speed = 5;
   s.feed = 50;
   return s;
-}
-
-// The largest distance of a scan's points from the true surface, mm.
-double worst_surface_error(ScanRig& rig) {
-  const auto& scene = rig.core_rig().mechanics().scene();
-  double worst = 0;
-  for (const auto& p : rig.points) worst = std::max(worst, std::fabs(scene.distance(p.p)));
-  return worst;
 }
 
 // The cube's right face (local x = 60), turned by its yaw: a point on it and its outward normal.
@@ -207,7 +111,7 @@ TEST_CASE("scans of the bore, the faces and the sphere: every point on the surfa
         const double spacing = streamed ? std::max(step, speed * kStreamSamplePeriod) : step;
         CHECK(rig.points.size() >= static_cast<std::size_t>(0.9 * c.length / spacing));
         CHECK(rig.points.size() <= static_cast<std::size_t>(1.1 * c.length / step) + 2);
-        CHECK(worst_surface_error(rig) <= 0.001);
+        CHECK(rig.worst_surface_error() <= 0.001);
         const auto& scene = rig.core_rig().mechanics().scene();
         for (const auto& p : rig.points) {
           CHECK(p.id == 7);
@@ -274,17 +178,7 @@ TEST_CASE("a scan with a touch-trigger probe fails NoMeasuringProbe at the clear
   o.sim.mechanics.probe.type = sim::ProbeType::Trigger;
   CoreRig rig(o);
   rig.run(0.2);
-  planner::Machine m = planner::make_machine("XYZ", 0, 1000, 150, 1000);
-  m.axes[2].travel_max = 600;
-  planner::Planner plan(m);
-  plan.set_position({430, 330, 95});
-  const auto requests =
-      planner::scan_requests(9, plan.position(), planner::ScanLineShape{{430, 330, 80}, {490, 330, 80}, {0, 0, 1}}, settings(5, 0.1));
-  for (const auto& r : std::get<std::vector<planner::Request>>(requests))
-    if (const auto res = plan.append(r); !res.ok()) FAIL(planner::describe(res, m));
-  plan.flush();
-  planner::PlannedSegment seg;
-  while (plan.take(seg)) REQUIRE(rig.core().submit_segment({seg, rig.core().stop_ticket(), 0}));
+  queue_scan(rig, 9, planner::ScanLineShape{{430, 330, 80}, {490, 330, 80}, {0, 0, 1}}, settings(5, 0.1));
   std::vector<Event> failed;
   REQUIRE(rig.run_until([&] {
     for (const auto& e : rig.take(EventKind::Failed)) failed.push_back(e);

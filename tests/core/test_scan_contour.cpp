@@ -10,9 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "core_rig.hpp"
-#include "imess/planner/planner.hpp"
-#include "imess/planner/scan.hpp"
+#include "scan_rig.hpp"
 
 using namespace imess;
 using namespace imess::test;
@@ -33,94 +31,13 @@ Vec3 cube_dir(double x, double y, double z) {
 }
 planner::Point3 pt(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
-// The core on the simulated CMM with an analog probe, a planner feeding it as the io side does,
-// and what a contour scan leaves: its points, the deflection on every cycle, its end.
-class ContourRig {
+// A contour scan's rig: Position, Approach and one Contour segment, no Leave.
+class ContourRig : public ScanRig {
  public:
-  ContourRig(const Vec3& start, bool streamed) : rig_(options(start, streamed)) {
-    machine_ = planner::make_machine("XYZ", 0, 1000, 150, 1000);
-    machine_.axes[2].travel_max = 600;
-    planner_.emplace(machine_);
-    rig_.run(0.2);
-  }
-
+  using ScanRig::ScanRig;
   void plan(std::uint32_t id, const planner::ScanContourShape& shape, const planner::ScanSettings& s) {
-    planner::Pose here{};
-    for (int a = 0; a < 3; ++a) here[a] = rig_.position()[a];
-    planner_->set_position(here);
-    const auto requests = planner::scan_requests(id, here, shape, s);
-    if (const auto* why = std::get_if<std::string>(&requests)) FAIL(*why);
-    const auto& list = std::get<std::vector<planner::Request>>(requests);
-    REQUIRE(list.size() == 3);  // Position, Approach, Contour
-    for (const auto& r : list) {
-      const auto res = planner_->append(r);
-      INFO(planner::describe(res, machine_));
-      REQUIRE(res.ok());
-    }
-    planner_->flush();
+    REQUIRE(ScanRig::plan(id, shape, s) == 3);  // Position, Approach, Contour
   }
-
-  void run(std::uint32_t id, double max_s) {
-    for (long i = 0; i < static_cast<long>(max_s * 1000); ++i) {
-      planner::PlannedSegment seg;
-      while (rig_.core().segment_room() > 0 && planner_->take(seg))
-        REQUIRE(rig_.core().submit_segment({seg, rig_.core().stop_ticket(), 0}));
-      rig_.step();
-      for (const auto& e : rig_.events()) {
-        if (e.kind == EventKind::ScanPt) points.push_back(e);
-        if ((e.kind == EventKind::Done || e.kind == EventKind::Failed) && e.id == id) end = e;
-      }
-      deflections.push_back(rig_.core().machine().deflection.norm());
-      point_counts.push_back(points.size());
-      over_range = over_range || rig_.core().machine().probe_over_range;
-      rig_.clear_events();
-      if (end) break;
-    }
-    rig_.run(0.05);
-  }
-
-  // The deflection on every cycle from the first point (skipping `skip` cycles of settling
-  // after the approach) to the last.
-  std::vector<double> following(std::size_t skip) const {
-    std::vector<double> out;
-    std::size_t first = 0, last = 0;
-    for (std::size_t i = 0; i < point_counts.size(); ++i) {
-      if (point_counts[i] == 0) first = i + 1;
-      if (point_counts[i] < points.size()) last = i;
-    }
-    for (std::size_t i = first + skip; i <= last && i < deflections.size(); ++i) out.push_back(deflections[i]);
-    return out;
-  }
-
-  double worst_surface_error() {
-    double worst = 0;
-    for (const auto& p : points) worst = std::max(worst, std::fabs(scene().distance(p.p)));
-    return worst;
-  }
-  const sim::Scene& scene() { return rig_.mechanics().scene(); }
-  CoreRig& core_rig() { return rig_; }
-
-  std::vector<Event> points;
-  std::vector<double> deflections;
-  std::vector<std::size_t> point_counts;
-  std::optional<Event> end;
-  bool over_range = false;
-
- private:
-  static RigOptions options(const Vec3& start, bool streamed) {
-    RigOptions o = default_options();
-    o.sim.mechanics.probe.ball_radius = kContourBall;
-    o.sim.mechanics.probe.type = sim::ProbeType::Analog;
-    o.sim.mechanics.probe.analog.range = 1.0;
-    o.sim.mechanics.probe.analog.noise = 0;
-    o.sim.mechanics.start = axes3(start);
-    o.sim.streamed = streamed;
-    return o;
-  }
-
-  CoreRig rig_;
-  planner::Machine machine_;
-  std::optional<planner::Planner> planner_;
 };
 
 planner::ScanSettings contour_settings(double speed, double step) {
